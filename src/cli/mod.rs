@@ -1,0 +1,50 @@
+//! Command-line interface: one module per subcommand, each with its clap arguments and a `run`
+//! function that converts them into library options in one place and calls the library.
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+mod progress_bar;
+
+/// Exit code when every part finished within tolerance.
+const EXIT_SUCCESS: u8 = 0;
+/// Exit code for bad input or a runtime failure.
+const EXIT_FAILURE: u8 = 1;
+/// Exit code when the run finished but a part is over tolerance (outputs are still written).
+const EXIT_OVER_TOLERANCE: u8 = 3;
+
+/// flatcut: flat cut patterns from 3D surfaces (spring-mass energy model, Wang et al. 2002).
+#[derive(Debug, Parser)]
+#[command(name = "flatcut", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {}
+
+/// How a successful command ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Outcome {
+    /// Everything within tolerance.
+    Success,
+    /// Finished, outputs written, but at least one part is over tolerance.
+    OverTolerance,
+}
+
+/// Parses the command line, runs the command and returns its exit code. Usage errors exit with 2
+/// through clap.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result: anyhow::Result<Outcome> = match cli.command {};
+    match result {
+        Ok(Outcome::Success) => ExitCode::from(EXIT_SUCCESS),
+        Ok(Outcome::OverTolerance) => ExitCode::from(EXIT_OVER_TOLERANCE),
+        Err(error) => {
+            eprintln!("flatcut: error: {error:#}");
+            ExitCode::from(EXIT_FAILURE)
+        }
+    }
+}

@@ -1,0 +1,9 @@
+//! flatcut: flat cut patterns from 3D surfaces, by the spring-mass energy model of Wang, Smith
+//! and Yuen (Computer-Aided Design, 2002).
+//!
+//! The pipeline runs one way, each stage a module that takes values and returns values:
+//! `ingest` (files to triangle soups) → `mesh` (validated facet models) → `flatten` (the paper's
+//! energy model) → `cut` → `nest` → `export` (the only module that writes files).
+
+pub mod mesh;
+pub mod progress;

@@ -1,0 +1,56 @@
+//! A raw triangle soup as read from a file or produced by a tessellator, before validation.
+//!
+//! Nothing is assumed about a soup: it may be non-manifold, hold NaNs or degenerate triangles, or
+//! reference vertices that do not exist. [`crate::mesh::validate`] turns it into checked
+//! [`crate::mesh::FacetModel`]s, one per connected component, or lists every defect.
+
+use glam::DVec3;
+
+/// Tag of a face that came from a plain mesh file (no CAD face behind it).
+pub const NO_SOURCE_FACE: u32 = 0;
+
+/// An indexed triangle soup in model units (millimetres unless the part says otherwise).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TriangleSoup {
+    /// Vertex positions.
+    pub positions: Vec<DVec3>,
+    /// Triangles as indices into `positions`, counter-clockwise seen from the front.
+    pub triangles: Vec<[u32; 3]>,
+    /// Per-triangle tag of the CAD face the triangle was tessellated from
+    /// ([`NO_SOURCE_FACE`] for mesh files). Same length as `triangles`.
+    pub face_sources: Vec<u32>,
+    /// Mesh edges, as vertex index pairs, that lie on a fold line, with the fold line's index.
+    pub fold_edges: Vec<FoldEdge>,
+}
+
+/// One mesh edge that lies on a user fold line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FoldEdge {
+    /// The edge's two vertices (order irrelevant).
+    pub vertices: [u32; 2],
+    /// Index of the fold line in the part's list of fold lines.
+    pub fold_line: u32,
+}
+
+impl TriangleSoup {
+    /// A soup from positions and triangles, every face tagged [`NO_SOURCE_FACE`].
+    pub fn new(positions: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> Self {
+        let face_sources = vec![NO_SOURCE_FACE; triangles.len()];
+        Self { positions, triangles, face_sources, fold_edges: Vec::new() }
+    }
+
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// The same soup moved by a rigid motion (or any affine map given as a closure).
+    pub fn transformed(&self, map: impl Fn(DVec3) -> DVec3) -> Self {
+        Self { positions: self.positions.iter().map(|&p| map(p)).collect(), ..self.clone() }
+    }
+
+    /// The soup scaled by `factor` (a unit conversion).
+    pub fn scaled(&self, factor: f64) -> Self {
+        self.transformed(|p| p * factor)
+    }
+}

@@ -1,0 +1,399 @@
+//! Validation: turns a raw [`TriangleSoup`] into one [`FacetModel`] per connected component, or
+//! reports every defect at once, each naming the element (vertex or triangle index, 0-based).
+//!
+//! Repairs that cannot change the geometry are made with a warning: triangles that repeat a
+//! vertex index (zero area, no neighbours to lose) are dropped, unreferenced vertices are dropped,
+//! and an orientable surface whose faces disagree in orientation is reoriented to agree with its
+//! lowest-numbered face. Everything else is an error: non-finite coordinates, indices out of
+//! range, zero-area triangles with three distinct vertices, edges with more than two faces,
+//! vertices whose faces form more than one fan, and non-orientable surfaces.
+
+use std::fmt;
+
+use glam::DVec3;
+
+use super::facet::{FacetModel, NONE};
+use super::soup::TriangleSoup;
+
+/// A triangle whose area is below this fraction of its longest edge squared is degenerate: its
+/// height is under a millionth of its length, too thin for a meaningful flat shape.
+pub const DEGENERATE_AREA_RATIO: f64 = 1e-12;
+
+/// One defect of an input mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Defect {
+    /// The mesh has no triangles at all.
+    NoTriangles,
+    /// A vertex has a NaN or infinite coordinate.
+    NonFiniteVertex {
+        /// Vertex index.
+        vertex: usize,
+    },
+    /// A triangle references a vertex that does not exist.
+    IndexOutOfRange {
+        /// Triangle index.
+        triangle: usize,
+        /// The offending vertex index.
+        index: u32,
+        /// Number of vertices in the mesh.
+        vertex_count: usize,
+    },
+    /// A triangle uses the same vertex twice (dropped, with a warning).
+    RepeatedVertex {
+        /// Triangle index.
+        triangle: usize,
+    },
+    /// A triangle with three distinct vertices but (nearly) no area.
+    ZeroArea {
+        /// Triangle index.
+        triangle: usize,
+        /// Its area in model units squared.
+        area: f64,
+    },
+    /// An edge shared by more than two triangles.
+    NonManifoldEdge {
+        /// The edge's vertices.
+        vertices: [u32; 2],
+        /// How many triangles share it.
+        faces: usize,
+    },
+    /// A vertex whose triangles form several fans touching only at the vertex (a bow-tie).
+    NonManifoldVertex {
+        /// Vertex index.
+        vertex: usize,
+        /// Number of separate fans.
+        fans: usize,
+    },
+    /// A Möbius-like surface whose triangles cannot all be oriented the same way.
+    NonOrientable {
+        /// An edge where the orientations conflict.
+        vertices: [u32; 2],
+    },
+    /// Triangles whose orientation disagreed with their neighbours (reoriented, with a warning).
+    Reoriented {
+        /// How many triangles were flipped.
+        count: usize,
+    },
+    /// Vertices no triangle uses (dropped, with a warning).
+    UnreferencedVertices {
+        /// How many.
+        count: usize,
+        /// The first one.
+        first: usize,
+    },
+}
+
+impl Defect {
+    /// True for defects that were repaired (a warning), false for those that stop the run.
+    pub fn is_repaired(&self) -> bool {
+        matches!(
+            self,
+            Defect::RepeatedVertex { .. } | Defect::Reoriented { .. } | Defect::UnreferencedVertices { .. }
+        )
+    }
+}
+
+impl fmt::Display for Defect {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Defect::NoTriangles => write!(f, "the mesh has no triangles"),
+            Defect::NonFiniteVertex { vertex } => {
+                write!(f, "vertex {vertex} has a NaN or infinite coordinate")
+            }
+            Defect::IndexOutOfRange { triangle, index, vertex_count } => write!(
+                f,
+                "triangle {triangle} references vertex {index}, but there are only {vertex_count} vertices"
+            ),
+            Defect::RepeatedVertex { triangle } => {
+                write!(f, "triangle {triangle} uses the same vertex twice (dropped)")
+            }
+            Defect::ZeroArea { triangle, area } => write!(
+                f,
+                "triangle {triangle} has zero area ({area:.3e}): its vertices are collinear; \
+                 remove it or collapse its shortest edge"
+            ),
+            Defect::NonManifoldEdge { vertices: [a, b], faces } => write!(
+                f,
+                "edge {a}-{b} is shared by {faces} triangles (non-manifold; at most 2 allowed)"
+            ),
+            Defect::NonManifoldVertex { vertex, fans } => write!(
+                f,
+                "vertex {vertex} joins {fans} separate fans of triangles (non-manifold vertex)"
+            ),
+            Defect::NonOrientable { vertices: [a, b] } => write!(
+                f,
+                "the surface is not orientable (orientations conflict at edge {a}-{b})"
+            ),
+            Defect::Reoriented { count } => {
+                write!(f, "{count} triangles had the opposite orientation and were flipped")
+            }
+            Defect::UnreferencedVertices { count, first } => {
+                write!(f, "{count} vertices are used by no triangle (first: {first}); dropped")
+            }
+        }
+    }
+}
+
+/// The defects that stop a mesh from being used, all of them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshDefects(pub Vec<Defect>);
+
+impl fmt::Display for MeshDefects {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        const SHOWN: usize = 20;
+        write!(f, "{} defect(s)", self.0.len())?;
+        for defect in self.0.iter().take(SHOWN) {
+            write!(f, "\n  - {defect}")?;
+        }
+        if self.0.len() > SHOWN {
+            write!(f, "\n  - ... and {} more", self.0.len() - SHOWN)?;
+        }
+        Ok(())
+    }
+}
+
+/// A validated mesh: its connected components and the repairs made on the way.
+#[derive(Debug, Clone)]
+pub struct ValidatedMesh {
+    /// One facet model per connected component, ordered by their lowest input triangle.
+    pub components: Vec<FacetModel>,
+    /// Repairs made (each [`Defect::is_repaired`]).
+    pub warnings: Vec<Defect>,
+}
+
+/// Checks a soup and splits it into facet models; see the module documentation.
+pub fn validate(soup: &TriangleSoup) -> Result<ValidatedMesh, MeshDefects> {
+    let mut errors = Vec::new();
+    let mut warnings = Vec::new();
+    if soup.triangles.is_empty() {
+        return Err(MeshDefects(vec![Defect::NoTriangles]));
+    }
+    check_coordinates_and_indices(soup, &mut errors);
+    if !errors.is_empty() {
+        return Err(MeshDefects(errors));
+    }
+    let kept = drop_repeated_vertices(soup, &mut warnings);
+    if kept.is_empty() {
+        errors.push(Defect::NoTriangles);
+        return Err(MeshDefects(errors));
+    }
+    check_areas(soup, &kept, &mut errors);
+    let mut triangles: Vec<[u32; 3]> = kept.iter().map(|&t| soup.triangles[t]).collect();
+    let half_edges = sorted_half_edges(&triangles);
+    check_edge_valence(&half_edges, &mut errors);
+    if !errors.is_empty() {
+        return Err(MeshDefects(errors));
+    }
+    let component_of = orient_and_label(&mut triangles, &half_edges, &mut errors, &mut warnings);
+    check_vertex_fans(soup.positions.len(), &triangles, &mut errors);
+    if !errors.is_empty() {
+        return Err(MeshDefects(errors));
+    }
+    let components = split_components(soup, &kept, &triangles, &component_of, &mut warnings);
+    Ok(ValidatedMesh { components, warnings })
+}
+
+fn check_coordinates_and_indices(soup: &TriangleSoup, errors: &mut Vec<Defect>) {
+    for (vertex, p) in soup.positions.iter().enumerate() {
+        if !p.is_finite() {
+            errors.push(Defect::NonFiniteVertex { vertex });
+        }
+    }
+    let vertex_count = soup.positions.len();
+    for (triangle, t) in soup.triangles.iter().enumerate() {
+        for &index in t {
+            if index as usize >= vertex_count {
+                errors.push(Defect::IndexOutOfRange { triangle, index, vertex_count });
+            }
+        }
+    }
+}
+
+/// Indices of the triangles kept: those with three distinct vertex indices.
+fn drop_repeated_vertices(soup: &TriangleSoup, warnings: &mut Vec<Defect>) -> Vec<usize> {
+    let mut kept = Vec::with_capacity(soup.triangles.len());
+    for (triangle, &[a, b, c]) in soup.triangles.iter().enumerate() {
+        if a == b || b == c || a == c {
+            warnings.push(Defect::RepeatedVertex { triangle });
+        } else {
+            kept.push(triangle);
+        }
+    }
+    kept
+}
+
+fn check_areas(soup: &TriangleSoup, kept: &[usize], errors: &mut Vec<Defect>) {
+    for &triangle in kept {
+        let [a, b, c] = soup.triangles[triangle].map(|v| soup.positions[v as usize]);
+        let area = 0.5 * (b - a).cross(c - a).length();
+        let longest = (b - a).length_squared().max((c - b).length_squared()).max((a - c).length_squared());
+        if area <= DEGENERATE_AREA_RATIO * longest {
+            errors.push(Defect::ZeroArea { triangle, area });
+        }
+    }
+}
+
+/// Half-edges `(min, max, face, forward)` sorted by edge; `forward` is true when the face runs
+/// from `min` to `max`.
+fn sorted_half_edges(triangles: &[[u32; 3]]) -> Vec<(u32, u32, u32, bool)> {
+    let mut half_edges = Vec::with_capacity(triangles.len() * 3);
+    for (f, t) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            half_edges.push((a.min(b), a.max(b), f as u32, a < b));
+        }
+    }
+    half_edges.sort_unstable();
+    half_edges
+}
+
+/// Groups of half-edges that share an undirected edge.
+fn edge_groups(half_edges: &[(u32, u32, u32, bool)]) -> impl Iterator<Item = &[(u32, u32, u32, bool)]> {
+    half_edges.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1))
+}
+
+fn check_edge_valence(half_edges: &[(u32, u32, u32, bool)], errors: &mut Vec<Defect>) {
+    for group in edge_groups(half_edges) {
+        if group.len() > 2 {
+            errors.push(Defect::NonManifoldEdge { vertices: [group[0].0, group[0].1], faces: group.len() });
+        }
+    }
+}
+
+/// Propagates a consistent orientation over each component (breadth first from its lowest face),
+/// flipping faces as needed, and returns the component label of every face.
+fn orient_and_label(
+    triangles: &mut [[u32; 3]],
+    half_edges: &[(u32, u32, u32, bool)],
+    errors: &mut Vec<Defect>,
+    warnings: &mut Vec<Defect>,
+) -> Vec<u32> {
+    // Face neighbours across manifold edges: (other face, edge vertices, same_direction).
+    let mut neighbours: Vec<Vec<(u32, [u32; 2], bool)>> = vec![Vec::new(); triangles.len()];
+    for group in edge_groups(half_edges) {
+        if let [x, y] = group {
+            let same = x.3 == y.3;
+            neighbours[x.2 as usize].push((y.2, [x.0, x.1], same));
+            neighbours[y.2 as usize].push((x.2, [x.0, x.1], same));
+        }
+    }
+    let mut component = vec![NONE; triangles.len()];
+    let mut flipped = vec![false; triangles.len()];
+    let mut label = 0;
+    let mut queue = std::collections::VecDeque::new();
+    let mut conflict_reported = false;
+    for seed in 0..triangles.len() {
+        if component[seed] != NONE {
+            continue;
+        }
+        component[seed] = label;
+        queue.push_back(seed);
+        while let Some(f) = queue.pop_front() {
+            for &(g, vertices, same) in &neighbours[f] {
+                // Two faces agree when they run over their shared edge in opposite directions.
+                let g_flipped = flipped[f] ^ same;
+                if component[g as usize] == NONE {
+                    component[g as usize] = label;
+                    flipped[g as usize] = g_flipped;
+                    queue.push_back(g as usize);
+                } else if flipped[g as usize] != g_flipped && !conflict_reported {
+                    errors.push(Defect::NonOrientable { vertices });
+                    conflict_reported = true;
+                }
+            }
+        }
+        label += 1;
+    }
+    let count = flipped.iter().filter(|&&x| x).count();
+    if count > 0 && errors.is_empty() {
+        for (t, &flip) in triangles.iter_mut().zip(&flipped) {
+            if flip {
+                t.swap(1, 2);
+            }
+        }
+        warnings.push(Defect::Reoriented { count });
+    }
+    component
+}
+
+/// Flags vertices whose faces form several fans: corners are joined across shared edges, and a
+/// vertex must end with all its corners in one group.
+fn check_vertex_fans(vertex_count: usize, triangles: &[[u32; 3]], errors: &mut Vec<Defect>) {
+    let mut parent: Vec<u32> = (0..triangles.len() as u32 * 3).collect();
+    fn root(parent: &mut [u32], mut x: u32) -> u32 {
+        while parent[x as usize] != x {
+            parent[x as usize] = parent[parent[x as usize] as usize];
+            x = parent[x as usize];
+        }
+        x
+    }
+    // Corner of vertex v in face f.
+    let corner = |f: u32, v: u32| -> u32 {
+        let k = triangles[f as usize].iter().position(|&x| x == v).expect("vertex of face");
+        f * 3 + k as u32
+    };
+    let half_edges = sorted_half_edges(triangles);
+    for group in edge_groups(&half_edges) {
+        if let [x, y] = group {
+            for v in [x.0, x.1] {
+                let (ra, rb) = (root(&mut parent, corner(x.2, v)), root(&mut parent, corner(y.2, v)));
+                parent[ra as usize] = rb;
+            }
+        }
+    }
+    let mut roots_of_vertex: Vec<Vec<u32>> = vec![Vec::new(); vertex_count];
+    for (f, t) in triangles.iter().enumerate() {
+        for (k, &v) in t.iter().enumerate() {
+            let r = root(&mut parent, (f * 3 + k) as u32);
+            roots_of_vertex[v as usize].push(r);
+        }
+    }
+    for (vertex, roots) in roots_of_vertex.iter_mut().enumerate() {
+        roots.sort_unstable();
+        roots.dedup();
+        if roots.len() > 1 {
+            errors.push(Defect::NonManifoldVertex { vertex, fans: roots.len() });
+        }
+    }
+}
+
+/// One facet model per component label, vertices renumbered in ascending input order.
+fn split_components(
+    soup: &TriangleSoup,
+    kept: &[usize],
+    triangles: &[[u32; 3]],
+    component_of: &[u32],
+    warnings: &mut Vec<Defect>,
+) -> Vec<FacetModel> {
+    let component_count = component_of.iter().max().map_or(0, |&m| m as usize + 1);
+    let mut referenced = vec![false; soup.positions.len()];
+    let mut models = Vec::with_capacity(component_count);
+    for label in 0..component_count as u32 {
+        let faces: Vec<usize> = (0..triangles.len()).filter(|&f| component_of[f] == label).collect();
+        let mut vertices: Vec<u32> = faces.iter().flat_map(|&f| triangles[f]).collect();
+        vertices.sort_unstable();
+        vertices.dedup();
+        let mut new_index = vec![NONE; soup.positions.len()];
+        for (i, &v) in vertices.iter().enumerate() {
+            new_index[v as usize] = i as u32;
+            referenced[v as usize] = true;
+        }
+        let positions: Vec<DVec3> = vertices.iter().map(|&v| soup.positions[v as usize]).collect();
+        let local: Vec<[u32; 3]> = faces.iter().map(|&f| triangles[f].map(|v| new_index[v as usize])).collect();
+        let sources = faces.iter().map(|&f| soup.face_sources.get(kept[f]).copied().unwrap_or(0)).collect();
+        let folds: Vec<(u32, u32, u32)> = soup
+            .fold_edges
+            .iter()
+            .filter_map(|e| {
+                let [a, b] = e.vertices.map(|v| new_index.get(v as usize).copied().unwrap_or(NONE));
+                (a != NONE && b != NONE).then_some((a, b, e.fold_line))
+            })
+            .collect();
+        models.push(FacetModel::from_checked(positions, local, sources, &folds));
+    }
+    let unreferenced: Vec<usize> = (0..referenced.len()).filter(|&v| !referenced[v]).collect();
+    if let Some(&first) = unreferenced.first() {
+        warnings.push(Defect::UnreferencedVertices { count: unreferenced.len(), first });
+    }
+    models
+}

@@ -1,0 +1,23 @@
+//! Progress reporting from long stages, decoupled from any terminal: the library reports through
+//! the [`Progress`] trait and the binary decides how (a bar on a terminal, nothing otherwise).
+
+/// Receives progress from a long stage. Implementations must be cheap: stages call
+/// [`Progress::advance`] often.
+pub trait Progress: Sync {
+    /// A new stage starts, with `total` units of work (0 if unknown).
+    fn start(&self, stage: &str, total: u64);
+    /// `done` units of the current stage are complete (absolute, not a delta).
+    fn advance(&self, done: u64);
+    /// The current stage is over.
+    fn finish(&self);
+}
+
+/// Progress that goes nowhere: for tests, scripts and library users who do not care.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoProgress;
+
+impl Progress for NoProgress {
+    fn start(&self, _stage: &str, _total: u64) {}
+    fn advance(&self, _done: u64) {}
+    fn finish(&self) {}
+}
