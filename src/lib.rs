@@ -5,5 +5,13 @@
 //! `ingest` (files to triangle soups) → `mesh` (validated facet models) → `flatten` (the paper's
 //! energy model) → `cut` → `nest` → `export` (the only module that writes files).
 
+pub mod error;
+pub mod export;
+pub mod flatten;
+pub mod ingest;
 pub mod mesh;
+pub mod pipeline;
 pub mod progress;
+pub mod units;
+
+pub use error::Error;

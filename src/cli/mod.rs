@@ -5,6 +5,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+mod flatten;
 mod progress_bar;
 
 /// Exit code when every part finished within tolerance.
@@ -23,7 +24,12 @@ struct Cli {
 }
 
 #[derive(Debug, Subcommand)]
-enum Command {}
+enum Command {
+    /// The whole pipeline: flatten every part and write its files and the report.
+    Run(flatten::FlattenArgs),
+    /// Flatten parts and write their patterns, no nesting.
+    Flatten(flatten::FlattenArgs),
+}
 
 /// How a successful command ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -38,7 +44,10 @@ pub enum Outcome {
 /// through clap.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
-    let result: anyhow::Result<Outcome> = match cli.command {};
+    let progress = progress_bar::TerminalProgress::new();
+    let result: anyhow::Result<Outcome> = match cli.command {
+        Command::Run(args) | Command::Flatten(args) => flatten::run(args, &progress),
+    };
     match result {
         Ok(Outcome::Success) => ExitCode::from(EXIT_SUCCESS),
         Ok(Outcome::OverTolerance) => ExitCode::from(EXIT_OVER_TOLERANCE),

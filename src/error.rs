@@ -1,0 +1,41 @@
+//! The library's top-level error: what went wrong, naming the file or part and the defect.
+
+use std::path::PathBuf;
+
+use crate::flatten::FlattenError;
+use crate::ingest::IngestError;
+use crate::mesh::MeshDefects;
+
+/// An error of a flatcut run.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// An input file could not be read or parsed.
+    #[error(transparent)]
+    Ingest(#[from] IngestError),
+    /// An input mesh has defects that stop it from being flattened.
+    #[error("{path}: the mesh cannot be used: {defects}")]
+    Mesh {
+        /// The input file.
+        path: PathBuf,
+        /// Every defect found.
+        defects: MeshDefects,
+    },
+    /// A part could not be flattened.
+    #[error("{path}: part '{part}': {source}")]
+    Flatten {
+        /// The input file.
+        path: PathBuf,
+        /// The part's name.
+        part: String,
+        /// Why.
+        source: FlattenError,
+    },
+    /// An output file could not be written.
+    #[error("{path}: cannot write: {source}")]
+    Write {
+        /// The output file.
+        path: PathBuf,
+        /// The operating system's reason.
+        source: std::io::Error,
+    },
+}

@@ -1,0 +1,153 @@
+//! `report.json`: the figures scripts read. Keys keep their names and meanings across versions;
+//! new keys may be added (bump [`SCHEMA_VERSION`] only when a meaning changes).
+//!
+//! Everything in it is deterministic for the same input and options except `seconds`, which
+//! `--no-timings` writes as 0 for byte-identical reports.
+
+use serde::Serialize;
+
+use crate::flatten::{Solver, StopReason};
+use crate::pipeline::{PartResult, RunOptions};
+
+/// Version of the report's layout.
+pub const SCHEMA_VERSION: u32 = 1;
+
+/// The whole report.
+#[derive(Debug, Clone, Serialize)]
+pub struct Report {
+    /// [`SCHEMA_VERSION`].
+    pub schema_version: u32,
+    /// The flatcut version that wrote it.
+    pub flatcut_version: String,
+    /// The options of the run.
+    pub options: RunOptions,
+    /// One entry per part.
+    pub parts: Vec<PartReport>,
+    /// One entry per nested sheet or roll (empty without nesting).
+    pub sheets: Vec<serde_json::Value>,
+}
+
+/// Figures of one part.
+#[derive(Debug, Clone, Serialize)]
+pub struct PartReport {
+    /// Part name; its files are `<name>.*`.
+    pub name: String,
+    /// The input file.
+    pub source: String,
+    /// Units of every length.
+    pub units: &'static str,
+    /// Copies to cut.
+    pub quantity: u32,
+    /// Triangles of the facet model.
+    pub triangles: usize,
+    /// Vertices of the facet model.
+    pub vertices: usize,
+    /// `E_S` (Eq. 4), a fraction.
+    pub area_error: f64,
+    /// `E_C` (Eq. 6), a fraction.
+    pub shape_error: f64,
+    /// Largest relative edge length change.
+    pub max_strain: f64,
+    /// Flipped triangles in the pattern.
+    pub flipped: usize,
+    /// Whether the pattern overlaps itself.
+    pub overlap: bool,
+    /// Phase-two iterations.
+    pub iterations: usize,
+    /// Why phase two stopped.
+    pub stop_reason: StopReason,
+    /// The permissible `E_S` and `E_C`.
+    pub tolerance: f64,
+    /// Both errors within the tolerance and no overlap.
+    pub tolerance_met: bool,
+    /// Wall-clock seconds of flattening (0 with `--no-timings`).
+    pub seconds: f64,
+    /// The solver used.
+    pub solver: Solver,
+    /// Spring energy of the pattern.
+    pub energy: f64,
+    /// `E_S` after phase one.
+    pub initial_area_error: f64,
+    /// `E_C` after phase one.
+    pub initial_shape_error: f64,
+    /// Cuts made (3D polylines).
+    pub cuts: Vec<CutReport>,
+    /// Fold lines and how well their length was kept.
+    pub fold_lines: Vec<FoldLineReport>,
+    /// Repairs made to the input.
+    pub warnings: Vec<String>,
+}
+
+/// One cut.
+#[derive(Debug, Clone, Serialize)]
+pub struct CutReport {
+    /// Length in model units.
+    pub length: f64,
+    /// The 3D polyline.
+    pub points: Vec<[f64; 3]>,
+}
+
+/// One fold line.
+#[derive(Debug, Clone, Serialize)]
+pub struct FoldLineReport {
+    /// Length on the surface.
+    pub length_3d: f64,
+    /// Length in the pattern.
+    pub length_flat: f64,
+    /// Relative difference.
+    pub error: f64,
+}
+
+impl PartReport {
+    /// The report of a flattened part; `timings` false writes 0 seconds.
+    pub fn new(result: &PartResult, options: &RunOptions, timings: bool) -> Self {
+        let (job, stats) = (&result.job, &result.flattened.stats);
+        let accuracy = stats.accuracy;
+        Self {
+            name: job.name.clone(),
+            source: job.source.display().to_string(),
+            units: job.units.symbol(),
+            quantity: job.quantity,
+            triangles: job.model.triangle_count(),
+            vertices: job.model.vertex_count(),
+            area_error: accuracy.area_error,
+            shape_error: accuracy.shape_error,
+            max_strain: accuracy.max_strain,
+            flipped: accuracy.flipped,
+            overlap: accuracy.overlap,
+            iterations: stats.iterations,
+            stop_reason: stats.stop_reason,
+            tolerance: options.flatten.tolerance,
+            tolerance_met: accuracy.within(options.flatten.tolerance),
+            seconds: if timings { stats.seconds } else { 0.0 },
+            solver: options.flatten.solver,
+            energy: stats.energy,
+            initial_area_error: stats.initial_accuracy.area_error,
+            initial_shape_error: stats.initial_accuracy.shape_error,
+            cuts: Vec::new(),
+            fold_lines: Vec::new(),
+            warnings: job.warnings.clone(),
+        }
+    }
+}
+
+impl Report {
+    /// A report with no sheets.
+    pub fn new(options: RunOptions, parts: Vec<PartReport>) -> Self {
+        Self {
+            schema_version: SCHEMA_VERSION,
+            flatcut_version: env!("CARGO_PKG_VERSION").to_string(),
+            options,
+            parts,
+            sheets: Vec::new(),
+        }
+    }
+
+    /// Pretty JSON with a final newline.
+    pub fn to_json(&self) -> String {
+        let mut text = serde_json::to_string_pretty(self)
+            .unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"));
+        text.push('\n');
+        text
+    }
+}

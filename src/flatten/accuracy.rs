@@ -1,0 +1,218 @@
+//! The paper's accuracy measures (§4) and the validity checks a cutting shop needs, computed
+//! from the facet model and a flat pattern alone, so any solver's output can be judged the same
+//! way.
+//!
+//! - Area error `E_S = Σ|A − A'| / Σ A` over triangles (Eq. 4).
+//! - Shape error `E_C = Σ|L − L'| / Σ L` over edges (Eq. 6), `L` the edge's rest length (its 3D
+//!   length unless bend allowance set another).
+//! - Maximum edge strain `max |L' − L| / L`.
+//! - Flipped triangles: signed flat area not positive (the model's orientation is counter-
+//!   clockwise).
+//! - Self-overlap: a flipped triangle, or two boundary segments that cross.
+//!
+//! All in absolute units: the pattern is never rescaled before measuring.
+
+use glam::DVec2;
+use serde::Serialize;
+
+use crate::mesh::FacetModel;
+
+/// The accuracy figures of a flat pattern.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Accuracy {
+    /// `E_S` (Eq. 4), a fraction.
+    pub area_error: f64,
+    /// `E_C` (Eq. 6), a fraction.
+    pub shape_error: f64,
+    /// Largest relative edge length change.
+    pub max_strain: f64,
+    /// Number of triangles whose flat orientation is reversed or degenerate.
+    pub flipped: usize,
+    /// True if the pattern overlaps itself.
+    pub overlap: bool,
+}
+
+impl Accuracy {
+    /// Measures a pattern; `pattern[v]` is the flat position of the model's vertex `v`.
+    pub fn measure(model: &FacetModel, pattern: &[DVec2]) -> Self {
+        let flipped = flipped_triangles(model, pattern);
+        Self {
+            area_error: area_error(model, pattern),
+            shape_error: shape_error(model, pattern),
+            max_strain: max_strain(model, pattern),
+            flipped,
+            overlap: flipped > 0 || boundary_self_intersects(model, pattern),
+        }
+    }
+
+    /// True if both errors are within `tolerance` and the pattern is a valid cut shape.
+    pub fn within(&self, tolerance: f64) -> bool {
+        self.area_error <= tolerance && self.shape_error <= tolerance && !self.overlap
+    }
+}
+
+/// Signed area of a flat triangle (positive when counter-clockwise).
+pub fn signed_area(a: DVec2, b: DVec2, c: DVec2) -> f64 {
+    0.5 * (b - a).perp_dot(c - a)
+}
+
+/// `E_S` of Eq. 4.
+pub fn area_error(model: &FacetModel, pattern: &[DVec2]) -> f64 {
+    let (mut difference, mut total) = (0.0, 0.0);
+    for (f, t) in model.triangles().iter().enumerate() {
+        let area = model.triangle_area(f);
+        let [a, b, c] = t.map(|v| pattern[v as usize]);
+        difference += (area - signed_area(a, b, c).abs()).abs();
+        total += area;
+    }
+    difference / total
+}
+
+/// `E_C` of Eq. 6.
+pub fn shape_error(model: &FacetModel, pattern: &[DVec2]) -> f64 {
+    let (mut difference, mut total) = (0.0, 0.0);
+    for (&[a, b], &rest) in model.edges().iter().zip(model.rest_lengths()) {
+        difference += (pattern[a as usize].distance(pattern[b as usize]) - rest).abs();
+        total += rest;
+    }
+    difference / total
+}
+
+/// Largest relative edge length change.
+pub fn max_strain(model: &FacetModel, pattern: &[DVec2]) -> f64 {
+    model
+        .edges()
+        .iter()
+        .zip(model.rest_lengths())
+        .map(|(&[a, b], &rest)| {
+            (pattern[a as usize].distance(pattern[b as usize]) - rest).abs() / rest
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Number of triangles with non-positive signed flat area.
+pub fn flipped_triangles(model: &FacetModel, pattern: &[DVec2]) -> usize {
+    model
+        .triangles()
+        .iter()
+        .filter(|t| {
+            let [a, b, c] = t.map(|v| pattern[v as usize]);
+            signed_area(a, b, c) <= 0.0
+        })
+        .count()
+}
+
+/// True if two boundary segments that share no vertex intersect (touching counts).
+pub fn boundary_self_intersects(model: &FacetModel, pattern: &[DVec2]) -> bool {
+    let segments: Vec<[u32; 2]> = model
+        .boundary_loops()
+        .iter()
+        .flat_map(|ring| (0..ring.len()).map(move |i| [ring[i], ring[(i + 1) % ring.len()]]))
+        .collect();
+    any_segments_cross(&segments, pattern)
+}
+
+/// Tests segment pairs that share no vertex, bucketed on a uniform grid so the cost stays near
+/// linear for well-spread boundaries.
+fn any_segments_cross(segments: &[[u32; 2]], pattern: &[DVec2]) -> bool {
+    if segments.len() < 2 {
+        return false;
+    }
+    let (mut min, mut max) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+    let mut total_length = 0.0;
+    for &[a, b] in segments {
+        let (p, q) = (pattern[a as usize], pattern[b as usize]);
+        min = min.min(p.min(q));
+        max = max.max(p.max(q));
+        total_length += p.distance(q);
+    }
+    let cell = (total_length / segments.len() as f64)
+        .max(1e-12 * (max - min).length())
+        .max(f64::MIN_POSITIVE);
+    let columns = (((max.x - min.x) / cell) as usize + 1).min(1 << 12);
+    let rows = (((max.y - min.y) / cell) as usize + 1).min(1 << 12);
+    let cell_size = DVec2::new(
+        (max.x - min.x).max(cell) / columns as f64,
+        (max.y - min.y).max(cell) / rows as f64,
+    );
+    let mut buckets: Vec<Vec<u32>> = vec![Vec::new(); columns * rows];
+    let cell_range = |p: DVec2, q: DVec2| {
+        let low = ((p.min(q) - min) / cell_size).floor();
+        let high = ((p.max(q) - min) / cell_size).floor();
+        let clamp = |x: f64, n: usize| (x.max(0.0) as usize).min(n - 1);
+        (
+            clamp(low.x, columns),
+            clamp(high.x, columns),
+            clamp(low.y, rows),
+            clamp(high.y, rows),
+        )
+    };
+    for (s, &[a, b]) in segments.iter().enumerate() {
+        let (x0, x1, y0, y1) = cell_range(pattern[a as usize], pattern[b as usize]);
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                buckets[y * columns + x].push(s as u32);
+            }
+        }
+    }
+    buckets.iter().any(|bucket| {
+        bucket.iter().enumerate().any(|(i, &s)| {
+            bucket[i + 1..].iter().any(|&t| {
+                let ([a, b], [c, d]) = (segments[s as usize], segments[t as usize]);
+                let shares_vertex = a == c || a == d || b == c || b == d;
+                !shares_vertex
+                    && segments_intersect(
+                        pattern[a as usize],
+                        pattern[b as usize],
+                        pattern[c as usize],
+                        pattern[d as usize],
+                    )
+            })
+        })
+    })
+}
+
+/// True if closed segments `pq` and `rs` have a point in common.
+pub fn segments_intersect(p: DVec2, q: DVec2, r: DVec2, s: DVec2) -> bool {
+    let orientation = |a: DVec2, b: DVec2, c: DVec2| (b - a).perp_dot(c - a);
+    let on_segment = |a: DVec2, b: DVec2, c: DVec2| {
+        c.x >= a.x.min(b.x) && c.x <= a.x.max(b.x) && c.y >= a.y.min(b.y) && c.y <= a.y.max(b.y)
+    };
+    let (d1, d2) = (orientation(r, s, p), orientation(r, s, q));
+    let (d3, d4) = (orientation(p, q, r), orientation(p, q, s));
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    {
+        return true;
+    }
+    (d1 == 0.0 && on_segment(r, s, p))
+        || (d2 == 0.0 && on_segment(r, s, q))
+        || (d3 == 0.0 && on_segment(p, q, r))
+        || (d4 == 0.0 && on_segment(p, q, s))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn crossing_and_disjoint_segments() {
+        let v = |x, y| DVec2::new(x, y);
+        assert!(segments_intersect(
+            v(0., 0.),
+            v(2., 2.),
+            v(0., 2.),
+            v(2., 0.)
+        ));
+        assert!(!segments_intersect(
+            v(0., 0.),
+            v(1., 0.),
+            v(0., 1.),
+            v(1., 1.)
+        ));
+        assert!(
+            segments_intersect(v(0., 0.), v(2., 0.), v(1., 0.), v(1., 1.)),
+            "touching counts"
+        );
+    }
+}

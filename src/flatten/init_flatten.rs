@@ -1,0 +1,307 @@
+//! InitFlatten (paper §6.1): the initial 2D pattern, built triangle by triangle.
+//!
+//! Triangles are taken in breadth-first order across shared edges from a seed near the middle of
+//! the surface (the midpoint of a longest breadth-first path in the face graph, so the pattern
+//! grows outwards evenly). The seed is laid with its first edge on the x axis. Each later triangle
+//! shares a placed edge with the triangle it was reached from; its third vertex is placed at the
+//! intersection of the circles around the edge's ends with the 3D edge lengths as radii, on the
+//! side that keeps the triangle counter-clockwise (unconstrained flattening, Fig. 4). When the
+//! third vertex was placed before, through another triangle, the positions conflict and their mean
+//! is used (constrained flattening, Fig. 5).
+//!
+//! After each triangle the strain that averaging creates is released (§6.1.2), in one of two ways:
+//! - [`InitRelease::WholeSystem`]: the paper's procedure, EnergyRelease over every triangle placed
+//!   so far for `N` steps (N = 50). Quadratic in the triangle count: for reproduction and small
+//!   meshes.
+//! - [`InitRelease::Neighbourhood`]: only the new triangle's vertices and their placed neighbours
+//!   move, each to the position that minimises the energy of its springs with their directions
+//!   held (a local step of the fast mass-spring method); near linear.
+//!
+//! A developable surface has no conflicts: its pattern is exact, up to round-off.
+
+use glam::DVec2;
+
+use super::energy_release::{EnergyRelease, ReleaseParameters};
+use super::springs::SpringSystem;
+use crate::mesh::{FacetModel, NONE};
+use crate::progress::Progress;
+
+/// The paper's step count for the release after each triangle ("N = 50").
+pub const PAPER_INIT_RELEASE_STEPS: usize = 50;
+/// Sweeps of the neighbourhood release after each triangle.
+pub const NEIGHBOURHOOD_SWEEPS: usize = 2;
+
+/// How the strain is released while the pattern grows.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum InitRelease {
+    /// The paper's: EnergyRelease over the whole growing system for this many steps.
+    WholeSystem {
+        /// Steps after each triangle (the paper's N).
+        steps: usize,
+        /// Time step of the explicit integration.
+        time_step: f64,
+    },
+    /// Local: the new triangle's neighbourhood only, for this many sweeps.
+    Neighbourhood {
+        /// Gauss-Seidel sweeps over the neighbourhood after each triangle.
+        sweeps: usize,
+    },
+}
+
+/// Builds the initial pattern. `springs` must be the model's spring system. The model must have
+/// a boundary (a closed surface is cut open first).
+pub fn init_flatten(
+    model: &FacetModel,
+    springs: &SpringSystem,
+    release: InitRelease,
+    progress: &dyn Progress,
+) -> Vec<DVec2> {
+    let order = breadth_first_order(model);
+    let mut placer = Placer::new(model, springs);
+    let energy = EnergyRelease::new(model, springs);
+    let mut system = energy.empty_system();
+    progress.start("unfolding", order.len() as u64);
+    for (done, &(f, via_edge)) in order.iter().enumerate() {
+        placer.place_triangle(f, via_edge);
+        match release {
+            InitRelease::WholeSystem { steps, time_step } => {
+                energy.add_triangle(&mut system, f);
+                let parameters = ReleaseParameters {
+                    time_step,
+                    max_steps: steps,
+                    ..ReleaseParameters::default()
+                };
+                energy.release(&system, &mut placer.positions, &parameters, false);
+            }
+            InitRelease::Neighbourhood { sweeps } => placer.relax_neighbourhood(f, sweeps),
+        }
+        if done % 256 == 0 {
+            progress.advance(done as u64);
+        }
+    }
+    progress.finish();
+    placer.positions
+}
+
+/// Triangles in breadth-first order from a central seed, each with the edge it was reached
+/// through ([`NONE`] for the seed).
+fn breadth_first_order(model: &FacetModel) -> Vec<(u32, u32)> {
+    let far = breadth_first(model, 0).last().map_or(0, |visit| visit.face);
+    let visits = breadth_first(model, far);
+    let mut parent = vec![NONE; model.triangle_count()];
+    for visit in &visits {
+        parent[visit.face as usize] = visit.parent;
+    }
+    let mut path = vec![visits.last().map_or(far, |visit| visit.face)];
+    while let Some(&last) = path.last() {
+        match parent[last as usize] {
+            NONE => break,
+            up => path.push(up),
+        }
+    }
+    let seed = path[path.len() / 2];
+    breadth_first(model, seed)
+        .into_iter()
+        .map(|visit| (visit.face, visit.via_edge))
+        .collect()
+}
+
+/// One face reached by a breadth-first search in the face graph.
+struct Visit {
+    face: u32,
+    parent: u32,
+    via_edge: u32,
+}
+
+/// Breadth-first search in the face graph from `start`, in visiting order.
+fn breadth_first(model: &FacetModel, start: u32) -> Vec<Visit> {
+    let mut visited = vec![false; model.triangle_count()];
+    let mut visits = vec![Visit {
+        face: start,
+        parent: NONE,
+        via_edge: NONE,
+    }];
+    visited[start as usize] = true;
+    let mut next = 0;
+    while next < visits.len() {
+        let f = visits[next].face;
+        next += 1;
+        for (e, g) in face_neighbours_with_edges(model, f) {
+            if !visited[g as usize] {
+                visited[g as usize] = true;
+                visits.push(Visit {
+                    face: g,
+                    parent: f,
+                    via_edge: e,
+                });
+            }
+        }
+    }
+    visits
+}
+
+fn face_neighbours_with_edges(model: &FacetModel, f: u32) -> impl Iterator<Item = (u32, u32)> + '_ {
+    model.face_edges()[f as usize]
+        .into_iter()
+        .filter_map(move |e| {
+            let [a, b] = model.edge_faces()[e as usize];
+            let other = if a == f { b } else { a };
+            (other != NONE).then_some((e, other))
+        })
+}
+
+/// The growing pattern: positions, how many proposals each vertex has had, and each vertex's
+/// springs (for the neighbourhood release).
+struct Placer<'a> {
+    model: &'a FacetModel,
+    springs: &'a SpringSystem,
+    positions: Vec<DVec2>,
+    proposals: Vec<u32>,
+    placed_triangle: Vec<bool>,
+    vertex_edge_offsets: Vec<u32>,
+    vertex_edges: Vec<u32>,
+}
+
+impl<'a> Placer<'a> {
+    fn new(model: &'a FacetModel, springs: &'a SpringSystem) -> Self {
+        let n = model.vertex_count();
+        let mut offsets = vec![0u32; n + 1];
+        for &[a, b] in model.edges() {
+            offsets[a as usize + 1] += 1;
+            offsets[b as usize + 1] += 1;
+        }
+        for i in 0..n {
+            offsets[i + 1] += offsets[i];
+        }
+        let mut fill = offsets.clone();
+        let mut vertex_edges = vec![0u32; offsets[n] as usize];
+        for (e, &[a, b]) in model.edges().iter().enumerate() {
+            for v in [a, b] {
+                vertex_edges[fill[v as usize] as usize] = e as u32;
+                fill[v as usize] += 1;
+            }
+        }
+        Self {
+            model,
+            springs,
+            positions: vec![DVec2::ZERO; n],
+            proposals: vec![0; n],
+            placed_triangle: vec![false; model.triangle_count()],
+            vertex_edge_offsets: offsets,
+            vertex_edges,
+        }
+    }
+
+    /// Places triangle `f`, reached through edge `via_edge` (or the seed when [`NONE`]).
+    fn place_triangle(&mut self, f: u32, via_edge: u32) {
+        let t = self.model.triangles()[f as usize];
+        let k = if via_edge == NONE {
+            self.place_seed_edge(t);
+            0
+        } else {
+            self.model.face_edges()[f as usize]
+                .iter()
+                .position(|&e| e == via_edge)
+                .expect("face owns the edge")
+        };
+        let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+        let proposal = self.third_vertex(a, b, c);
+        let count = self.proposals[c as usize] as f64;
+        self.positions[c as usize] =
+            (self.positions[c as usize] * count + proposal) / (count + 1.0);
+        self.proposals[c as usize] += 1;
+        self.placed_triangle[f as usize] = true;
+    }
+
+    fn place_seed_edge(&mut self, t: [u32; 3]) {
+        let length = self.rest_length(t[0], t[1]);
+        self.positions[t[0] as usize] = DVec2::ZERO;
+        self.positions[t[1] as usize] = DVec2::new(length, 0.0);
+        self.proposals[t[0] as usize] = 1;
+        self.proposals[t[1] as usize] = 1;
+    }
+
+    fn rest_length(&self, a: u32, b: u32) -> f64 {
+        let e = self.model.find_edge(a, b).expect("triangle edge exists");
+        self.springs.rest_lengths[e]
+    }
+
+    /// The intersection of the circles around `a` and `b` with the rest lengths to `c` as radii,
+    /// to the left of `a → b`. Where the circles miss (the flat edge `ab` is longer or shorter
+    /// than the triangle allows), the triangle's 3D shape scaled to the flat edge is used.
+    fn third_vertex(&self, a: u32, b: u32, c: u32) -> DVec2 {
+        let (pa, pb) = (self.positions[a as usize], self.positions[b as usize]);
+        let (ra, rb) = (self.rest_length(a, c), self.rest_length(b, c));
+        let distance = pa.distance(pb);
+        let direction = (pb - pa) / distance;
+        let along = (distance * distance + ra * ra - rb * rb) / (2.0 * distance);
+        let height_squared = ra * ra - along * along;
+        if height_squared > 0.0 {
+            return pa + direction * along + direction.perp() * height_squared.sqrt();
+        }
+        let positions = self.model.positions();
+        let (qa, qb, qc) = (
+            positions[a as usize],
+            positions[b as usize],
+            positions[c as usize],
+        );
+        let edge = qb - qa;
+        let along_3d = (qc - qa).dot(edge) / edge.length();
+        let height_3d = (qc - qa).cross(edge).length() / edge.length();
+        let scale = distance / edge.length();
+        pa + direction * along_3d * scale + direction.perp() * height_3d * scale
+    }
+
+    /// Moves the vertices of `f` and their placed neighbours, one after the other, to the
+    /// minimiser of their springs' energy with directions held: `p_i = Σ C (p_j + d u_ij) / Σ C`.
+    fn relax_neighbourhood(&mut self, f: u32, sweeps: usize) {
+        let mut vertices: Vec<u32> = self.model.triangles()[f as usize].to_vec();
+        for &v in &self.model.triangles()[f as usize] {
+            vertices.extend(self.placed_neighbours(v));
+        }
+        vertices.sort_unstable();
+        vertices.dedup();
+        for _ in 0..sweeps {
+            for &v in &vertices {
+                self.relax_vertex(v);
+            }
+        }
+    }
+
+    fn placed_neighbours(&self, v: u32) -> Vec<u32> {
+        self.active_springs(v).map(|(_, other)| other).collect()
+    }
+
+    /// Springs of `v` that belong to a placed triangle, with the vertex at their other end.
+    fn active_springs(&self, v: u32) -> impl Iterator<Item = (usize, u32)> + '_ {
+        let range = self.vertex_edge_offsets[v as usize] as usize
+            ..self.vertex_edge_offsets[v as usize + 1] as usize;
+        self.vertex_edges[range].iter().filter_map(move |&e| {
+            let faces = self.model.edge_faces()[e as usize];
+            let placed = faces
+                .iter()
+                .any(|&g| g != NONE && self.placed_triangle[g as usize]);
+            let [a, b] = self.model.edges()[e as usize];
+            placed.then_some((e as usize, if a == v { b } else { a }))
+        })
+    }
+
+    fn relax_vertex(&mut self, v: u32) {
+        let here = self.positions[v as usize];
+        let (mut weighted, mut total) = (DVec2::ZERO, 0.0);
+        for (e, other) in self.active_springs(v) {
+            let there = self.positions[other as usize];
+            let offset = here - there;
+            let length = offset.length();
+            if length <= 0.0 {
+                return;
+            }
+            let constant = self.springs.constants[e];
+            weighted += constant * (there + offset * (self.springs.rest_lengths[e] / length));
+            total += constant;
+        }
+        if total > 0.0 {
+            self.positions[v as usize] = weighted / total;
+        }
+    }
+}

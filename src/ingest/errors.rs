@@ -1,0 +1,59 @@
+//! Errors of the ingest stage. Each names the file, and where it can, the line.
+
+use std::path::PathBuf;
+
+/// An input file that could not be read or understood.
+#[derive(Debug, thiserror::Error)]
+pub enum IngestError {
+    /// The file could not be opened or read.
+    #[error("{path}: cannot read the file: {source}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's reason.
+        source: std::io::Error,
+    },
+    /// Neither the extension nor the content says what the file is.
+    #[error("{path}: unknown input kind; give a .obj or .stl mesh")]
+    UnknownKind {
+        /// The file.
+        path: PathBuf,
+    },
+    /// The content is malformed.
+    #[error("{path}: {defect}")]
+    Malformed {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong, and where.
+        defect: FormatDefect,
+    },
+}
+
+/// What is wrong with a file's content, before the file's name is known to the parser.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FormatDefect {
+    /// The file holds no triangles.
+    #[error("the file holds no triangles")]
+    Empty,
+    /// A line could not be parsed.
+    #[error("line {line}: {message}")]
+    Line {
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// A binary file's size disagrees with its header.
+    #[error("{0}")]
+    Binary(String),
+}
+
+impl FormatDefect {
+    /// Attaches the file name.
+    pub fn in_file(self, path: &std::path::Path) -> IngestError {
+        IngestError::Malformed {
+            path: path.to_path_buf(),
+            defect: self,
+        }
+    }
+}

@@ -1,0 +1,194 @@
+//! STL, ASCII and binary. STL stores every triangle with its own three corners, so corners
+//! closer than [`STL_WELD_TOLERANCE`] (relative to the bounding-box diagonal) are welded into
+//! one vertex, the first one seen keeping its position.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+
+use super::errors::FormatDefect;
+use crate::mesh::TriangleSoup;
+
+/// Corners of STL triangles closer than this fraction of the bounding-box diagonal are welded.
+pub const STL_WELD_TOLERANCE: f64 = 1e-9;
+
+const BINARY_HEADER: usize = 80;
+const BINARY_TRIANGLE: usize = 50;
+
+/// True when the bytes are a binary STL (size matches the count) or start like an ASCII one.
+pub(crate) fn looks_like_stl(bytes: &[u8]) -> bool {
+    is_binary(bytes) || bytes.trim_ascii_start().starts_with(b"solid")
+}
+
+fn binary_count(bytes: &[u8]) -> Option<usize> {
+    let count = bytes.get(BINARY_HEADER..BINARY_HEADER + 4)?;
+    Some(u32::from_le_bytes(count.try_into().ok()?) as usize)
+}
+
+fn is_binary(bytes: &[u8]) -> bool {
+    binary_count(bytes).is_some_and(|n| bytes.len() == BINARY_HEADER + 4 + n * BINARY_TRIANGLE)
+}
+
+/// Parses an STL file and welds its corners.
+pub fn parse_stl(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
+    let corners = if is_binary(bytes) {
+        parse_binary(bytes)?
+    } else if bytes.trim_ascii_start().starts_with(b"solid") {
+        parse_ascii(bytes)?
+    } else {
+        let message = match binary_count(bytes) {
+            Some(n) => format!(
+                "not an ASCII STL, and as binary STL its header announces {n} triangles ({} bytes) but the file has {} bytes",
+                BINARY_HEADER + 4 + n * BINARY_TRIANGLE,
+                bytes.len()
+            ),
+            None => "not an STL file: too short for a binary header and not ASCII 'solid'".into(),
+        };
+        return Err(FormatDefect::Binary(message));
+    };
+    if corners.is_empty() {
+        return Err(FormatDefect::Empty);
+    }
+    Ok(weld(&corners))
+}
+
+fn parse_binary(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, FormatDefect> {
+    let count = binary_count(bytes).unwrap_or(0);
+    let mut triangles = Vec::with_capacity(count);
+    for t in 0..count {
+        let record = &bytes[BINARY_HEADER + 4 + t * BINARY_TRIANGLE..][..BINARY_TRIANGLE];
+        let read = |k: usize| -> f64 {
+            let at = 12 + 4 * k;
+            f32::from_le_bytes([record[at], record[at + 1], record[at + 2], record[at + 3]]) as f64
+        };
+        triangles
+            .push([0, 1, 2].map(|c| DVec3::new(read(3 * c), read(3 * c + 1), read(3 * c + 2))));
+    }
+    Ok(triangles)
+}
+
+fn parse_ascii(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, FormatDefect> {
+    let text = std::str::from_utf8(bytes)
+        .map_err(|_| FormatDefect::Binary("ASCII STL holds non-UTF-8 bytes".into()))?;
+    let mut triangles = Vec::new();
+    let mut corners: Vec<DVec3> = Vec::with_capacity(3);
+    for (index, raw) in text.lines().enumerate() {
+        let line = index + 1;
+        let mut words = raw.split_whitespace();
+        match words.next() {
+            Some("vertex") => {
+                let mut coordinate = || -> Result<f64, FormatDefect> {
+                    let word = words.next().unwrap_or("");
+                    word.parse().map_err(|_| FormatDefect::Line {
+                        line,
+                        message: format!("vertex coordinate '{word}' is not a number"),
+                    })
+                };
+                corners.push(DVec3::new(coordinate()?, coordinate()?, coordinate()?));
+            }
+            Some("endloop") => {
+                let corners_found = std::mem::take(&mut corners);
+                let triangle: [DVec3; 3] =
+                    corners_found
+                        .try_into()
+                        .map_err(|found: Vec<DVec3>| FormatDefect::Line {
+                            line,
+                            message: format!("a facet needs 3 vertices, found {}", found.len()),
+                        })?;
+                triangles.push(triangle);
+            }
+            _ => {}
+        }
+    }
+    Ok(triangles)
+}
+
+/// Welds corners within the tolerance on a hash grid whose cell is the tolerance.
+fn weld(corners: &[[DVec3; 3]]) -> TriangleSoup {
+    let (mut min, mut max) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+    for p in corners.iter().flatten().filter(|p| p.is_finite()) {
+        min = min.min(*p);
+        max = max.max(*p);
+    }
+    let tolerance = (STL_WELD_TOLERANCE * (max - min).length()).max(f64::MIN_POSITIVE);
+    let cell_of =
+        |p: DVec3| -> [i64; 3] { ((p - min) / tolerance).floor().as_i64vec3().to_array() };
+    let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+    let mut positions: Vec<DVec3> = Vec::new();
+    let mut triangles = Vec::with_capacity(corners.len());
+    for triangle in corners {
+        triangles.push(triangle.map(|p| {
+            if !p.is_finite() {
+                positions.push(p);
+                return (positions.len() - 1) as u32;
+            }
+            let [x, y, z] = cell_of(p);
+            let mut found = None;
+            'search: for dx in -1..=1 {
+                for dy in -1..=1 {
+                    for dz in -1..=1 {
+                        for &v in grid
+                            .get(&[x + dx, y + dy, z + dz])
+                            .map_or(&[][..], Vec::as_slice)
+                        {
+                            if positions[v as usize].distance(p) <= tolerance {
+                                found = Some(v);
+                                break 'search;
+                            }
+                        }
+                    }
+                }
+            }
+            found.unwrap_or_else(|| {
+                positions.push(p);
+                let v = (positions.len() - 1) as u32;
+                grid.entry([x, y, z]).or_default().push(v);
+                v
+            })
+        }));
+    }
+    TriangleSoup::new(positions, triangles)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn binary_stl(triangles: &[[[f32; 3]; 3]]) -> Vec<u8> {
+        let mut bytes = vec![0u8; BINARY_HEADER];
+        bytes.extend((triangles.len() as u32).to_le_bytes());
+        for t in triangles {
+            bytes.extend([0u8; 12]);
+            for c in t {
+                for x in c {
+                    bytes.extend(x.to_le_bytes());
+                }
+            }
+            bytes.extend([0u8; 2]);
+        }
+        bytes
+    }
+
+    #[test]
+    fn binary_corners_are_welded() {
+        let bytes = binary_stl(&[
+            [[0., 0., 0.], [1., 0., 0.], [1., 1., 0.]],
+            [[0., 0., 0.], [1., 1., 0.], [0., 1., 0.]],
+        ]);
+        let soup = parse_stl(&bytes).expect("valid binary stl");
+        assert_eq!(soup.positions.len(), 4);
+        assert_eq!(soup.triangles, vec![[0, 1, 2], [0, 2, 3]]);
+    }
+
+    #[test]
+    fn ascii_is_read_and_truncated_binary_is_refused() {
+        let text = "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
+        assert_eq!(
+            parse_stl(text.as_bytes()).expect("ascii").triangles.len(),
+            1
+        );
+        let mut bytes = binary_stl(&[[[0., 0., 0.], [1., 0., 0.], [1., 1., 0.]]]);
+        bytes.truncate(100);
+        assert!(matches!(parse_stl(&bytes), Err(FormatDefect::Binary(_))));
+    }
+}

@@ -1,0 +1,96 @@
+//! The pipeline for one input: ingest, validate (one part per connected component), flatten.
+//! Values in, values out; the binary writes the files through [`crate::export`].
+
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+
+use crate::error::Error;
+use crate::flatten::{FlattenOptions, Flattened, Stiffness, flatten};
+use crate::ingest::read_mesh;
+use crate::mesh::{FacetModel, validate};
+use crate::progress::Progress;
+use crate::units::Units;
+
+/// Options of a run, echoed in the report.
+#[derive(Debug, Clone, PartialEq, Serialize, Default)]
+pub struct RunOptions {
+    /// Units of mesh files (part files and STEP files carry their own).
+    pub units: Units,
+    /// Flattening options.
+    pub flatten: FlattenOptions,
+}
+
+/// One part ready to flatten: a connected facet model with its stiffness map.
+#[derive(Debug, Clone)]
+pub struct PartJob {
+    /// Part name (the file stem, with `-N` when the file holds several components).
+    pub name: String,
+    /// The input file.
+    pub source: PathBuf,
+    /// Units of the coordinates.
+    pub units: Units,
+    /// How many copies to cut.
+    pub quantity: u32,
+    /// The facet model.
+    pub model: FacetModel,
+    /// Per-edge stiffness factors.
+    pub stiffness: Stiffness,
+    /// Repairs made to the input, as messages.
+    pub warnings: Vec<String>,
+}
+
+/// A flattened part.
+#[derive(Debug, Clone)]
+pub struct PartResult {
+    /// What was flattened.
+    pub job: PartJob,
+    /// The pattern and its figures.
+    pub flattened: Flattened,
+}
+
+/// Reads an input file and splits it into parts, one per connected component.
+pub fn load_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> {
+    let input = read_mesh(path, options.units)?;
+    let validated = validate(&input.soup).map_err(|defects| Error::Mesh {
+        path: path.to_path_buf(),
+        defects,
+    })?;
+    let warnings: Vec<String> = validated.warnings.iter().map(ToString::to_string).collect();
+    let several = validated.components.len() > 1;
+    Ok(validated
+        .components
+        .into_iter()
+        .enumerate()
+        .map(|(i, model)| PartJob {
+            name: if several {
+                format!("{}-{}", input.name, i + 1)
+            } else {
+                input.name.clone()
+            },
+            source: path.to_path_buf(),
+            units: input.units,
+            quantity: 1,
+            stiffness: Stiffness::uniform(&model),
+            model,
+            warnings: warnings.clone(),
+        })
+        .collect())
+}
+
+/// Flattens one part.
+pub fn flatten_part(
+    job: PartJob,
+    options: &RunOptions,
+    progress: &dyn Progress,
+) -> Result<PartResult, Error> {
+    let flattened =
+        flatten(&job.model, &job.stiffness, &options.flatten, progress).map_err(|source| {
+            Error::Flatten {
+                path: job.source.clone(),
+                part: job.name.clone(),
+                source,
+            }
+        })?;
+    Ok(PartResult { job, flattened })
+}
