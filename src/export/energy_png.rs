@@ -1,0 +1,518 @@
+//! The energy report picture `<part>.energy.png` (the paper's Fig. 9, §6.3): the flat pattern
+//! filled with its elastic energy, interpolated linearly over each triangle from the per-vertex
+//! energies of Eq. 1 (Eq. 16), blue where it is lowest and red where it is highest; isolines at
+//! evenly spaced levels of the colour scale; the outline, fold lines and cuts; a colour legend
+//! with units and scale; and the part's figures (E_S, E_C, maximum strain, cuts). When the map
+//! before cutting is given it is drawn in a second panel, beside the first, at the same length
+//! scale and on the same colour scale, so the two can be compared directly.
+//!
+//! Values in, PNG bytes out: no file is read or written here. The same input and options give
+//! the same bytes.
+
+use glam::DVec2;
+use tiny_skia::{Color, Pixmap};
+
+use super::colormap::{ColorScale, ScaleMapping};
+use super::energy_panel::{LineStyle, LineStyles, PanelFrame, draw_panel, stroke_polylines};
+use super::legend::{LegendFrame, LegendText, draw_legend, format_percent, format_value};
+use super::text::{Align, Label, Typeface};
+use crate::flatten::isolines::{evenly_spaced_levels, isolines};
+
+/// Default image width in pixels.
+pub const DEFAULT_WIDTH_PIXELS: u32 = 1600;
+
+/// Default number of isoline levels, evenly spaced over the colour scale.
+pub const DEFAULT_ISOLINE_COUNT: usize = 9;
+
+/// Smallest and largest accepted image width, in pixels.
+pub const WIDTH_PIXEL_RANGE: (u32, u32) = (480, 8000);
+
+/// The accuracy figures printed with a map.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PatternFigures {
+    /// `E_S` (Eq. 4), a fraction.
+    pub area_error: f64,
+    /// `E_C` (Eq. 6), a fraction.
+    pub shape_error: f64,
+    /// Largest relative edge length change, a fraction.
+    pub max_strain: f64,
+    /// Number of cuts made.
+    pub cuts: usize,
+}
+
+/// One energy map: a flat pattern with its per-vertex energy and the lines to draw on it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EnergyMap<'a> {
+    /// The part's name, printed in the title.
+    pub name: String,
+    /// Units of the energy values for the legend, e.g. "mm², C = 0.5".
+    pub energy_units: String,
+    /// Symbol of the length units of `positions`, e.g. "mm", for the scale bar.
+    pub length_units: String,
+    /// Flat vertex positions, model units, y up.
+    pub positions: &'a [DVec2],
+    /// Triangles as vertex index triples.
+    pub triangles: &'a [[u32; 3]],
+    /// Per-vertex energy (Eq. 1), one per position, at least 0.
+    pub vertex_energies: &'a [f64],
+    /// Closed boundary loops as vertex indices: the outline.
+    pub boundary_loops: &'a [Vec<u32>],
+    /// Cuts, as flat polylines in model units.
+    pub cut_polylines: Vec<Vec<DVec2>>,
+    /// Fold lines, as flat polylines in model units.
+    pub fold_polylines: Vec<Vec<DVec2>>,
+    /// The figures printed with the map.
+    pub figures: PatternFigures,
+}
+
+/// Options of [`render_energy_png`]. `Default` is the only source of defaults.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EnergyPngOptions {
+    /// Image width in pixels, within [`WIDTH_PIXEL_RANGE`]; default [`DEFAULT_WIDTH_PIXELS`]. The
+    /// height follows from the pattern's aspect ratio.
+    pub width_pixels: u32,
+    /// How energies map to colours; default [`ScaleMapping::SquareRoot`].
+    pub mapping: ScaleMapping,
+    /// Isoline levels, evenly spaced over the colour scale; default [`DEFAULT_ISOLINE_COUNT`].
+    pub isoline_count: usize,
+}
+
+impl Default for EnergyPngOptions {
+    fn default() -> Self {
+        Self {
+            width_pixels: DEFAULT_WIDTH_PIXELS,
+            mapping: ScaleMapping::default(),
+            isoline_count: DEFAULT_ISOLINE_COUNT,
+        }
+    }
+}
+
+/// Why an energy picture could not be made.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum EnergyPngError {
+    /// The requested width is out of range.
+    #[error("the image width {width} px is outside {min}..={max} px; choose a width in that range")]
+    Width {
+        /// The width asked for.
+        width: u32,
+        /// Smallest width.
+        min: u32,
+        /// Largest width.
+        max: u32,
+    },
+    /// A map has no triangles.
+    #[error("the {panel} has no triangles to draw")]
+    Empty {
+        /// Which map.
+        panel: &'static str,
+    },
+    /// The energies do not match the vertices.
+    #[error("the {panel} has {found} vertex energies for {expected} vertices")]
+    EnergyCount {
+        /// Which map.
+        panel: &'static str,
+        /// Vertices.
+        expected: usize,
+        /// Energies given.
+        found: usize,
+    },
+    /// A triangle or boundary loop names a vertex that does not exist.
+    #[error("a {what} of the {panel} refers to vertex {vertex}, but there are {vertices} vertices")]
+    VertexIndex {
+        /// Which map.
+        panel: &'static str,
+        /// "triangle" or "boundary loop".
+        what: &'static str,
+        /// The bad index.
+        vertex: u32,
+        /// Vertices.
+        vertices: usize,
+    },
+    /// A position, polyline point or energy is NaN or infinite, or an energy is negative.
+    #[error("the {panel} has an invalid {what} (not finite, or a negative energy)")]
+    InvalidValue {
+        /// Which map.
+        panel: &'static str,
+        /// "position", "energy", "cut point" or "fold-line point".
+        what: &'static str,
+    },
+    /// The embedded font could not be read (a build defect).
+    #[error("the embedded font cannot be read; the build is broken")]
+    Font,
+    /// The image could not be allocated or encoded.
+    #[error("the PNG image cannot be made: {0}")]
+    Image(String),
+}
+
+/// Renders the energy picture of `map`, with `before` (the map before cutting) in a second
+/// panel when given, and returns the PNG bytes. The title, units and figures come from `map`.
+pub fn render_energy_png(
+    map: &EnergyMap,
+    before: Option<&EnergyMap>,
+    options: &EnergyPngOptions,
+) -> Result<Vec<u8>, EnergyPngError> {
+    let (min, max) = WIDTH_PIXEL_RANGE;
+    if !(min..=max).contains(&options.width_pixels) {
+        return Err(EnergyPngError::Width {
+            width: options.width_pixels,
+            min,
+            max,
+        });
+    }
+    check_map(map, "pattern")?;
+    if let Some(before) = before {
+        check_map(before, "map before cutting")?;
+    }
+    let typeface = Typeface::embedded().map_err(|_| EnergyPngError::Font)?;
+    let panels: Vec<(&EnergyMap, String)> = match before {
+        Some(before) => vec![
+            (before, panel_caption("before cutting", &before.figures)),
+            (map, panel_caption("after cutting", &map.figures)),
+        ],
+        None => vec![(map, panel_caption("flat pattern", &map.figures))],
+    };
+    let upper = panels
+        .iter()
+        .flat_map(|(panel, _)| panel.vertex_energies.iter().copied())
+        .fold(0.0, f64::max);
+    let colours = ColorScale::new(upper, options.mapping);
+    let layout = Layout::new(options.width_pixels, &panels);
+    let mut pixmap = Pixmap::new(layout.width, layout.height)
+        .ok_or_else(|| EnergyPngError::Image("the image size is invalid".to_string()))?;
+    pixmap.fill(Color::WHITE);
+    let levels: Vec<f64> = evenly_spaced_levels(0.0, 1.0, options.isoline_count)
+        .into_iter()
+        .map(|position| colours.value_at(position))
+        .collect();
+    let styles = LineStyles::scaled(layout.size);
+    for ((panel, caption), frame) in panels.iter().zip(&layout.frames) {
+        let lines = isolines(
+            panel.positions,
+            panel.triangles,
+            panel.vertex_energies,
+            &levels,
+        );
+        draw_panel(&mut pixmap, panel, frame, &colours, &lines, &styles);
+        layout.draw_caption(&mut pixmap, &typeface, frame, caption);
+    }
+    layout.draw_header(&mut pixmap, &typeface, map);
+    let legend_text = LegendText {
+        quantity: "Energy per vertex (Eq. 1)".to_string(),
+        units: map.energy_units.clone(),
+    };
+    draw_legend(
+        &mut pixmap,
+        &typeface,
+        &layout.legend,
+        &colours,
+        &legend_text,
+        &levels,
+    );
+    layout.draw_key(&mut pixmap, &typeface, &styles, &map.length_units);
+    pixmap
+        .encode_png()
+        .map_err(|error| EnergyPngError::Image(error.to_string()))
+}
+
+/// Checks sizes, indices and values of one map.
+fn check_map(map: &EnergyMap, panel: &'static str) -> Result<(), EnergyPngError> {
+    let vertices = map.positions.len();
+    if map.triangles.is_empty() {
+        return Err(EnergyPngError::Empty { panel });
+    }
+    if map.vertex_energies.len() != vertices {
+        return Err(EnergyPngError::EnergyCount {
+            panel,
+            expected: vertices,
+            found: map.vertex_energies.len(),
+        });
+    }
+    let bad_index =
+        |what: &'static str, mut indices: Box<dyn Iterator<Item = u32> + '_>| match indices
+            .find(|&v| v as usize >= vertices)
+        {
+            Some(vertex) => Err(EnergyPngError::VertexIndex {
+                panel,
+                what,
+                vertex,
+                vertices,
+            }),
+            None => Ok(()),
+        };
+    bad_index(
+        "triangle",
+        Box::new(map.triangles.iter().flatten().copied()),
+    )?;
+    bad_index(
+        "boundary loop",
+        Box::new(map.boundary_loops.iter().flatten().copied()),
+    )?;
+    let invalid = |what| EnergyPngError::InvalidValue { panel, what };
+    if !map.positions.iter().all(|p| p.is_finite()) {
+        return Err(invalid("position"));
+    }
+    if !map
+        .vertex_energies
+        .iter()
+        .all(|e| e.is_finite() && *e >= 0.0)
+    {
+        return Err(invalid("energy"));
+    }
+    if !map.cut_polylines.iter().flatten().all(|p| p.is_finite()) {
+        return Err(invalid("cut point"));
+    }
+    if !map.fold_polylines.iter().flatten().all(|p| p.is_finite()) {
+        return Err(invalid("fold-line point"));
+    }
+    Ok(())
+}
+
+/// A panel's caption: what it shows and its errors.
+fn panel_caption(what: &str, figures: &PatternFigures) -> String {
+    format!(
+        "{what}: E_S {}, E_C {}",
+        format_percent(figures.area_error),
+        format_percent(figures.shape_error)
+    )
+}
+
+/// The bounding box of a pattern's positions.
+fn bounds(positions: &[DVec2]) -> (DVec2, DVec2) {
+    positions.iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(low, high), &p| (low.min(p), high.max(p)),
+    )
+}
+
+/// Where everything goes, in pixels; sizes scale with the width (`size` 1 at 1600 pixels).
+struct Layout {
+    width: u32,
+    height: u32,
+    size: f32,
+    margin: f32,
+    frames: Vec<PanelFrame>,
+    legend: LegendFrame,
+    key_baseline: f32,
+}
+
+/// Header height (title and figures lines) at size 1, pixels.
+const HEADER_HEIGHT: f32 = 104.0;
+/// Caption band above each panel at size 1, pixels.
+const CAPTION_HEIGHT: f32 = 40.0;
+/// Key band (line styles, scale bar) below the panels at size 1, pixels.
+const KEY_HEIGHT: f32 = 64.0;
+/// Legend column width at size 1, pixels.
+const LEGEND_WIDTH: f32 = 250.0;
+/// Margin around everything and gap between panels at size 1, pixels.
+const MARGIN: f32 = 28.0;
+/// Smallest panel height at size 1, pixels (room for the legend).
+const MIN_PANEL_HEIGHT: f32 = 520.0;
+/// Largest panel height as a multiple of the image width (for very tall patterns).
+const MAX_PANEL_HEIGHT_RATIO: f64 = 1.2;
+/// Text sizes at size 1, pixels.
+const TITLE_TEXT: f32 = 32.0;
+const BODY_TEXT: f32 = 20.0;
+const SMALL_TEXT: f32 = 17.0;
+
+impl Layout {
+    /// Lays out `panels` side by side at one common length scale, the legend to their right.
+    fn new(width: u32, panels: &[(&EnergyMap, String)]) -> Self {
+        let size = width as f32 / DEFAULT_WIDTH_PIXELS as f32;
+        let margin = MARGIN * size;
+        let count = panels.len().max(1) as f32;
+        let panels_width = width as f32 - 2.0 * margin - LEGEND_WIDTH * size;
+        let panel_width = f64::from((panels_width - (count - 1.0) * margin) / count);
+        let boxes: Vec<(DVec2, DVec2)> = panels.iter().map(|(m, _)| bounds(m.positions)).collect();
+        let extent = |(low, high): &(DVec2, DVec2)| (*high - *low).max(DVec2::splat(1e-12));
+        let widest = boxes.iter().map(|b| extent(b).x).fold(0.0, f64::max);
+        let tallest = boxes.iter().map(|b| extent(b).y).fold(0.0, f64::max);
+        let max_height = MAX_PANEL_HEIGHT_RATIO * f64::from(width);
+        let scale = (panel_width / widest).min(max_height / tallest);
+        let panel_height = (tallest * scale).max(f64::from(MIN_PANEL_HEIGHT * size));
+        let panels_top = f64::from((HEADER_HEIGHT + CAPTION_HEIGHT) * size);
+        let frames = boxes
+            .iter()
+            .enumerate()
+            .map(|(k, (low, high))| {
+                let left = f64::from(margin) + k as f64 * (panel_width + f64::from(margin));
+                let drawn = (*high - *low) * scale;
+                PanelFrame {
+                    origin: DVec2::new(
+                        left + 0.5 * (panel_width - drawn.x),
+                        panels_top + 0.5 * (panel_height - drawn.y),
+                    ),
+                    scale,
+                    min: *low,
+                    max: *high,
+                }
+            })
+            .collect();
+        let panels_bottom = panels_top as f32 + panel_height as f32;
+        let legend = LegendFrame {
+            left: width as f32 - LEGEND_WIDTH * size,
+            top: panels_top as f32 - CAPTION_HEIGHT * size,
+            bottom: panels_bottom,
+            bar_width: 30.0 * size,
+            text_size: SMALL_TEXT * size,
+        };
+        let height = (panels_bottom + (KEY_HEIGHT * size) + margin).ceil() as u32;
+        Self {
+            width,
+            height,
+            size,
+            margin,
+            frames,
+            legend,
+            key_baseline: panels_bottom + 0.5 * KEY_HEIGHT * size + 0.35 * BODY_TEXT * size,
+        }
+    }
+
+    /// The part name and its figures.
+    fn draw_header(&self, pixmap: &mut Pixmap, typeface: &Typeface, map: &EnergyMap) {
+        let title = format!("{}: elastic energy of the flat pattern", map.name);
+        let figures = &map.figures;
+        let line = format!(
+            "E_S {}     E_C {}     max strain {}     cuts {}",
+            format_percent(figures.area_error),
+            format_percent(figures.shape_error),
+            format_percent(figures.max_strain),
+            figures.cuts
+        );
+        let title_baseline = self.margin + typeface.ascent(TITLE_TEXT * self.size);
+        for (text, baseline, size) in [
+            (title.as_str(), title_baseline, TITLE_TEXT),
+            (
+                line.as_str(),
+                title_baseline + 1.9 * BODY_TEXT * self.size,
+                BODY_TEXT,
+            ),
+        ] {
+            typeface.draw(
+                pixmap,
+                &Label {
+                    text,
+                    x: self.margin,
+                    baseline,
+                    size: size * self.size,
+                    colour: [0, 0, 0],
+                    align: Align::Left,
+                },
+            );
+        }
+    }
+
+    /// A panel's caption, centred above its pattern's box.
+    fn draw_caption(
+        &self,
+        pixmap: &mut Pixmap,
+        typeface: &Typeface,
+        frame: &PanelFrame,
+        text: &str,
+    ) {
+        let centre = frame.origin.x + 0.5 * frame.scale * (frame.max.x - frame.min.x);
+        typeface.draw(
+            pixmap,
+            &Label {
+                text,
+                x: centre as f32,
+                baseline: (HEADER_HEIGHT + 0.7 * CAPTION_HEIGHT) * self.size,
+                size: BODY_TEXT * self.size,
+                colour: [40, 40, 40],
+                align: Align::Centre,
+            },
+        );
+    }
+
+    /// The key below the panels: a sample of each line style with its name, and a scale bar.
+    fn draw_key(
+        &self,
+        pixmap: &mut Pixmap,
+        typeface: &Typeface,
+        styles: &LineStyles,
+        length_units: &str,
+    ) {
+        let size = self.size;
+        let text_size = SMALL_TEXT * size;
+        let y = f64::from(self.key_baseline - 0.35 * text_size);
+        let entries: [(&str, &[LineStyle]); 4] = [
+            ("outline", &[styles.outline]),
+            ("cut", &[styles.cut_under, styles.cut_over]),
+            ("fold line", &[styles.fold_under, styles.fold_over]),
+            ("isolines", &[styles.isoline]),
+        ];
+        let sample = f64::from(44.0 * size);
+        let mut x = f64::from(self.margin);
+        for (name, layers) in entries {
+            let line = vec![vec![DVec2::new(x, y), DVec2::new(x + sample, y)]];
+            for layer in layers {
+                stroke_polylines(pixmap, &line, false, layer);
+            }
+            let label_x = x + sample + f64::from(0.5 * text_size);
+            typeface.draw(
+                pixmap,
+                &Label {
+                    text: name,
+                    x: label_x as f32,
+                    baseline: self.key_baseline,
+                    size: text_size,
+                    colour: [0, 0, 0],
+                    align: Align::Left,
+                },
+            );
+            x = label_x + f64::from(typeface.width(name, text_size) + 2.0 * text_size);
+        }
+        self.draw_scale_bar(pixmap, typeface, x, y, length_units);
+    }
+
+    /// A scale bar of a round length near 150 pixels, starting at `x`.
+    fn draw_scale_bar(
+        &self,
+        pixmap: &mut Pixmap,
+        typeface: &Typeface,
+        x: f64,
+        y: f64,
+        length_units: &str,
+    ) {
+        let Some(frame) = self.frames.first() else {
+            return;
+        };
+        let length = round_length(f64::from(150.0 * self.size) / frame.scale);
+        let pixels = length * frame.scale;
+        let tick = f64::from(6.0 * self.size);
+        let bar = vec![
+            vec![DVec2::new(x, y - tick), DVec2::new(x, y + tick)],
+            vec![DVec2::new(x, y), DVec2::new(x + pixels, y)],
+            vec![
+                DVec2::new(x + pixels, y - tick),
+                DVec2::new(x + pixels, y + tick),
+            ],
+        ];
+        let style = LineStyle {
+            colour: [0, 0, 0, 255],
+            width: 2.0 * self.size,
+            dash: None,
+        };
+        stroke_polylines(pixmap, &bar, false, &style);
+        typeface.draw(
+            pixmap,
+            &Label {
+                text: &format!("{} {length_units}", format_value(length)),
+                x: (x + pixels) as f32 + 0.6 * SMALL_TEXT * self.size,
+                baseline: self.key_baseline,
+                size: SMALL_TEXT * self.size,
+                colour: [0, 0, 0],
+                align: Align::Left,
+            },
+        );
+    }
+}
+
+/// The largest of 1, 2 or 5 times a power of ten not above `length` (positive).
+fn round_length(length: f64) -> f64 {
+    let power = 10f64.powf(length.log10().floor());
+    [5.0, 2.0, 1.0]
+        .into_iter()
+        .map(|step| step * power)
+        .find(|&candidate| candidate <= length)
+        .unwrap_or(power)
+}
