@@ -42,6 +42,12 @@ pub struct LineStyles {
     pub fold_over: LineStyle,
     /// Isolines: thin, translucent dark grey.
     pub isoline: LineStyle,
+    /// The maximum-energy marker's outer ring: black.
+    pub marker_under: LineStyle,
+    /// The maximum-energy marker's inner ring: white.
+    pub marker_over: LineStyle,
+    /// Radius of the maximum-energy marker, pixels.
+    pub marker_radius: f32,
 }
 
 impl LineStyles {
@@ -59,6 +65,9 @@ impl LineStyles {
             fold_under: style([255, 255, 255, 230], 5.0, None),
             fold_over: style([15, 25, 120, 255], 2.5, Some([10.0, 6.0])),
             isoline: style([20, 20, 20, 110], 1.1, None),
+            marker_under: style([0, 0, 0, 255], 5.0, None),
+            marker_over: style([255, 255, 255, 255], 2.0, None),
+            marker_radius: 9.0 * size,
         }
     }
 }
@@ -122,6 +131,40 @@ pub fn draw_panel(
     let cuts = to_pixels(&map.cut_polylines, frame);
     stroke_polylines(pixmap, &cuts, false, &styles.cut_under);
     stroke_polylines(pixmap, &cuts, false, &styles.cut_over);
+    if let Some(vertex) = maximum_vertex(map.vertex_energies) {
+        draw_marker(pixmap, corners[vertex], styles);
+    }
+}
+
+/// The vertex of highest energy (the first of equals), if any.
+fn maximum_vertex(energies: &[f64]) -> Option<usize> {
+    let mut best: Option<(usize, f64)> = None;
+    for (vertex, &energy) in energies.iter().enumerate() {
+        if best.is_none_or(|(_, highest)| energy > highest) {
+            best = Some((vertex, energy));
+        }
+    }
+    best.map(|(vertex, _)| vertex)
+}
+
+/// A ring, black outside and white inside, centred on `centre` (pixels).
+pub fn draw_marker(pixmap: &mut Pixmap, centre: DVec2, styles: &LineStyles) {
+    let ring = ring_points(centre, f64::from(styles.marker_radius));
+    stroke_polylines(pixmap, &ring, true, &styles.marker_under);
+    stroke_polylines(pixmap, &ring, true, &styles.marker_over);
+}
+
+/// Points around a circle, as one closed polyline.
+fn ring_points(centre: DVec2, radius: f64) -> Vec<Vec<DVec2>> {
+    const SIDES: usize = 48;
+    vec![
+        (0..SIDES)
+            .map(|k| {
+                let angle = std::f64::consts::TAU * k as f64 / SIDES as f64;
+                centre + radius * DVec2::new(angle.cos(), angle.sin())
+            })
+            .collect(),
+    ]
 }
 
 /// Number of entries of the precomputed palette: finer than the 8-bit colour channels resolve.

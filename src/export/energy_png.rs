@@ -13,9 +13,12 @@ use glam::DVec2;
 use tiny_skia::{Color, Pixmap};
 
 use super::colormap::{ColorScale, ScaleMapping};
-use super::energy_panel::{LineStyle, LineStyles, PanelFrame, draw_panel, stroke_polylines};
+use super::energy_panel::{
+    LineStyle, LineStyles, PanelFrame, draw_marker, draw_panel, stroke_polylines,
+};
 use super::legend::{LegendFrame, LegendText, draw_legend, format_percent, format_value};
 use super::text::{Align, Label, Typeface};
+use crate::flatten::SpringSystem;
 use crate::flatten::isolines::{evenly_spaced_levels, isolines};
 
 /// Default image width in pixels.
@@ -63,6 +66,39 @@ pub struct EnergyMap<'a> {
     pub fold_polylines: Vec<Vec<DVec2>>,
     /// The figures printed with the map.
     pub figures: PatternFigures,
+    /// The energy below which differences are round-off, not deformation (see
+    /// [`negligible_vertex_energy`]); the colour scale's top is never below it, so a pattern
+    /// without deformation (a developable surface) comes out all blue. 0 for none.
+    pub negligible_energy: f64,
+}
+
+/// The strain taken as negligible for the colour scale's floor: one part per million, far below
+/// any manufacturing tolerance and far above the round-off of an isometric flattening.
+pub const NEGLIGIBLE_STRAIN: f64 = 1.0e-6;
+
+/// The largest per-vertex energy (Eq. 1) the springs would hold if every one were strained by
+/// `strain`: `max_i Σ_j ½ C_ij (strain · d_ij)²`.
+pub fn negligible_vertex_energy(springs: &SpringSystem, strain: f64) -> f64 {
+    let vertices = springs
+        .edges
+        .iter()
+        .flatten()
+        .map(|&v| v as usize + 1)
+        .max()
+        .unwrap_or(0);
+    let mut energies = vec![0.0; vertices];
+    for ((&[a, b], &rest), &constant) in springs
+        .edges
+        .iter()
+        .zip(&springs.rest_lengths)
+        .zip(&springs.constants)
+    {
+        let stretch = strain * rest;
+        let energy = 0.5 * constant * stretch * stretch;
+        energies[a as usize] += energy;
+        energies[b as usize] += energy;
+    }
+    energies.into_iter().fold(0.0, f64::max)
 }
 
 /// Options of [`render_energy_png`]. `Default` is the only source of defaults.
@@ -169,13 +205,14 @@ pub fn render_energy_png(
             (before, panel_caption("before cutting", &before.figures)),
             (map, panel_caption("after cutting", &map.figures)),
         ],
-        None => vec![(map, panel_caption("flat pattern", &map.figures))],
+        None => vec![(map, single_caption(map))],
     };
-    let upper = panels
+    let largest = panels
         .iter()
         .flat_map(|(panel, _)| panel.vertex_energies.iter().copied())
         .fold(0.0, f64::max);
-    let colours = ColorScale::new(upper, options.mapping);
+    let floored = largest < map.negligible_energy;
+    let colours = ColorScale::new(largest.max(map.negligible_energy), options.mapping);
     let layout = Layout::new(options.width_pixels, &panels);
     let mut pixmap = Pixmap::new(layout.width, layout.height)
         .ok_or_else(|| EnergyPngError::Image("the image size is invalid".to_string()))?;
@@ -199,6 +236,13 @@ pub fn render_energy_png(
     let legend_text = LegendText {
         quantity: "Energy per vertex (Eq. 1)".to_string(),
         units: map.energy_units.clone(),
+        note: floored.then(|| {
+            let strain = format_value(NEGLIGIBLE_STRAIN);
+            format!(
+                "top: energy at strain {}",
+                strain.trim_start_matches("1.00×")
+            )
+        }),
     };
     draw_legend(
         &mut pixmap,
@@ -274,6 +318,21 @@ fn panel_caption(what: &str, figures: &PatternFigures) -> String {
         format_percent(figures.area_error),
         format_percent(figures.shape_error)
     )
+}
+
+/// The caption of a single panel: what it shows (its figures are in the title).
+fn single_caption(map: &EnergyMap) -> String {
+    match map.figures.cuts {
+        0 => format!("flat pattern, {} triangles", map.triangles.len()),
+        1 => format!(
+            "flat pattern after 1 cut, {} triangles",
+            map.triangles.len()
+        ),
+        cuts => format!(
+            "flat pattern after {cuts} cuts, {} triangles",
+            map.triangles.len()
+        ),
+    }
 }
 
 /// The bounding box of a pattern's positions.
@@ -461,6 +520,22 @@ impl Layout {
             );
             x = label_x + f64::from(typeface.width(name, text_size) + 2.0 * text_size);
         }
+        let radius = f64::from(styles.marker_radius);
+        draw_marker(pixmap, DVec2::new(x + radius, y), styles);
+        let name = "highest energy";
+        let label_x = x + 2.0 * radius + f64::from(0.5 * text_size);
+        typeface.draw(
+            pixmap,
+            &Label {
+                text: name,
+                x: label_x as f32,
+                baseline: self.key_baseline,
+                size: text_size,
+                colour: [0, 0, 0],
+                align: Align::Left,
+            },
+        );
+        let x = label_x + f64::from(typeface.width(name, text_size) + 2.0 * text_size);
         self.draw_scale_bar(pixmap, typeface, x, y, length_units);
     }
 
@@ -496,7 +571,7 @@ impl Layout {
         typeface.draw(
             pixmap,
             &Label {
-                text: &format!("{} {length_units}", format_value(length)),
+                text: &format!("{} {length_units}", format_length(length)),
                 x: (x + pixels) as f32 + 0.6 * SMALL_TEXT * self.size,
                 baseline: self.key_baseline,
                 size: SMALL_TEXT * self.size,
@@ -504,6 +579,15 @@ impl Layout {
                 align: Align::Left,
             },
         );
+    }
+}
+
+/// A scale-bar length: whole numbers without decimals.
+fn format_length(length: f64) -> String {
+    if length >= 1.0 {
+        format!("{length:.0}")
+    } else {
+        format_value(length)
     }
 }
 

@@ -34,6 +34,8 @@ pub struct LegendText {
     pub quantity: String,
     /// Its units, e.g. "mm², C = 0.5".
     pub units: String,
+    /// A remark printed under the scale's mapping, if any.
+    pub note: Option<String>,
 }
 
 /// Draws the legend; `levels` are the isoline levels, marked across the bar.
@@ -47,12 +49,13 @@ pub fn draw_legend(
 ) {
     let line_height = 1.35 * frame.text_size;
     let title = [
-        text.quantity.as_str(),
-        text.units.as_str(),
-        scale.mapping().description(),
+        Some(text.quantity.as_str()),
+        Some(text.units.as_str()),
+        Some(scale.mapping().description()),
+        text.note.as_deref(),
     ];
     let mut baseline = frame.top + typeface.ascent(frame.text_size);
-    for line in title {
+    for line in title.into_iter().flatten() {
         typeface.draw(
             pixmap,
             &Label {

@@ -5,6 +5,7 @@ pub mod atomic;
 pub mod colormap;
 pub mod energy_panel;
 pub mod energy_png;
+pub mod fold_polylines;
 pub mod legend;
 pub mod obj;
 pub mod raster;
