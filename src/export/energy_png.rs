@@ -600,3 +600,267 @@ fn round_length(length: f64) -> f64 {
         .find(|&candidate| candidate <= length)
         .unwrap_or(power)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::export::colormap::palette_colour;
+
+    /// A square grid pattern of `cells × cells` cells over `[0, 100]²` with per-vertex energy
+    /// `energy(position)`, outlined by its border.
+    struct Grid {
+        positions: Vec<DVec2>,
+        triangles: Vec<[u32; 3]>,
+        energies: Vec<f64>,
+        boundary: Vec<Vec<u32>>,
+    }
+
+    impl Grid {
+        fn new(cells: u32, energy: impl Fn(DVec2) -> f64) -> Self {
+            let side = cells + 1;
+            let step = 100.0 / f64::from(cells);
+            let positions: Vec<DVec2> = (0..side * side)
+                .map(|k| DVec2::new(f64::from(k % side), f64::from(k / side)) * step)
+                .collect();
+            let mut triangles = Vec::new();
+            for row in 0..cells {
+                for column in 0..cells {
+                    let corner = row * side + column;
+                    triangles.push([corner, corner + 1, corner + side + 1]);
+                    triangles.push([corner, corner + side + 1, corner + side]);
+                }
+            }
+            let mut ring: Vec<u32> = (0..cells).collect();
+            ring.extend((0..cells).map(|k| cells + k * side));
+            ring.extend((0..cells).map(|k| side * side - 1 - k));
+            ring.extend((0..cells).map(|k| (cells - k) * side));
+            Self {
+                energies: positions.iter().map(|&p| energy(p)).collect(),
+                positions,
+                triangles,
+                boundary: vec![ring],
+            }
+        }
+
+        fn map(&self) -> EnergyMap<'_> {
+            EnergyMap {
+                name: "grid".to_string(),
+                energy_units: "mm², C = 0.5".to_string(),
+                length_units: "mm".to_string(),
+                positions: &self.positions,
+                triangles: &self.triangles,
+                vertex_energies: &self.energies,
+                boundary_loops: &self.boundary,
+                cut_polylines: Vec::new(),
+                fold_polylines: Vec::new(),
+                figures: PatternFigures {
+                    area_error: 0.0123,
+                    shape_error: 0.0234,
+                    max_strain: 0.05,
+                    cuts: 0,
+                },
+                negligible_energy: 0.0,
+            }
+        }
+    }
+
+    fn decode(png: &[u8]) -> Pixmap {
+        Pixmap::decode_png(png).expect("the output is a PNG")
+    }
+
+    fn colour_at(pixmap: &Pixmap, pixel: DVec2) -> [u8; 3] {
+        let colour = pixmap
+            .pixel(pixel.x as u32, pixel.y as u32)
+            .expect("inside the image")
+            .demultiply();
+        [colour.red(), colour.green(), colour.blue()]
+    }
+
+    fn distance(a: [u8; 3], b: [u8; 3]) -> i32 {
+        (0..3)
+            .map(|k| (i32::from(a[k]) - i32::from(b[k])).abs())
+            .max()
+            .unwrap_or(0)
+    }
+
+    /// The pixel frames the renderer uses for these panels.
+    fn frames(width: u32, maps: &[&EnergyMap]) -> Vec<PanelFrame> {
+        let panels: Vec<(&EnergyMap, String)> = maps.iter().map(|&m| (m, String::new())).collect();
+        Layout::new(width, &panels).frames
+    }
+
+    #[test]
+    fn image_has_the_width_asked_for_and_the_pattern_aspect() {
+        let grid = Grid::new(10, |p| p.x);
+        let png =
+            render_energy_png(&grid.map(), None, &EnergyPngOptions::default()).expect("renders");
+        let pixmap = decode(&png);
+        assert_eq!(pixmap.width(), DEFAULT_WIDTH_PIXELS);
+        // A square pattern in a panel about 1270 pixels wide, plus header and key.
+        assert!(
+            (1300..1600).contains(&pixmap.height()),
+            "{}",
+            pixmap.height()
+        );
+        let frame = frames(DEFAULT_WIDTH_PIXELS, &[&grid.map()])[0];
+        let size = frame.pixel(DVec2::new(100.0, 0.0)) - frame.pixel(DVec2::new(0.0, 100.0));
+        assert!((size.x - size.y).abs() < 1e-9, "aspect kept: {size}");
+    }
+
+    #[test]
+    fn colours_span_the_scale_and_follow_the_energy() {
+        // Energy grows along x: blue on the left edge, red on the right edge.
+        let grid = Grid::new(20, |p| p.x * p.x);
+        let map = grid.map();
+        let pixmap =
+            decode(&render_energy_png(&map, None, &EnergyPngOptions::default()).expect("renders"));
+        let frame = frames(DEFAULT_WIDTH_PIXELS, &[&map])[0];
+        let low = colour_at(&pixmap, frame.pixel(DVec2::new(1.0, 52.0)));
+        let high = colour_at(&pixmap, frame.pixel(DVec2::new(99.0, 52.0)));
+        assert!(distance(low, palette_colour(0.0)) <= 12, "low {low:?}");
+        assert!(distance(high, palette_colour(1.0)) <= 12, "high {high:?}");
+        let [red, _, blue] = high;
+        assert!(red > 180 && blue < 80, "high is red: {high:?}");
+        let [red, _, blue] = low;
+        assert!(blue > 150 && red < 80, "low is blue: {low:?}");
+        // Square-root scale: at x = 52 the energy, interpolated between the grid lines x = 50
+        // and x = 55, is 2710 of 10 000, at √0.271 of the scale (off the isoline at ½).
+        let middle = colour_at(&pixmap, frame.pixel(DVec2::new(52.0, 52.0)));
+        assert!(
+            distance(middle, palette_colour(0.271f64.sqrt())) <= 8,
+            "middle {middle:?}"
+        );
+        let near = |target: [u8; 3]| {
+            pixmap.pixels().iter().any(|p| {
+                let c = p.demultiply();
+                distance([c.red(), c.green(), c.blue()], target) <= 6
+            })
+        };
+        for position in [0.0, 0.25, 0.5, 0.75, 1.0] {
+            assert!(
+                near(palette_colour(position)),
+                "colour at {position} present"
+            );
+        }
+    }
+
+    #[test]
+    fn the_same_input_gives_the_same_bytes() {
+        let grid = Grid::new(12, |p| (p.x - 30.0).abs() + p.y);
+        let options = EnergyPngOptions::default();
+        let first = render_energy_png(&grid.map(), Some(&grid.map()), &options).expect("renders");
+        let second = render_energy_png(&grid.map(), Some(&grid.map()), &options).expect("renders");
+        assert_eq!(first, second);
+    }
+
+    #[test]
+    fn both_panels_share_one_colour_scale() {
+        let before = Grid::new(16, |p| 2.0 * p.x);
+        let after = Grid::new(16, |p| p.x);
+        let mut after_map = after.map();
+        after_map.figures.cuts = 1;
+        let before_map = before.map();
+        let png = render_energy_png(&after_map, Some(&before_map), &EnergyPngOptions::default())
+            .expect("renders");
+        let pixmap = decode(&png);
+        let frames = frames(DEFAULT_WIDTH_PIXELS, &[&before_map, &after_map]);
+        let before_high = colour_at(&pixmap, frames[0].pixel(DVec2::new(99.0, 50.0)));
+        let after_high = colour_at(&pixmap, frames[1].pixel(DVec2::new(99.0, 50.0)));
+        assert!(distance(before_high, palette_colour(1.0)) <= 12);
+        // Half the top energy sits at √½ of the square-root scale.
+        let expected = palette_colour(0.5f64.sqrt());
+        assert!(distance(after_high, expected) <= 16, "{after_high:?}");
+    }
+
+    #[test]
+    fn cuts_and_outline_are_drawn_over_the_colours() {
+        let grid = Grid::new(10, |p| p.x);
+        let mut map = grid.map();
+        map.cut_polylines = vec![vec![DVec2::new(50.0, 0.0), DVec2::new(50.0, 60.0)]];
+        let pixmap =
+            decode(&render_energy_png(&map, None, &EnergyPngOptions::default()).expect("renders"));
+        let frame = frames(DEFAULT_WIDTH_PIXELS, &[&map])[0];
+        let along_cut =
+            (5..55).map(|y| colour_at(&pixmap, frame.pixel(DVec2::new(50.0, f64::from(y)))));
+        let magenta = along_cut
+            .filter(|&[r, g, b]| r > 200 && g < 40 && b > 130)
+            .count();
+        assert!(magenta > 10, "magenta dashes on the cut: {magenta}");
+        let corner = colour_at(&pixmap, frame.pixel(DVec2::new(0.0, 50.0)));
+        assert!(corner.iter().all(|&c| c < 60), "black outline: {corner:?}");
+    }
+
+    #[test]
+    fn a_deformation_free_pattern_is_all_blue() {
+        let grid = Grid::new(10, |p| 1e-25 * p.x);
+        let mut map = grid.map();
+        map.negligible_energy = 1e-9;
+        let pixmap =
+            decode(&render_energy_png(&map, None, &EnergyPngOptions::default()).expect("renders"));
+        let frame = frames(DEFAULT_WIDTH_PIXELS, &[&map])[0];
+        let high = colour_at(&pixmap, frame.pixel(DVec2::new(98.0, 50.0)));
+        assert!(distance(high, palette_colour(0.0)) <= 6, "{high:?}");
+    }
+
+    #[test]
+    fn bad_input_is_an_error() {
+        let grid = Grid::new(4, |p| p.x);
+        let options = EnergyPngOptions::default();
+        let mut map = grid.map();
+        map.vertex_energies = &grid.energies[1..];
+        assert!(matches!(
+            render_energy_png(&map, None, &options),
+            Err(EnergyPngError::EnergyCount { .. })
+        ));
+        let negative = vec![-1.0; grid.positions.len()];
+        let mut map = grid.map();
+        map.vertex_energies = &negative;
+        assert!(matches!(
+            render_energy_png(&map, None, &options),
+            Err(EnergyPngError::InvalidValue { what: "energy", .. })
+        ));
+        let bad_triangles = [[0, 1, 999]];
+        let mut map = grid.map();
+        map.triangles = &bad_triangles;
+        assert!(matches!(
+            render_energy_png(&map, None, &options),
+            Err(EnergyPngError::VertexIndex { vertex: 999, .. })
+        ));
+        let narrow = EnergyPngOptions {
+            width_pixels: 10,
+            ..options
+        };
+        assert!(matches!(
+            render_energy_png(&grid.map(), None, &narrow),
+            Err(EnergyPngError::Width { .. })
+        ));
+    }
+
+    #[test]
+    fn negligible_energy_is_that_of_a_uniform_strain() {
+        let springs = SpringSystem {
+            edges: vec![[0, 1], [1, 2]],
+            rest_lengths: vec![10.0, 20.0],
+            constants: vec![0.5, 0.5],
+        };
+        // Vertex 1 ends both springs: ½·0.5·(0.1)² + ½·0.5·(0.2)² = 0.0125.
+        let energy = negligible_vertex_energy(&springs, 0.01);
+        assert!((energy - 0.0125).abs() < 1e-15, "{energy}");
+    }
+
+    /// About 100,000 triangles: run with `cargo test --release -- --ignored --nocapture`.
+    #[test]
+    #[ignore = "timing, prints the render time of about 100,000 triangles"]
+    fn renders_a_hundred_thousand_triangles() {
+        let grid = Grid::new(224, |p| (p.x * 0.1).sin().abs() * p.y);
+        let started = std::time::Instant::now();
+        let png =
+            render_energy_png(&grid.map(), None, &EnergyPngOptions::default()).expect("renders");
+        println!(
+            "{} triangles: {:.3} s, {} bytes",
+            grid.triangles.len(),
+            started.elapsed().as_secs_f64(),
+            png.len()
+        );
+    }
+}
