@@ -253,9 +253,30 @@ pub fn render_energy_png(
         &levels,
     );
     layout.draw_key(&mut pixmap, &typeface, &styles, &map.length_units);
-    pixmap
-        .encode_png()
-        .map_err(|error| EnergyPngError::Image(error.to_string()))
+    encode_opaque_png(&pixmap).map_err(|error| EnergyPngError::Image(error.to_string()))
+}
+
+/// Encodes an opaque pixmap as an 8-bit RGB PNG with fast compression: several times faster than
+/// tiny-skia's own encoder (RGBA, balanced compression) for a slightly larger file. Alpha is
+/// dropped, which is exact for an opaque image (premultiplied and plain colours are then equal).
+fn encode_opaque_png(pixmap: &Pixmap) -> Result<Vec<u8>, png::EncodingError> {
+    let rgb: Vec<u8> = pixmap
+        .pixels()
+        .iter()
+        .flat_map(|pixel| {
+            let colour = pixel.demultiply();
+            [colour.red(), colour.green(), colour.blue()]
+        })
+        .collect();
+    let mut bytes = Vec::new();
+    let mut encoder = png::Encoder::new(&mut bytes, pixmap.width(), pixmap.height());
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    encoder.set_compression(png::Compression::Fast);
+    let mut writer = encoder.write_header()?;
+    writer.write_image_data(&rgb)?;
+    writer.finish()?;
+    Ok(bytes)
 }
 
 /// Checks sizes, indices and values of one map.
