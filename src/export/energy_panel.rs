@@ -113,12 +113,11 @@ pub fn draw_panel(
             palette[index.min(palette.len() - 1)]
         },
     );
-    let isoline_segments: Vec<Vec<DVec2>> = isolines
+    let isoline_curves: Vec<Vec<DVec2>> = isolines
         .iter()
-        .flat_map(|line| &line.segments)
-        .map(|segment| segment.iter().map(|&p| frame.pixel(p)).collect())
+        .flat_map(|line| to_pixels(&line.polylines, frame))
         .collect();
-    stroke_polylines(pixmap, &isoline_segments, false, &styles.isoline);
+    stroke_polylines(pixmap, &isoline_curves, false, &styles.isoline);
     let folds = to_pixels(&map.fold_polylines, frame);
     stroke_polylines(pixmap, &folds, false, &styles.fold_under);
     stroke_polylines(pixmap, &folds, false, &styles.fold_over);

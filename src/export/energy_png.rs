@@ -385,6 +385,8 @@ const KEY_HEIGHT: f32 = 64.0;
 const LEGEND_WIDTH: f32 = 250.0;
 /// Margin around everything and gap between panels at size 1, pixels.
 const MARGIN: f32 = 28.0;
+/// Blank space around a pattern inside its panel at size 1, pixels (room for the marker).
+const PANEL_PADDING: f32 = 14.0;
 /// Smallest panel height at size 1, pixels (room for the legend).
 const MIN_PANEL_HEIGHT: f32 = 520.0;
 /// Largest panel height as a multiple of the image width (for very tall patterns).
@@ -407,8 +409,10 @@ impl Layout {
         let widest = boxes.iter().map(|b| extent(b).x).fold(0.0, f64::max);
         let tallest = boxes.iter().map(|b| extent(b).y).fold(0.0, f64::max);
         let max_height = MAX_PANEL_HEIGHT_RATIO * f64::from(width);
-        let scale = (panel_width / widest).min(max_height / tallest);
-        let panel_height = (tallest * scale).max(f64::from(MIN_PANEL_HEIGHT * size));
+        let padding = f64::from(PANEL_PADDING * size);
+        let scale = ((panel_width - 2.0 * padding) / widest).min(max_height / tallest);
+        let panel_height =
+            (tallest * scale + 2.0 * padding).max(f64::from(MIN_PANEL_HEIGHT * size));
         let panels_top = f64::from((HEADER_HEIGHT + CAPTION_HEIGHT) * size);
         let frames = boxes
             .iter()

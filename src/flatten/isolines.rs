@@ -4,22 +4,26 @@
 //!
 //! Input: flat positions (one per vertex, model units), triangles as vertex index triples, one
 //! value per vertex (the per-vertex energy of Eq. 1, or any field), and the levels. Output: for
-//! each level, the segments where the interpolated field equals the level, one segment per crossed
-//! triangle, in triangle order.
+//! each level, the curves where the interpolated field equals the level, as polylines whose
+//! points lie on mesh edges, one segment per crossed triangle.
 //!
 //! A vertex counts as above a level when its value is strictly greater, so a triangle is crossed
-//! exactly when its vertices fall on both sides and the crossing point on an edge is the same for
-//! both triangles that share it: the segments join into continuous curves.
+//! exactly when its vertices fall on both sides, and the crossing point of an edge is computed
+//! once for both triangles that share it. Segments are joined through the mesh edges they cross
+//! (exact integer keys, no coordinate comparison) into polylines: open ones end on the boundary,
+//! closed ones repeat their first point.
 
 use glam::DVec2;
+
+use crate::mesh::chain_edges;
 
 /// The isoline of one level.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Isoline {
     /// The field value along the line.
     pub level: f64,
-    /// Its pieces, one per crossed triangle, as `[start, end]` in the positions' units.
-    pub segments: Vec<[DVec2; 2]>,
+    /// Its curves, in the positions' units.
+    pub polylines: Vec<Vec<DVec2>>,
 }
 
 /// The isolines of `values` at each of `levels`. Triangles referring to a vertex outside
@@ -34,10 +38,7 @@ pub fn isolines(
         .iter()
         .map(|&level| Isoline {
             level,
-            segments: triangles
-                .iter()
-                .filter_map(|triangle| triangle_crossing(positions, values, *triangle, level))
-                .collect(),
+            polylines: level_polylines(positions, triangles, values, level),
         })
         .collect()
 }
@@ -50,39 +51,64 @@ pub fn evenly_spaced_levels(lower: f64, upper: f64, count: usize) -> Vec<f64> {
         .collect()
 }
 
-/// The segment where the linear interpolation of the corner values equals `level`, if the
-/// triangle's corners lie on both sides of it.
-fn triangle_crossing(
+/// The curves of one level: each crossed triangle links the two mesh edges it crosses; the links
+/// are chained and each crossed edge becomes its crossing point.
+fn level_polylines(
     positions: &[DVec2],
+    triangles: &[[u32; 3]],
     values: &[f64],
-    triangle: [u32; 3],
     level: f64,
-) -> Option<[DVec2; 2]> {
-    let mut corners = [(DVec2::ZERO, 0.0); 3];
-    for (corner, &vertex) in corners.iter_mut().zip(&triangle) {
-        let vertex = vertex as usize;
-        *corner = (*positions.get(vertex)?, *values.get(vertex)?);
-    }
-    let mut crossings = corners
+) -> Vec<Vec<DVec2>> {
+    let value = |v: u32| values.get(v as usize).copied();
+    let links: Vec<[[u32; 2]; 2]> = triangles
         .iter()
-        .zip(corners.iter().cycle().skip(1))
-        .filter_map(|(&start, &end)| edge_crossing(start, end, level));
-    let first = crossings.next()?;
-    let second = crossings.next()?;
-    Some([first, second])
+        .filter(|t| t.iter().all(|&v| (v as usize) < positions.len()))
+        .filter_map(|&triangle| crossed_edges(triangle, level, &value))
+        .collect();
+    let mut crossed: Vec<[u32; 2]> = links.iter().flatten().copied().collect();
+    crossed.sort_unstable();
+    crossed.dedup();
+    let node = |edge: &[u32; 2]| crossed.binary_search(edge).unwrap_or(0) as u32;
+    let node_links: Vec<[u32; 2]> = links.iter().map(|[a, b]| [node(a), node(b)]).collect();
+    chain_edges(&node_links)
+        .into_iter()
+        .map(|chain| {
+            chain
+                .into_iter()
+                .map(|n| crossing_point(positions, values, crossed[n as usize], level))
+                .collect()
+        })
+        .collect()
 }
 
-/// The point of edge `start → end` where the linearly interpolated value equals `level`, when
-/// exactly one end is above the level.
-fn edge_crossing(start: (DVec2, f64), end: (DVec2, f64), level: f64) -> Option<DVec2> {
-    let (low, high) = if start.1 > end.1 {
-        (end, start)
+/// The two edges (as sorted vertex pairs) of `triangle` whose ends lie on both sides of `level`,
+/// if it is crossed; `None` when not, or when a value is missing.
+fn crossed_edges(
+    triangle: [u32; 3],
+    level: f64,
+    value: &impl Fn(u32) -> Option<f64>,
+) -> Option<[[u32; 2]; 2]> {
+    let above = [0, 1, 2].map(|k| value(triangle[k]).map(|v| v > level));
+    let above = [above[0]?, above[1]?, above[2]?];
+    let mut edges = (0..3).filter(|&k| above[k] != above[(k + 1) % 3]).map(|k| {
+        let (a, b) = (triangle[k], triangle[(k + 1) % 3]);
+        [a.min(b), a.max(b)]
+    });
+    Some([edges.next()?, edges.next()?])
+}
+
+/// The point of edge `[a, b]` where the linearly interpolated value equals `level` (its ends lie
+/// on both sides of it, so the values differ).
+fn crossing_point(positions: &[DVec2], values: &[f64], [a, b]: [u32; 2], level: f64) -> DVec2 {
+    let (a, b) = (a as usize, b as usize);
+    let (low, high) = if values[a] > values[b] {
+        (b, a)
     } else {
-        (start, end)
+        (a, b)
     };
-    let crosses = low.1 <= level && high.1 > level;
-    // high.1 > level >= low.1, so the difference is positive.
-    crosses.then(|| low.0.lerp(high.0, (level - low.1) / (high.1 - low.1)))
+    // values[high] > level >= values[low], so the difference is positive.
+    let fraction = (level - values[low]) / (values[high] - values[low]);
+    positions[low].lerp(positions[high], fraction)
 }
 
 #[cfg(test)]
@@ -106,35 +132,44 @@ mod tests {
         let (positions, triangles, values) = square();
         let lines = isolines(&positions, &triangles, &values, &[0.25]);
         assert_eq!(lines.len(), 1);
-        assert_eq!(lines[0].segments.len(), 2);
-        for point in lines[0].segments.iter().flatten() {
+        assert_eq!(lines[0].polylines.len(), 1);
+        assert_eq!(lines[0].polylines[0].len(), 3, "two segments joined");
+        for point in lines[0].polylines.iter().flatten() {
             assert!((point.x - 0.25).abs() < 1e-12, "{point}");
         }
     }
 
     #[test]
-    fn segments_meet_on_shared_edges() {
-        let (positions, triangles, values) = square();
-        let lines = isolines(&positions, &triangles, &values, &[0.6]);
-        let [first, second] = [lines[0].segments[0], lines[0].segments[1]];
-        let shared = first
-            .iter()
-            .any(|a| second.iter().any(|b| a.distance(*b) < 1e-12));
-        assert!(shared, "{first:?} {second:?}");
+    fn closed_curves_close() {
+        // A fan around a high centre: the isoline is one closed ring.
+        let mut positions = vec![DVec2::ZERO];
+        let mut values = vec![1.0];
+        for k in 0..6 {
+            let angle = std::f64::consts::TAU * f64::from(k) / 6.0;
+            positions.push(DVec2::new(angle.cos(), angle.sin()));
+            values.push(0.0);
+        }
+        let triangles: Vec<[u32; 3]> = (0..6).map(|k| [0, 1 + k, 1 + (k + 1) % 6]).collect();
+        let lines = isolines(&positions, &triangles, &values, &[0.5]);
+        assert_eq!(lines[0].polylines.len(), 1);
+        let ring = &lines[0].polylines[0];
+        assert_eq!(ring.len(), 7);
+        assert!(ring[0].distance(ring[6]) < 1e-12);
+        assert!(ring.iter().all(|p| (p.length() - 0.5).abs() < 1e-12));
     }
 
     #[test]
     fn levels_outside_the_range_give_nothing() {
         let (positions, triangles, values) = square();
         let lines = isolines(&positions, &triangles, &values, &[-1.0, 1.0, 2.0]);
-        assert!(lines.iter().all(|line| line.segments.is_empty()));
+        assert!(lines.iter().all(|line| line.polylines.is_empty()));
     }
 
     #[test]
     fn bad_indices_are_skipped() {
         let (positions, _, values) = square();
         let lines = isolines(&positions, &[[0, 1, 9]], &values, &[0.5]);
-        assert!(lines[0].segments.is_empty());
+        assert!(lines[0].polylines.is_empty());
     }
 
     #[test]
