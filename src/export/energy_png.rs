@@ -203,7 +203,10 @@ pub fn render_energy_png(
     let panels: Vec<(&EnergyMap, String)> = match before {
         Some(before) => vec![
             (before, panel_caption("before cutting", &before.figures)),
-            (map, panel_caption("after cutting", &map.figures)),
+            (
+                map,
+                panel_caption(&cuts_phrase("after", map.figures.cuts), &map.figures),
+            ),
         ],
         None => vec![(map, single_caption(map))],
     };
@@ -343,16 +346,21 @@ fn panel_caption(what: &str, figures: &PatternFigures) -> String {
 
 /// The caption of a single panel: what it shows (its figures are in the title).
 fn single_caption(map: &EnergyMap) -> String {
+    let triangles = map.triangles.len();
     match map.figures.cuts {
-        0 => format!("flat pattern, {} triangles", map.triangles.len()),
-        1 => format!(
-            "flat pattern after 1 cut, {} triangles",
-            map.triangles.len()
-        ),
+        0 => format!("flat pattern, {triangles} triangles"),
         cuts => format!(
-            "flat pattern after {cuts} cuts, {} triangles",
-            map.triangles.len()
+            "flat pattern {}, {triangles} triangles",
+            cuts_phrase("after", cuts)
         ),
+    }
+}
+
+/// "after 1 cut", "after 3 cuts".
+fn cuts_phrase(preposition: &str, cuts: usize) -> String {
+    match cuts {
+        1 => format!("{preposition} 1 cut"),
+        cuts => format!("{preposition} {cuts} cuts"),
     }
 }
 
@@ -368,7 +376,11 @@ fn bounds(positions: &[DVec2]) -> (DVec2, DVec2) {
 struct Layout {
     width: u32,
     height: u32,
+    /// Scale of lines, margins and spacing: 1 at 1600 pixels.
     size: f32,
+    /// Scale of text and of the bands that hold text: `size`, but never below
+    /// [`MIN_TEXT_FACTOR`], so labels stay readable in small images.
+    text: f32,
     margin: f32,
     frames: Vec<PanelFrame>,
     legend: LegendFrame,
@@ -391,6 +403,8 @@ const PANEL_PADDING: f32 = 14.0;
 const MIN_PANEL_HEIGHT: f32 = 520.0;
 /// Largest panel height as a multiple of the image width (for very tall patterns).
 const MAX_PANEL_HEIGHT_RATIO: f64 = 1.2;
+/// Smallest text scale: small images keep labels of at least 70 % of their 1600-pixel size.
+const MIN_TEXT_FACTOR: f32 = 0.7;
 /// Text sizes at size 1, pixels.
 const TITLE_TEXT: f32 = 32.0;
 const BODY_TEXT: f32 = 20.0;
@@ -400,9 +414,10 @@ impl Layout {
     /// Lays out `panels` side by side at one common length scale, the legend to their right.
     fn new(width: u32, panels: &[(&EnergyMap, String)]) -> Self {
         let size = width as f32 / DEFAULT_WIDTH_PIXELS as f32;
+        let text = size.max(MIN_TEXT_FACTOR);
         let margin = MARGIN * size;
         let count = panels.len().max(1) as f32;
-        let panels_width = width as f32 - 2.0 * margin - LEGEND_WIDTH * size;
+        let panels_width = width as f32 - 2.0 * margin - LEGEND_WIDTH * text;
         let panel_width = f64::from((panels_width - (count - 1.0) * margin) / count);
         let boxes: Vec<(DVec2, DVec2)> = panels.iter().map(|(m, _)| bounds(m.positions)).collect();
         let extent = |(low, high): &(DVec2, DVec2)| (*high - *low).max(DVec2::splat(1e-12));
@@ -413,7 +428,7 @@ impl Layout {
         let scale = ((panel_width - 2.0 * padding) / widest).min(max_height / tallest);
         let panel_height =
             (tallest * scale + 2.0 * padding).max(f64::from(MIN_PANEL_HEIGHT * size));
-        let panels_top = f64::from((HEADER_HEIGHT + CAPTION_HEIGHT) * size);
+        let panels_top = f64::from((HEADER_HEIGHT + CAPTION_HEIGHT) * text);
         let frames = boxes
             .iter()
             .enumerate()
@@ -433,21 +448,22 @@ impl Layout {
             .collect();
         let panels_bottom = panels_top as f32 + panel_height as f32;
         let legend = LegendFrame {
-            left: width as f32 - LEGEND_WIDTH * size,
-            top: panels_top as f32 - CAPTION_HEIGHT * size,
+            left: width as f32 - LEGEND_WIDTH * text,
+            top: panels_top as f32 - CAPTION_HEIGHT * text,
             bottom: panels_bottom,
             bar_width: 30.0 * size,
-            text_size: SMALL_TEXT * size,
+            text_size: SMALL_TEXT * text,
         };
-        let height = (panels_bottom + (KEY_HEIGHT * size) + margin).ceil() as u32;
+        let height = (panels_bottom + (KEY_HEIGHT * text) + margin).ceil() as u32;
         Self {
             width,
             height,
             size,
+            text,
             margin,
             frames,
             legend,
-            key_baseline: panels_bottom + 0.5 * KEY_HEIGHT * size + 0.35 * BODY_TEXT * size,
+            key_baseline: panels_bottom + 0.5 * KEY_HEIGHT * text + 0.35 * BODY_TEXT * text,
         }
     }
 
@@ -462,12 +478,12 @@ impl Layout {
             format_percent(figures.max_strain),
             figures.cuts
         );
-        let title_baseline = self.margin + typeface.ascent(TITLE_TEXT * self.size);
+        let title_baseline = self.margin + typeface.ascent(TITLE_TEXT * self.text);
         for (text, baseline, size) in [
             (title.as_str(), title_baseline, TITLE_TEXT),
             (
                 line.as_str(),
-                title_baseline + 1.9 * BODY_TEXT * self.size,
+                title_baseline + 1.9 * BODY_TEXT * self.text,
                 BODY_TEXT,
             ),
         ] {
@@ -477,7 +493,7 @@ impl Layout {
                     text,
                     x: self.margin,
                     baseline,
-                    size: size * self.size,
+                    size: size * self.text,
                     colour: [0, 0, 0],
                     align: Align::Left,
                 },
@@ -499,8 +515,8 @@ impl Layout {
             &Label {
                 text,
                 x: centre as f32,
-                baseline: (HEADER_HEIGHT + 0.7 * CAPTION_HEIGHT) * self.size,
-                size: BODY_TEXT * self.size,
+                baseline: (HEADER_HEIGHT + 0.7 * CAPTION_HEIGHT) * self.text,
+                size: BODY_TEXT * self.text,
                 colour: [40, 40, 40],
                 align: Align::Centre,
             },
@@ -516,7 +532,7 @@ impl Layout {
         length_units: &str,
     ) {
         let size = self.size;
-        let text_size = SMALL_TEXT * size;
+        let text_size = SMALL_TEXT * self.text;
         let y = f64::from(self.key_baseline - 0.35 * text_size);
         let entries: [(&str, &[LineStyle]); 4] = [
             ("outline", &[styles.outline]),
@@ -597,9 +613,9 @@ impl Layout {
             pixmap,
             &Label {
                 text: &format!("{} {length_units}", format_length(length)),
-                x: (x + pixels) as f32 + 0.6 * SMALL_TEXT * self.size,
+                x: (x + pixels) as f32 + 0.6 * SMALL_TEXT * self.text,
                 baseline: self.key_baseline,
-                size: SMALL_TEXT * self.size,
+                size: SMALL_TEXT * self.text,
                 colour: [0, 0, 0],
                 align: Align::Left,
             },
