@@ -6,10 +6,15 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use clap::Args;
 
+use flatcut::export::energy_png::{
+    EnergyMap, EnergyPngOptions, NEGLIGIBLE_STRAIN, PatternFigures, negligible_vertex_energy,
+    render_energy_png,
+};
+use flatcut::export::fold_polylines::fold_polylines;
 use flatcut::export::obj::{mesh_obj, pattern_obj};
 use flatcut::export::report::{PartReport, Report};
 use flatcut::export::write_atomically;
-use flatcut::flatten::{FlattenOptions, Solver};
+use flatcut::flatten::{FlattenOptions, Solver, SpringSystem};
 use flatcut::pipeline::{PartResult, RunOptions, flatten_part, load_parts};
 use flatcut::progress::Progress;
 use flatcut::units::Units;
@@ -103,7 +108,7 @@ pub fn run(args: FlattenArgs, progress: &dyn Progress) -> anyhow::Result<Outcome
         )
     })?;
     for result in &results {
-        write_part_files(&args.output, result)?;
+        write_part_files(&args.output, result, &options)?;
     }
     let parts: Vec<PartReport> = results
         .iter()
@@ -138,7 +143,11 @@ pub fn run(args: FlattenArgs, progress: &dyn Progress) -> anyhow::Result<Outcome
     })
 }
 
-fn write_part_files(directory: &Path, result: &PartResult) -> anyhow::Result<()> {
+fn write_part_files(
+    directory: &Path,
+    result: &PartResult,
+    options: &RunOptions,
+) -> anyhow::Result<()> {
     let job = &result.job;
     let header = format!(
         "flatcut {} part '{}' from {}",
@@ -169,5 +178,37 @@ fn write_part_files(directory: &Path, result: &PartResult) -> anyhow::Result<()>
         write_atomically(&path, text.as_bytes())
             .with_context(|| format!("{}: cannot write", path.display()))?;
     }
+    let png = energy_png(result, options)
+        .with_context(|| format!("part '{}': cannot draw the energy map", job.name))?;
+    let path = directory.join(format!("{}.energy.png", job.name));
+    write_atomically(&path, &png).with_context(|| format!("{}: cannot write", path.display()))?;
     Ok(())
+}
+
+/// The energy picture of a flattened part: per-vertex energy (Eq. 1) of the final pattern.
+fn energy_png(result: &PartResult, options: &RunOptions) -> anyhow::Result<Vec<u8>> {
+    let (job, flattened) = (&result.job, &result.flattened);
+    let constant = options.flatten.spring_constant;
+    let springs = SpringSystem::new(&job.model, job.stiffness.factors(), constant);
+    let energies = springs.vertex_energies(&flattened.positions);
+    let accuracy = flattened.stats.accuracy;
+    let map = EnergyMap {
+        name: job.name.clone(),
+        energy_units: format!("{}², C = {constant}", job.units.symbol()),
+        length_units: job.units.symbol().to_string(),
+        positions: &flattened.positions,
+        triangles: job.model.triangles(),
+        vertex_energies: &energies,
+        boundary_loops: job.model.boundary_loops(),
+        cut_polylines: Vec::new(),
+        fold_polylines: fold_polylines(&job.model, &flattened.positions),
+        figures: PatternFigures {
+            area_error: accuracy.area_error,
+            shape_error: accuracy.shape_error,
+            max_strain: accuracy.max_strain,
+            cuts: 0,
+        },
+        negligible_energy: negligible_vertex_energy(&springs, NEGLIGIBLE_STRAIN),
+    };
+    Ok(render_energy_png(&map, None, &EnergyPngOptions::default())?)
 }

@@ -1,9 +1,11 @@
 //! The facet model: raw triangle soups, their validation, and the validated mesh with adjacency.
 
+mod chains;
 mod facet;
 mod soup;
 mod validate;
 
+pub use chains::chain_edges;
 pub use facet::{FacetModel, NONE};
 pub use soup::{FoldEdge, NO_SOURCE_FACE, TriangleSoup};
 pub use validate::{DEGENERATE_AREA_RATIO, Defect, MeshDefects, ValidatedMesh, validate};
