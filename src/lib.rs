@@ -5,5 +5,6 @@
 //! `ingest` (files to triangle soups) → `mesh` (validated facet models) → `flatten` (the paper's
 //! energy model) → `cut` → `nest` → `export` (the only module that writes files).
 
+pub mod export;
 pub mod mesh;
 pub mod progress;

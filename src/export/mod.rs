@@ -1,0 +1,29 @@
+//! Export: the only stage that writes files. Cut files (DXF) a cutting shop accepts, sheet
+//! previews (PNG), and atomic file writing for every output.
+//!
+//! Values in, bytes out: [`write_part_dxf`] and [`write_sheet_dxf`] return the DXF bytes and
+//! [`render_sheet_png`] the PNG bytes; [`write_atomically`] puts bytes under a final name without
+//! ever leaving a half-written file there. See `docs/dxf.md` for the layers and entities.
+
+mod atomic;
+mod bulge;
+mod contour;
+mod drawing;
+mod dxf;
+mod errors;
+mod part_contours;
+mod seam;
+mod sheet_png;
+
+pub use atomic::write_atomically;
+pub use bulge::{
+    BulgeArc, BulgeVertex, distance_to_segment, sample_closed, sample_open, segment_length,
+};
+pub use contour::{
+    DEFAULT_CHORD_TOLERANCE, MAX_ARC_SWEEP, MIN_SEGMENT_LENGTH_IN_TOLERANCES, fit_closed, fit_open,
+};
+pub use drawing::{PartDrawing, PlacedPart, SheetDrawing, Units};
+pub use dxf::{DxfOptions, DxfVersion, layers, write_part_dxf, write_sheet_dxf};
+pub use errors::ExportError;
+pub use part_contours::{PartContours, part_contours};
+pub use sheet_png::{DEFAULT_PREVIEW_PIXELS, render_sheet_png};
