@@ -11,6 +11,7 @@
 use super::bulge::BulgeVertex;
 use super::contour::DEFAULT_CHORD_TOLERANCE;
 use super::drawing::{PartDrawing, SheetDrawing, Units};
+use super::dxf_repair::repair;
 use super::errors::ExportError;
 use super::part_contours::{PartContours, part_contours};
 use dxf::entities::{Entity, EntityType, Line, LwPolyline, Polyline, Text, Vertex};
@@ -124,7 +125,7 @@ pub fn write_part_dxf(drawing: &PartDrawing, options: &DxfOptions) -> Result<Vec
     let contours = part_contours(drawing, options)?;
     let mut document = new_document(options.version, drawing.units)?;
     add_part(&mut document, drawing, &contours, options.version);
-    save(&document)
+    save(&document, options.version)
 }
 
 /// The DXF of one sheet: its outline and every placed part, as in [`write_part_dxf`]. The parts'
@@ -149,7 +150,7 @@ pub fn write_sheet_dxf(sheet: &SheetDrawing, options: &DxfOptions) -> Result<Vec
         let contours = part_contours(&placed.drawing, options)?;
         add_part(&mut document, &placed.drawing, &contours, options.version);
     }
-    save(&document)
+    save(&document, options.version)
 }
 
 /// An error when the sheet has no positive size or a part is in other units.
@@ -344,11 +345,11 @@ fn point(position: DVec2) -> Point {
     Point::new(position.x, position.y, 0.0)
 }
 
-/// The drawing as ASCII DXF bytes.
-fn save(document: &Drawing) -> Result<Vec<u8>, ExportError> {
+/// The drawing as ASCII DXF bytes, repaired for strict readers.
+fn save(document: &Drawing, version: DxfVersion) -> Result<Vec<u8>, ExportError> {
     let mut bytes = Vec::new();
     document.save(&mut bytes)?;
-    Ok(bytes)
+    Ok(repair(bytes, version))
 }
 
 #[cfg(test)]

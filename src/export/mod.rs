@@ -10,6 +10,7 @@ mod bulge;
 mod contour;
 mod drawing;
 mod dxf;
+mod dxf_repair;
 mod errors;
 mod part_contours;
 mod seam;
