@@ -1,5 +1,5 @@
 //! DXF files checked by an independent reader: every sample part and sheet flatcut writes, in
-//! R2000 and R12, must pass `ezdxf` audit with no error and read back with the expected layers and
+//! R2000 and R12, must pass `ezdxf` audit with no error and no fix, and read back with the expected layers and
 //! entities (`tests/dxf_check.py`).
 //!
 //! Needs Python 3 with ezdxf (`pip install -r requirements-test.txt`). Without it the test fails
@@ -95,7 +95,7 @@ fn check(file: &Path, version: &str, counts: &[String]) {
     command
         .arg(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/dxf_check.py"))
         .arg(file)
-        .args(["--version", version]);
+        .args(["--no-fixes", "--version", version]);
     for (name, _, _) in layers::ALL {
         command.args(["--layer", name]);
     }
