@@ -194,3 +194,76 @@ fn stroke(pixmap: &mut Pixmap, path: &Path, rgba: [u8; 4], dash: Option<StrokeDa
     };
     pixmap.stroke_path(path, &paint(rgba), &stroke, Transform::identity(), None);
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::export::drawing::{PartDrawing, PlacedPart};
+
+    /// A 1000 x 500 sheet with one 200 x 100 plate at (100, 100) that has a 20 x 20 hole.
+    fn sheet() -> SheetDrawing {
+        let rectangle = |low: DVec2, size: DVec2| {
+            vec![
+                low,
+                low + DVec2::new(size.x, 0.0),
+                low + size,
+                low + DVec2::new(0.0, size.y),
+            ]
+        };
+        let plate = PartDrawing {
+            name: "plate".into(),
+            quantity: 1,
+            outer: rectangle(DVec2::new(100.0, 100.0), DVec2::new(200.0, 100.0)),
+            holes: vec![rectangle(DVec2::new(240.0, 140.0), DVec2::splat(20.0))],
+            ..Default::default()
+        };
+        SheetDrawing {
+            index: 1,
+            width: 1000.0,
+            height: 500.0,
+            parts: vec![PlacedPart { drawing: plate }],
+            ..Default::default()
+        }
+    }
+
+    /// The colour of the preview pixel over a sheet point.
+    fn pixel_at(pixmap: &Pixmap, view: &View, point: DVec2) -> [u8; 4] {
+        let (x, y) = view.to_pixels(point);
+        let pixel = pixmap.pixel(x as u32, y as u32).expect("inside the image");
+        [pixel.red(), pixel.green(), pixel.blue(), pixel.alpha()]
+    }
+
+    #[test]
+    fn preview_fills_parts_and_leaves_holes_open() {
+        let sheet = sheet();
+        let bytes = render_sheet_png(&sheet, &DxfOptions::default(), 500).expect("renders");
+        let pixmap = Pixmap::decode_png(&bytes).expect("a PNG");
+        // 484 pixels for 1000 mm, plus an 8-pixel margin on each side.
+        assert_eq!((pixmap.width(), pixmap.height()), (500, 258));
+        let view = View::fit(&sheet, 500);
+        assert_eq!(
+            pixel_at(&pixmap, &view, DVec2::new(150.0, 150.0)),
+            PART_FILL
+        );
+        assert_eq!(
+            pixel_at(&pixmap, &view, DVec2::new(250.0, 150.0)),
+            SHEET_FILL
+        );
+        assert_eq!(
+            pixel_at(&pixmap, &view, DVec2::new(600.0, 300.0)),
+            SHEET_FILL
+        );
+    }
+
+    #[test]
+    fn preview_is_deterministic_and_checks_its_size() {
+        let sheet = sheet();
+        let options = DxfOptions::default();
+        let first = render_sheet_png(&sheet, &options, 300).expect("renders");
+        assert!(first == render_sheet_png(&sheet, &options, 300).expect("renders"));
+        assert!(matches!(
+            render_sheet_png(&sheet, &options, 4),
+            Err(ExportError::InvalidPreviewSize { pixels: 4 })
+        ));
+    }
+}
