@@ -1,6 +1,6 @@
 //! DXF files checked by an independent reader: every sample part and sheet flatcut writes, in
-//! R2000 and R12, must pass `ezdxf` audit with no error and no fix, and read back with the expected layers and
-//! entities (`tests/dxf_check.py`).
+//! R2000 and R12, must pass `ezdxf` audit with no error and no fix, and read back with the
+//! expected layers and entities (`tests/dxf_check.py`).
 //!
 //! Needs Python 3 with ezdxf (`pip install -r requirements-test.txt`). Without it the test fails
 //! when the `CI` environment variable is set and is skipped, with a message, otherwise.

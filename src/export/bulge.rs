@@ -6,6 +6,7 @@
 //! straight segment, ±1 for a half circle). Coordinates are in drawing units (mm or inches).
 
 use glam::DVec2;
+use std::f64::consts::FRAC_PI_2;
 
 /// A bulge below this magnitude is a straight segment: the arc's sagitta is below a billionth of
 /// its chord.
@@ -107,6 +108,41 @@ pub fn distance_to_line_segment(point: DVec2, start: DVec2, end: DVec2) -> f64 {
     point.distance(start + direction * t)
 }
 
+/// Smallest axis-aligned box (lower and upper corner) holding the segment from `start` to `end`
+/// with the given bulge: its end points and, for an arc, the circle's extreme points it passes.
+pub fn segment_bounds(start: DVec2, end: DVec2, bulge: f64) -> (DVec2, DVec2) {
+    let (mut low, mut high) = (start.min(end), start.max(end));
+    if let Some(arc) = BulgeArc::from_segment(start, end, bulge) {
+        for quarter in 0..4 {
+            let extreme =
+                arc.center + arc.radius * DVec2::from_angle(f64::from(quarter) * FRAC_PI_2);
+            if arc.fraction_of(extreme) <= 1.0 {
+                (low, high) = (low.min(extreme), high.max(extreme));
+            }
+        }
+    }
+    (low, high)
+}
+
+/// Smallest axis-aligned box (lower and upper corner) holding a bulge polyline, closed or open;
+/// `None` when it has no vertex.
+pub fn polyline_bounds(vertices: &[BulgeVertex], closed: bool) -> Option<(DVec2, DVec2)> {
+    let first = vertices.first()?;
+    let segments = if closed {
+        vertices.len()
+    } else {
+        vertices.len() - 1
+    };
+    Some(
+        (0..segments).fold((first.point, first.point), |(low, high), index| {
+            let (vertex, next) = (vertices[index], vertices[(index + 1) % vertices.len()]);
+            let (segment_low, segment_high) =
+                segment_bounds(vertex.point, next.point, vertex.bulge);
+            (low.min(segment_low), high.max(segment_high))
+        }),
+    )
+}
+
 /// Length of the segment from `start` to `end` with the given bulge (arc length for an arc).
 pub fn segment_length(start: DVec2, end: DVec2, bulge: f64) -> f64 {
     BulgeArc::from_segment(start, end, bulge)
@@ -151,7 +187,6 @@ pub fn sample_open(vertices: &[BulgeVertex], max_step: f64) -> Vec<DVec2> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::f64::consts::FRAC_PI_2;
 
     #[test]
     fn half_circle_has_bulge_one_and_centre_on_chord() {
@@ -177,6 +212,22 @@ mod tests {
             (distance_to_segment(DVec2::new(2.0, -1.0), start, end, bulge) - 2.0_f64.sqrt()).abs()
                 < 1e-12
         );
+    }
+
+    #[test]
+    fn bounds_include_the_arc_extremes() {
+        // Half circle of radius 1 below the chord from (-1, 0) to (1, 0).
+        let (low, high) = segment_bounds(DVec2::new(-1.0, 0.0), DVec2::new(1.0, 0.0), 1.0);
+        assert!(
+            low.distance(DVec2::new(-1.0, -1.0)) < 1e-12
+                && high.distance(DVec2::new(1.0, 0.0)) < 1e-12
+        );
+        let square = [DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y].map(BulgeVertex::straight);
+        assert_eq!(
+            polyline_bounds(&square, true),
+            Some((DVec2::ZERO, DVec2::ONE))
+        );
+        assert_eq!(polyline_bounds(&[], false), None);
     }
 
     #[test]

@@ -275,14 +275,15 @@ fn merge_short_spans(
         let span = spans[index];
         let short = super::bulge::segment_length(points[span.start], points[span.end], span.bulge)
             < minimum;
-        if short && spans.len() > 1 {
-            if let Some(merged) = merge_with_neighbour(points, &spans, index, fit_tolerance) {
-                let (keep, remove) = merged;
-                spans[keep.0] = keep.1;
-                spans.remove(remove);
-                index = keep.0.min(remove);
-                continue;
-            }
+        if short
+            && spans.len() > 1
+            && let Some(merged) = merge_with_neighbour(points, &spans, index, fit_tolerance)
+        {
+            let (keep, remove) = merged;
+            spans[keep.0] = keep.1;
+            spans.remove(remove);
+            index = keep.0.min(remove);
+            continue;
         }
         index += 1;
     }
@@ -305,10 +306,10 @@ fn merge_with_neighbour(
             bulge,
         })
     };
-    if index > 0 {
-        if let Some(merged) = merge(spans[index - 1], span) {
-            return Some(((index - 1, merged), index));
-        }
+    if index > 0
+        && let Some(merged) = merge(spans[index - 1], span)
+    {
+        return Some(((index - 1, merged), index));
     }
     let next = spans.get(index + 1)?;
     merge(span, *next).map(|merged| ((index, merged), index + 1))
@@ -322,18 +323,18 @@ fn close_across_opening(points: &[DVec2], spans: Vec<Span>, tolerance: f64) -> V
         bulge: span.bulge,
     };
     let mut vertices: Vec<BulgeVertex> = spans.iter().map(vertex).collect();
-    if let [first, .., last] = spans.as_slice() {
-        if spans.len() > 2 {
-            let joined: Vec<DVec2> = points[last.start..]
-                .iter()
-                .chain(&points[1..=first.end])
-                .copied()
-                .collect();
-            if let Some(bulge) = fit_span(&joined, tolerance) {
-                vertices.remove(0);
-                if let Some(closing) = vertices.last_mut() {
-                    closing.bulge = bulge;
-                }
+    if let [first, .., last] = spans.as_slice()
+        && spans.len() > 2
+    {
+        let joined: Vec<DVec2> = points[last.start..]
+            .iter()
+            .chain(&points[1..=first.end])
+            .copied()
+            .collect();
+        if let Some(bulge) = fit_span(&joined, tolerance) {
+            vertices.remove(0);
+            if let Some(closing) = vertices.last_mut() {
+                closing.bulge = bulge;
             }
         }
     }

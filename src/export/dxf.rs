@@ -8,7 +8,7 @@
 //! neither, so the report must state them. The output is deterministic: the creation and update
 //! dates and the drawing GUIDs are fixed, handles are assigned in drawing order.
 
-use super::bulge::BulgeVertex;
+use super::bulge::{BulgeVertex, polyline_bounds};
 use super::contour::DEFAULT_CHORD_TOLERANCE;
 use super::drawing::{PartDrawing, SheetDrawing, Units};
 use super::dxf_repair::repair;
@@ -125,6 +125,7 @@ pub fn write_part_dxf(drawing: &PartDrawing, options: &DxfOptions) -> Result<Vec
     let contours = part_contours(drawing, options)?;
     let mut document = new_document(options.version, drawing.units)?;
     add_part(&mut document, drawing, &contours, options.version);
+    set_extents(&mut document, part_bounds(&contours));
     save(&document, options.version)
 }
 
@@ -146,10 +147,14 @@ pub fn write_sheet_dxf(sheet: &SheetDrawing, options: &DxfOptions) -> Result<Vec
         true,
         options.version,
     );
+    let mut bounds = (DVec2::ZERO, DVec2::new(sheet.width, sheet.height));
     for placed in &sheet.parts {
         let contours = part_contours(&placed.drawing, options)?;
         add_part(&mut document, &placed.drawing, &contours, options.version);
+        let (low, high) = part_bounds(&contours);
+        bounds = (bounds.0.min(low), bounds.1.max(high));
     }
+    set_extents(&mut document, bounds);
     save(&document, options.version)
 }
 
@@ -175,6 +180,30 @@ pub(crate) fn check_sheet(sheet: &SheetDrawing) -> Result<(), ExportError> {
             sheet_units: sheet.units.name(),
         }),
         None => Ok(()),
+    }
+}
+
+/// Smallest box (lower and upper corner) holding every contour of a part.
+fn part_bounds(contours: &PartContours) -> (DVec2, DVec2) {
+    let closed = std::iter::once(&contours.outer)
+        .chain(&contours.holes)
+        .chain(&contours.sew_lines);
+    let closed_bounds = closed.filter_map(|contour| polyline_bounds(contour, true));
+    let open_bounds = contours
+        .fold_lines
+        .iter()
+        .filter_map(|line| polyline_bounds(line, false));
+    closed_bounds.chain(open_bounds).fold(
+        (DVec2::INFINITY, DVec2::NEG_INFINITY),
+        |(low, high), (contour_low, contour_high)| (low.min(contour_low), high.max(contour_high)),
+    )
+}
+
+/// `$EXTMIN` and `$EXTMAX`, so that viewers and CAM open the drawing zoomed to its contents.
+fn set_extents(document: &mut Drawing, (low, high): (DVec2, DVec2)) {
+    if low.is_finite() && high.is_finite() {
+        document.header.minimum_drawing_extents = point(low);
+        document.header.maximum_drawing_extents = point(high);
     }
 }
 
@@ -240,14 +269,14 @@ fn add_part(
     for fold_line in &contours.fold_lines {
         add_polyline(document, layers::FOLD, fold_line, false, version);
     }
-    if let Some([tail, head]) = drawing.grain {
-        if tail.distance(head) > 0.0 {
-            add_entity(
-                document,
-                layers::MARKS,
-                EntityType::Line(Line::new(point(tail), point(head))),
-            );
-        }
+    if let Some([tail, head]) = drawing.grain
+        && tail.distance(head) > 0.0
+    {
+        add_entity(
+            document,
+            layers::MARKS,
+            EntityType::Line(Line::new(point(tail), point(head))),
+        );
     }
     add_label(document, drawing, &contours.outer);
 }

@@ -53,7 +53,7 @@ fn parse(bytes: &[u8]) -> Option<Vec<Pair>> {
         .split(|&byte| byte == b'\n')
         .map(|line| line.strip_suffix(b"\r").unwrap_or(line))
         .collect();
-    if lines.len() % 2 != 0 {
+    if !lines.len().is_multiple_of(2) {
         return None;
     }
     lines
@@ -117,13 +117,13 @@ fn polyline_layers(pairs: Vec<Pair>) -> Vec<Pair> {
     let mut current_entity: Vec<u8> = Vec::new();
     for pair in pairs {
         if pair.code == 0 {
-            if current_entity == b"SEQEND" {
-                if let Some(layer) = polyline_layer.take() {
-                    repaired.push(Pair {
-                        code: 8,
-                        value: layer,
-                    });
-                }
+            if current_entity == b"SEQEND"
+                && let Some(layer) = polyline_layer.take()
+            {
+                repaired.push(Pair {
+                    code: 8,
+                    value: layer,
+                });
             }
             current_entity = pair.value.clone();
             if !matches!(current_entity.as_slice(), b"VERTEX" | b"SEQEND") {

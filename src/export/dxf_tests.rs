@@ -163,6 +163,19 @@ fn r2000_states_units_and_version() {
 }
 
 #[test]
+fn extents_hold_the_outer_arc() {
+    let document =
+        read_back(&write_part_dxf(&cone_part(), &DxfOptions::default()).expect("writes"));
+    let (low, high) = (
+        document.header.minimum_drawing_extents,
+        document.header.maximum_drawing_extents,
+    );
+    // The outer arc of radius 300 runs from 0 to 2 radians: it passes the top of its circle.
+    assert!((high.y - 300.0).abs() < 1e-9 && (high.x - 300.0).abs() < 1e-9);
+    assert!((low.x - 300.0 * 2.0f64.cos()).abs() < 1e-9 && low.y.abs() < 1e-9);
+}
+
+#[test]
 fn inches_state_inch_units() {
     let part = PartDrawing {
         units: Units::Inches,
