@@ -18,7 +18,8 @@ mod sheet_png;
 
 pub use atomic::write_atomically;
 pub use bulge::{
-    BulgeArc, BulgeVertex, distance_to_segment, sample_closed, sample_open, segment_length,
+    BulgeArc, BulgeVertex, distance_to_segment, polyline_bounds, sample_closed, sample_open,
+    segment_bounds, segment_length,
 };
 pub use contour::{
     DEFAULT_CHORD_TOLERANCE, MAX_ARC_SWEEP, MIN_SEGMENT_LENGTH_IN_TOLERANCES, fit_closed, fit_open,
