@@ -55,6 +55,18 @@ struct Span {
 
 /// Fits a closed ring. Returns `None` when the ring has fewer than three distinct points or no
 /// area. The result keeps the ring's orientation.
+///
+/// ```
+/// use flatcut::export::{DEFAULT_CHORD_TOLERANCE, fit_closed};
+/// use glam::DVec2;
+///
+/// // A hole of radius 5 mm sampled with 720 points comes out as two true arcs.
+/// let ring: Vec<DVec2> =
+///     (0..720).map(|step| 5.0 * DVec2::from_angle(step as f64 * std::f64::consts::TAU / 720.0)).collect();
+/// let fitted = fit_closed(&ring, DEFAULT_CHORD_TOLERANCE).expect("a valid ring");
+/// assert_eq!(fitted.len(), 2);
+/// assert!(fitted.iter().all(|vertex| vertex.bulge > 0.0));
+/// ```
 pub fn fit_closed(ring: &[DVec2], tolerance: f64) -> Option<Vec<BulgeVertex>> {
     let duplicate = tolerance * DUPLICATE_FRACTION;
     let mut points = remove_duplicates(ring, duplicate);

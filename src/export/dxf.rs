@@ -121,6 +121,21 @@ impl DxfOptions {
 }
 
 /// The DXF of one part: its cut contours, fold and sew lines, grain line and label.
+///
+/// ```
+/// use flatcut::export::{DxfOptions, PartDrawing, write_part_dxf};
+/// use glam::DVec2;
+///
+/// let part = PartDrawing {
+///     name: "bracket".into(),
+///     quantity: 4,
+///     outer: vec![DVec2::ZERO, DVec2::new(80.0, 0.0), DVec2::new(80.0, 40.0), DVec2::new(0.0, 40.0)],
+///     ..Default::default()
+/// };
+/// let bytes = write_part_dxf(&part, &DxfOptions::default())?;
+/// assert!(String::from_utf8_lossy(&bytes).contains("LWPOLYLINE"));
+/// # Ok::<(), flatcut::export::ExportError>(())
+/// ```
 pub fn write_part_dxf(drawing: &PartDrawing, options: &DxfOptions) -> Result<Vec<u8>, ExportError> {
     let contours = part_contours(drawing, options)?;
     let mut document = new_document(options.version, drawing.units)?;
