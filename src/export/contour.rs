@@ -289,12 +289,12 @@ fn merge_short_spans(
             < minimum;
         if short
             && spans.len() > 1
-            && let Some(merged) = merge_with_neighbour(points, &spans, index, fit_tolerance)
+            && let Some((first, merged)) =
+                merge_with_neighbour(points, &spans, index, fit_tolerance)
         {
-            let (keep, remove) = merged;
-            spans[keep.0] = keep.1;
-            spans.remove(remove);
-            index = keep.0.min(remove);
+            spans[first] = merged;
+            spans.remove(first + 1);
+            index = first;
             continue;
         }
         index += 1;
@@ -302,29 +302,31 @@ fn merge_short_spans(
     spans
 }
 
-/// The merge of span `index` with its previous or next neighbour: (position and span to keep,
-/// position to remove), or `None` when neither merge fits.
+/// The merge of span `index` with its previous or else its next neighbour, as the position of
+/// the first span of the merged pair and the span replacing the pair; `None` when neither merge
+/// fits.
 fn merge_with_neighbour(
     points: &[DVec2],
     spans: &[Span],
     index: usize,
     tolerance: f64,
-) -> Option<((usize, Span), usize)> {
-    let span = spans[index];
-    let merge = |from: Span, to: Span| {
-        fit_span(&points[from.start..=to.end], tolerance).map(|bulge| Span {
-            start: from.start,
-            end: to.end,
-            bulge,
-        })
+) -> Option<(usize, Span)> {
+    let merge = |first: usize| {
+        let (from, to) = (spans.get(first)?, spans.get(first + 1)?);
+        let bulge = fit_span(&points[from.start..=to.end], tolerance)?;
+        Some((
+            first,
+            Span {
+                start: from.start,
+                end: to.end,
+                bulge,
+            },
+        ))
     };
-    if index > 0
-        && let Some(merged) = merge(spans[index - 1], span)
-    {
-        return Some(((index - 1, merged), index));
-    }
-    let next = spans.get(index + 1)?;
-    merge(span, *next).map(|merged| ((index, merged), index + 1))
+    index
+        .checked_sub(1)
+        .and_then(merge)
+        .or_else(|| merge(index))
 }
 
 /// The vertices of a closed ring's spans, with the last and first spans merged into one across
@@ -506,6 +508,34 @@ mod tests {
                     .any(|vertex| vertex.point.distance(corner) < 1e-9)
             );
         }
+    }
+
+    #[test]
+    fn short_step_beyond_the_tolerance_is_kept_as_a_real_feature() {
+        let step = 3.0 * DEFAULT_CHORD_TOLERANCE;
+        let corners = [
+            DVec2::ZERO,
+            DVec2::new(50.0, 0.0),
+            DVec2::new(50.0, -step),
+            DVec2::new(100.0, -step),
+            DVec2::new(100.0, 50.0),
+            DVec2::new(0.0, 50.0),
+        ];
+        let ring: Vec<DVec2> = (0..corners.len())
+            .flat_map(|side| {
+                let (from, to) = (corners[side], corners[(side + 1) % corners.len()]);
+                let count = if from.distance(to) > 1.0 { 40 } else { 0 };
+                std::iter::once(from).chain(line_points(from, to, count))
+            })
+            .collect();
+        let fitted = fit_closed(&ring, DEFAULT_CHORD_TOLERANCE).expect("a valid ring");
+        assert_eq!(fitted.len(), 6, "{fitted:?}");
+        let coarse = fit_closed(&ring, 10.0 * DEFAULT_CHORD_TOLERANCE).expect("a valid ring");
+        assert_eq!(
+            coarse.len(),
+            4,
+            "within 0.1 mm the step disappears: {coarse:?}"
+        );
     }
 
     #[test]
