@@ -34,19 +34,18 @@ pub mod layers {
     pub const MARKS: &str = "MARKS";
     /// The sheet outline, in sheet files. Grey, continuous; not cut.
     pub const SHEET: &str = "SHEET";
+    /// Name of the dashed line type of the fold and sew layers (defined in every file).
+    pub const DASHED: &str = "DASHED";
     /// Every layer flatcut defines: name, colour index, line type.
     pub const ALL: [(&str, u8, &str); 6] = [
         (CUT_OUTER, 1, "CONTINUOUS"),
         (CUT_INNER, 5, "CONTINUOUS"),
-        (FOLD, 3, super::DASHED),
-        (SEW, 6, super::DASHED),
+        (FOLD, 3, DASHED),
+        (SEW, 6, DASHED),
         (MARKS, 2, "CONTINUOUS"),
         (SHEET, 8, "CONTINUOUS"),
     ];
 }
-
-/// Name of the dashed line type used by the fold and sew layers.
-pub const DASHED: &str = "DASHED";
 
 /// Label text height as a fraction of the part's smaller bounding-box side, clamped to
 /// [`LABEL_HEIGHT_RANGE_MM`].
@@ -258,7 +257,7 @@ fn dashed_line_type(units: Units) -> LineType {
         .map(|length| length / units.millimetres_per_unit())
         .collect();
     LineType {
-        name: DASHED.to_owned(),
+        name: layers::DASHED.to_owned(),
         description: "Dashed __ __ __".to_owned(),
         element_count: lengths.len() as i32,
         total_pattern_length: lengths.iter().map(|length| length.abs()).sum(),

@@ -35,7 +35,7 @@ impl Pair {
 
 /// The file with the repairs for its version applied. Bytes that are not a sequence of code
 /// pairs are returned unchanged.
-pub fn repair(bytes: Vec<u8>, version: DxfVersion) -> Vec<u8> {
+pub(crate) fn repair(bytes: Vec<u8>, version: DxfVersion) -> Vec<u8> {
     let Some(pairs) = parse(&bytes) else {
         return bytes;
     };

@@ -215,7 +215,7 @@ fn every_layer_is_defined_and_entities_sit_on_them() {
     assert!(
         document
             .line_types()
-            .any(|line_type| line_type.name == DASHED)
+            .any(|line_type| line_type.name == layers::DASHED)
     );
     let on = |layer: &str| {
         document

@@ -5,6 +5,8 @@
 //! [`render_sheet_png`] the PNG bytes; [`write_atomically`] puts bytes under a final name without
 //! ever leaving a half-written file there. See `docs/dxf.md` for the layers and entities.
 
+#![warn(missing_docs)]
+
 mod atomic;
 mod bulge;
 mod contour;
@@ -18,11 +20,12 @@ mod sheet_png;
 
 pub use atomic::write_atomically;
 pub use bulge::{
-    BulgeArc, BulgeVertex, distance_to_segment, polyline_bounds, sample_closed, sample_open,
-    segment_bounds, segment_length,
+    BulgeArc, BulgeVertex, STRAIGHT_BULGE, distance_to_line_segment, distance_to_segment,
+    polyline_bounds, sample_closed, sample_open, segment_bounds, segment_length,
 };
 pub use contour::{
-    DEFAULT_CHORD_TOLERANCE, MAX_ARC_SWEEP, MIN_SEGMENT_LENGTH_IN_TOLERANCES, fit_closed, fit_open,
+    DEFAULT_CHORD_TOLERANCE, DUPLICATE_FRACTION, MAX_ARC_SWEEP, MIN_SEGMENT_LENGTH_IN_TOLERANCES,
+    fit_closed, fit_open, signed_area,
 };
 pub use drawing::{PartDrawing, PlacedPart, SheetDrawing, Units};
 pub use dxf::{DxfOptions, DxfVersion, layers, write_part_dxf, write_sheet_dxf};

@@ -19,7 +19,10 @@ const MERGE_FRACTION: f64 = 1e-6;
 
 /// The contours at `allowance` (drawing units, positive) from `contour`, on the side away from the
 /// material (its right).
-pub fn offset_away_from_material(contour: &[BulgeVertex], allowance: f64) -> Vec<Vec<BulgeVertex>> {
+pub(crate) fn offset_away_from_material(
+    contour: &[BulgeVertex],
+    allowance: f64,
+) -> Vec<Vec<BulgeVertex>> {
     let mut polyline = Polyline::with_capacity(contour.len(), true);
     for vertex in contour {
         polyline.add(vertex.point.x, vertex.point.y, vertex.bulge);
