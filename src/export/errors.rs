@@ -1,7 +1,5 @@
 //! Errors of the export stage. Every variant names the part or file and says what to change.
 
-use std::path::PathBuf;
-
 /// Why an export could not be written.
 #[derive(Debug, thiserror::Error)]
 pub enum ExportError {
@@ -99,12 +97,4 @@ pub enum ExportError {
     /// The PNG encoder failed.
     #[error("could not encode the PNG preview: {0}; this is a bug in flatcut, please report it")]
     Png(String),
-    /// A file could not be written.
-    #[error("could not write `{}`: {source}; check the output directory exists and is writable", path.display())]
-    Write {
-        /// The final path of the file.
-        path: PathBuf,
-        /// The underlying error.
-        source: std::io::Error,
-    },
 }
