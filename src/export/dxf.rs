@@ -357,23 +357,25 @@ fn add_label(document: &mut Drawing, drawing: &PartDrawing, outer: &[BulgeVertex
     add_entity(document, layers::MARKS, EntityType::Text(text));
 }
 
-/// "name x quantity material", with control characters (which would break the DXF) replaced.
+/// "name xQUANTITY material", written so that TEXT shows it literally: control characters (which
+/// would break the file) become spaces, `%` is written `%%%` (else `%%c`, `%%d`, ... are symbols)
+/// and `^` is written `^ ` (else `^J`, ... are control codes).
 fn label_text(drawing: &PartDrawing) -> String {
     let mut label = format!("{} x{}", drawing.name, drawing.quantity);
     if let Some(material) = &drawing.material {
         label.push(' ');
         label.push_str(material);
     }
-    label
-        .chars()
-        .map(|character| {
-            if character.is_control() {
-                ' '
-            } else {
-                character
-            }
-        })
-        .collect()
+    let mut escaped = String::with_capacity(label.len());
+    for character in label.chars() {
+        match character {
+            '%' => escaped.push_str("%%%"),
+            '^' => escaped.push_str("^ "),
+            control if control.is_control() => escaped.push(' '),
+            other => escaped.push(other),
+        }
+    }
+    escaped
 }
 
 /// Adds an entity on a layer.

@@ -242,6 +242,26 @@ fn every_layer_is_defined_and_entities_sit_on_them() {
 }
 
 #[test]
+fn label_shows_names_literally() {
+    let part = PartDrawing {
+        name: "sleeve\nleft ^5".into(),
+        material: Some("cotton 100 %%c".into()),
+        ..cone_part()
+    };
+    let document = read_back(&write_part_dxf(&part, &DxfOptions::default()).expect("writes"));
+    let label = document
+        .entities()
+        .find_map(|entity| match &entity.specific {
+            EntityType::Text(text) => Some(text.value.clone()),
+            _ => None,
+        });
+    assert_eq!(
+        label.as_deref(),
+        Some("sleeve left ^ 5 x2 cotton 100 %%%%%%c")
+    );
+}
+
+#[test]
 fn seam_allowance_cuts_outside_and_keeps_the_sew_line() {
     let square = vec![
         DVec2::ZERO,
