@@ -238,6 +238,57 @@ mod tests {
     }
 
     #[test]
+    fn seam_allowance_on_a_disc_keeps_true_arcs() {
+        let disc: Vec<DVec2> = (0..720)
+            .map(|step| 50.0 * DVec2::from_angle(step as f64 * std::f64::consts::TAU / 720.0))
+            .collect();
+        let drawing = PartDrawing {
+            name: "disc".into(),
+            outer: disc,
+            ..Default::default()
+        };
+        let options = DxfOptions {
+            seam_allowance: Some(12.0),
+            ..Default::default()
+        };
+        let contours = part_contours(&drawing, &options).expect("valid part");
+        assert_eq!(contours.sew_lines.len(), 1);
+        assert_eq!(contours.outer.len(), 2, "{:?}", contours.outer);
+        for point in crate::export::bulge::sample_closed(&contours.outer, 0.5) {
+            assert!((point.length() - 62.0).abs() < 1e-6, "{point}");
+        }
+    }
+
+    #[test]
+    fn seam_allowance_that_fills_a_hole_is_an_error() {
+        let square = vec![
+            DVec2::ZERO,
+            DVec2::new(100.0, 0.0),
+            DVec2::new(100.0, 100.0),
+            DVec2::new(0.0, 100.0),
+        ];
+        let hole: Vec<DVec2> = square
+            .iter()
+            .map(|point| *point * 0.05 + DVec2::splat(50.0))
+            .collect();
+        let drawing = PartDrawing {
+            name: "panel".into(),
+            outer: square,
+            holes: vec![hole],
+            ..Default::default()
+        };
+        let options = DxfOptions {
+            seam_allowance: Some(10.0),
+            ..Default::default()
+        };
+        let error = part_contours(&drawing, &options).expect_err("the hole closes");
+        assert!(
+            matches!(error, ExportError::SeamAllowanceClosesHole { hole: 1, .. }),
+            "{error}"
+        );
+    }
+
+    #[test]
     fn fitting_turns_outer_counter_clockwise_and_holes_clockwise() {
         let clockwise_square = vec![
             DVec2::ZERO,
