@@ -84,7 +84,7 @@ pub enum ExportError {
         sheet_units: &'static str,
     },
     /// The preview image size is zero or too large to allocate.
-    #[error("preview size of {pixels} pixels is not usable; pass between 16 and 16384 pixels")]
+    #[error("preview size of {pixels} pixels is not usable; pass between 16 and 8192 pixels")]
     InvalidPreviewSize {
         /// The requested size of the longer side, in pixels.
         pixels: u32,

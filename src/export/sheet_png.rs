@@ -16,8 +16,8 @@ use tiny_skia::{Color, FillRule, Paint, Path, PathBuilder, Pixmap, Stroke, Strok
 /// Default size of the preview's longer side, in pixels.
 pub const DEFAULT_PREVIEW_PIXELS: u32 = 1600;
 
-/// Smallest and largest accepted preview size, in pixels.
-const PREVIEW_PIXEL_RANGE: (u32, u32) = (16, 16384);
+/// Smallest and largest accepted preview size, in pixels (8192 x 8192 RGBA is 256 MiB).
+const PREVIEW_PIXEL_RANGE: (u32, u32) = (16, 8192);
 
 /// Blank border around the sheet, in pixels.
 const MARGIN_PIXELS: f64 = 8.0;
