@@ -3,33 +3,7 @@
 
 use glam::DVec2;
 
-/// Length unit of a drawing.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Units {
-    /// Millimetres (the default).
-    #[default]
-    Millimetres,
-    /// Inches.
-    Inches,
-}
-
-impl Units {
-    /// Millimetres in one drawing unit.
-    pub fn millimetres_per_unit(self) -> f64 {
-        match self {
-            Units::Millimetres => 1.0,
-            Units::Inches => 25.4,
-        }
-    }
-
-    /// The unit's name, as the report and the DXF label state it.
-    pub fn name(self) -> &'static str {
-        match self {
-            Units::Millimetres => "mm",
-            Units::Inches => "in",
-        }
-    }
-}
+pub use crate::units::Units;
 
 /// One part's flat pattern, at 1:1 in `units`: nominal geometry (the CAM adds kerf).
 #[derive(Debug, Clone, PartialEq, Default)]

@@ -190,8 +190,8 @@ pub(crate) fn check_sheet(sheet: &SheetDrawing) -> Result<(), ExportError> {
         Some(placed) => Err(ExportError::MixedUnits {
             part: placed.drawing.name.clone(),
             sheet: sheet.index,
-            part_units: placed.drawing.units.name(),
-            sheet_units: sheet.units.name(),
+            part_units: placed.drawing.units.symbol(),
+            sheet_units: sheet.units.symbol(),
         }),
         None => Ok(()),
     }
@@ -254,7 +254,7 @@ fn new_document(version: DxfVersion, units: Units) -> Result<Drawing, ExportErro
 fn dashed_line_type(units: Units) -> LineType {
     let lengths: Vec<f64> = DASH_PATTERN_MM
         .iter()
-        .map(|length| length / units.millimetres_per_unit())
+        .map(|length| length / units.millimetres())
         .collect();
     LineType {
         name: layers::DASHED.to_owned(),
@@ -341,7 +341,7 @@ fn add_label(document: &mut Drawing, drawing: &PartDrawing, outer: &[BulgeVertex
         |(low, high), vertex| (low.min(vertex.point), high.max(vertex.point)),
     );
     let size = high - low;
-    let unit = drawing.units.millimetres_per_unit();
+    let unit = drawing.units.millimetres();
     let (smallest, largest) = LABEL_HEIGHT_RANGE_MM;
     let height =
         (size.min_element() * LABEL_HEIGHT_FRACTION).clamp(smallest / unit, largest / unit);

@@ -34,7 +34,7 @@ pub fn part_contours(
     options: &DxfOptions,
 ) -> Result<PartContours, ExportError> {
     options.validate()?;
-    let unit = drawing.units.millimetres_per_unit();
+    let unit = drawing.units.millimetres();
     let tolerance = options.chord_tolerance / unit;
     let outer = fit_ring(
         drawing,
@@ -159,7 +159,7 @@ fn with_seam_allowance(
     nominal: PartContours,
     allowance: f64,
 ) -> Result<PartContours, ExportError> {
-    let distance = allowance / drawing.units.millimetres_per_unit();
+    let distance = allowance / drawing.units.millimetres();
     let mut outer_offsets = offset_away_from_material(&nominal.outer, distance);
     if outer_offsets.len() != 1 {
         return Err(ExportError::SeamOffsetFailed {
