@@ -7,24 +7,25 @@
 //! ever leaving a half-written file there. See `docs/dxf.md` for the layers and entities.
 
 mod atomic;
-pub mod colormap;
-pub mod energy_panel;
-pub mod energy_png;
-pub mod fold_polylines;
-pub mod legend;
-pub mod obj;
-pub mod raster;
-pub mod report;
-pub mod text;
 mod bulge;
+pub mod colormap;
 mod contour;
 mod drawing;
 mod dxf;
 mod dxf_repair;
+pub mod energy_panel;
+pub mod energy_png;
 mod errors;
+pub mod fold_polylines;
+pub mod legend;
+pub mod obj;
 mod part_contours;
+pub mod part_files;
+pub mod raster;
+pub mod report;
 mod seam;
 mod sheet_png;
+pub mod text;
 
 pub use atomic::write_atomically;
 pub use bulge::{
