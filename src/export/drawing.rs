@@ -74,3 +74,15 @@ pub struct SheetDrawing {
     /// The parts placed on it.
     pub parts: Vec<PlacedPart>,
 }
+
+impl SheetDrawing {
+    /// The sheet's corners, counter-clockwise from the origin.
+    pub fn corners(&self) -> [DVec2; 4] {
+        [
+            DVec2::ZERO,
+            DVec2::new(self.width, 0.0),
+            DVec2::new(self.width, self.height),
+            DVec2::new(0.0, self.height),
+        ]
+    }
+}

@@ -158,16 +158,10 @@ pub fn write_part_dxf(drawing: &PartDrawing, options: &DxfOptions) -> Result<Vec
 pub fn write_sheet_dxf(sheet: &SheetDrawing, options: &DxfOptions) -> Result<Vec<u8>, ExportError> {
     check_sheet(sheet)?;
     let mut document = new_document(options.version, sheet.units)?;
-    let corners = [
-        DVec2::ZERO,
-        DVec2::new(sheet.width, 0.0),
-        DVec2::new(sheet.width, sheet.height),
-        DVec2::new(0.0, sheet.height),
-    ];
     add_polyline(
         &mut document,
         layers::SHEET,
-        &corners.map(BulgeVertex::straight),
+        &sheet.corners().map(BulgeVertex::straight),
         true,
         options.version,
     );

@@ -52,13 +52,7 @@ pub fn render_sheet_png(
     let mut pixmap =
         Pixmap::new(view.width, view.height).ok_or(ExportError::InvalidPreviewSize { pixels })?;
     pixmap.fill(colour(BACKGROUND));
-    let corners = [
-        DVec2::ZERO,
-        DVec2::new(sheet.width, 0.0),
-        DVec2::new(sheet.width, sheet.height),
-        DVec2::new(0.0, sheet.height),
-    ];
-    if let Some(outline) = view.path(&[corners.to_vec()], true) {
+    if let Some(outline) = view.path(&[sheet.corners().to_vec()], true) {
         fill(&mut pixmap, &outline, SHEET_FILL);
         stroke(&mut pixmap, &outline, SHEET_LINE, None);
     }
