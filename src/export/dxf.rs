@@ -58,15 +58,6 @@ const LABEL_HEIGHT_RANGE_MM: (f64, f64) = (2.0, 10.0);
 /// Width of one label character as a fraction of the text height (for centring the label).
 const LABEL_CHARACTER_WIDTH: f64 = 0.6;
 
-/// Grain arrowhead length as a fraction of the grain line, capped at [`ARROW_MAX_LENGTH_MM`].
-const ARROW_FRACTION: f64 = 0.1;
-
-/// Longest grain arrowhead, in mm.
-const ARROW_MAX_LENGTH_MM: f64 = 10.0;
-
-/// Angle between the grain line and each side of its arrowhead, in radians (25°).
-const ARROW_HALF_ANGLE: f64 = 25.0 * std::f64::consts::PI / 180.0;
-
 /// Dash and gap of the dashed line type, in mm (ISO 128 long dash).
 const DASH_PATTERN_MM: [f64; 2] = [12.7, -6.35];
 
@@ -287,38 +278,13 @@ fn add_part(
     for fold_line in &contours.fold_lines {
         add_polyline(document, layers::FOLD, fold_line, false, version);
     }
-    if let Some([tail, head]) = drawing.grain
-        && tail.distance(head) > 0.0
-    {
-        add_grain_line(document, tail, head, drawing.units, version);
+    if let Some(([tail, head], arrowhead)) = drawing.grain_arrow() {
+        let line = Line::new(point(tail), point(head));
+        add_entity(document, layers::MARKS, EntityType::Line(line));
+        let arrowhead = arrowhead.map(BulgeVertex::straight);
+        add_polyline(document, layers::MARKS, &arrowhead, false, version);
     }
     add_label(document, drawing, &contours.outer);
-}
-
-/// The grain line: a LINE from tail to head and an open arrowhead polyline at the head.
-fn add_grain_line(
-    document: &mut Drawing,
-    tail: DVec2,
-    head: DVec2,
-    units: Units,
-    version: DxfVersion,
-) {
-    add_entity(
-        document,
-        layers::MARKS,
-        EntityType::Line(Line::new(point(tail), point(head))),
-    );
-    let length = tail.distance(head);
-    let arrow_length =
-        (length * ARROW_FRACTION).min(ARROW_MAX_LENGTH_MM / units.millimetres_per_unit());
-    let back = (tail - head) / length * arrow_length;
-    let barbs = [
-        DVec2::from_angle(ARROW_HALF_ANGLE),
-        DVec2::from_angle(-ARROW_HALF_ANGLE),
-    ]
-    .map(|turn| head + turn.rotate(back));
-    let arrowhead = [barbs[0], head, barbs[1]].map(BulgeVertex::straight);
-    add_polyline(document, layers::MARKS, &arrowhead, false, version);
 }
 
 /// A polyline of bulged vertices: LWPOLYLINE in R2000, POLYLINE and VERTEX entities in R12.

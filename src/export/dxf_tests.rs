@@ -330,6 +330,12 @@ fn bad_input_is_an_error_that_names_the_part() {
     part.holes.push(vec![DVec2::ZERO, DVec2::NAN, DVec2::X]);
     let error = write_part_dxf(&part, &DxfOptions::default()).expect_err("NaN refused");
     assert!(error.to_string().contains("cone") && error.to_string().contains("hole 2"));
+    let no_grain = PartDrawing {
+        grain: Some([DVec2::ZERO, DVec2::INFINITY]),
+        ..cone_part()
+    };
+    let error = write_part_dxf(&no_grain, &DxfOptions::default()).expect_err("infinity refused");
+    assert!(error.to_string().contains("grain line"));
     let options = DxfOptions {
         chord_tolerance: 0.0,
         ..Default::default()

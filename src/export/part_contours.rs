@@ -34,6 +34,9 @@ pub fn part_contours(
     options: &DxfOptions,
 ) -> Result<PartContours, ExportError> {
     options.validate()?;
+    if let Some(grain) = drawing.grain {
+        check_finite(drawing, &grain, "grain line")?;
+    }
     let unit = drawing.units.millimetres_per_unit();
     let tolerance = options.chord_tolerance / unit;
     let outer = fit_ring(
