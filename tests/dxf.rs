@@ -11,6 +11,7 @@ use flatcut::export::{
 };
 use glam::DVec2;
 use std::f64::consts::TAU;
+use std::io::Write;
 use std::path::Path;
 use std::process::Command;
 
@@ -26,7 +27,9 @@ fn ezdxf_available() -> bool {
         );
     }
     if !imported {
-        eprintln!(
+        // Written to stderr directly: the test harness captures `eprintln!`, and a skip must show.
+        let _ = writeln!(
+            std::io::stderr(),
             "SKIPPED: the ezdxf check needs `python3 -c \"import ezdxf\"` to work; run `pip install -r requirements-test.txt`"
         );
     }
@@ -61,9 +64,10 @@ fn cone_part(offset: DVec2) -> PartDrawing {
         material: Some("steel 1.5".into()),
         outer: cone_development(offset),
         holes: vec![circle(offset + DVec2::new(200.0, 100.0), 10.0)],
+        // A radial line across the sector, from the inner to the outer arc.
         fold_lines: vec![vec![
-            offset + DVec2::new(150.0, 0.0),
-            offset + 150.0 * DVec2::from_angle(2.0),
+            offset + 120.0 * DVec2::from_angle(1.2),
+            offset + 300.0 * DVec2::from_angle(1.2),
         ]],
         grain: Some([
             offset + DVec2::new(140.0, 60.0),
@@ -145,6 +149,7 @@ fn every_dxf_passes_the_ezdxf_audit() {
             format!("CUT_INNER:{polyline}:1"),
             format!("FOLD:{polyline}:1"),
             "MARKS:LINE:1".to_owned(),
+            format!("MARKS:{polyline}:1"),
             "MARKS:TEXT:1".to_owned(),
         ];
         check(&part_file, version_name, &part_counts);
@@ -189,6 +194,7 @@ fn every_dxf_passes_the_ezdxf_audit() {
             format!("SHEET:{polyline}:1"),
             format!("CUT_OUTER:{polyline}:2"),
             format!("CUT_INNER:{polyline}:2"),
+            format!("MARKS:{polyline}:2"),
             "MARKS:TEXT:2".to_owned(),
         ];
         check(&sheet_file, version_name, &sheet_counts);

@@ -174,6 +174,22 @@ pub fn sample_closed(vertices: &[BulgeVertex], max_step: f64) -> Vec<DVec2> {
         .collect()
 }
 
+/// Points along a closed bulge polyline: every vertex, and points on arcs close enough that each
+/// chord between them stays within `sagitta` of its arc.
+pub fn sample_closed_within(vertices: &[BulgeVertex], sagitta: f64) -> Vec<DVec2> {
+    let count = vertices.len();
+    (0..count)
+        .flat_map(|index| {
+            let (vertex, next) = (vertices[index], vertices[(index + 1) % count]);
+            let max_step = BulgeArc::from_segment(vertex.point, next.point, vertex.bulge)
+                .map_or(f64::INFINITY, |arc| {
+                    arc.radius * 2.0 * (1.0 - sagitta / arc.radius).clamp(-1.0, 1.0).acos()
+                });
+            sample_segment(vertex.point, next.point, vertex.bulge, max_step)
+        })
+        .collect()
+}
+
 /// Points along an open bulge polyline (the last vertex's bulge is ignored), its end included.
 pub fn sample_open(vertices: &[BulgeVertex], max_step: f64) -> Vec<DVec2> {
     let mut points: Vec<DVec2> = vertices
@@ -228,6 +244,28 @@ mod tests {
             Some((DVec2::ZERO, DVec2::ONE))
         );
         assert_eq!(polyline_bounds(&[], false), None);
+    }
+
+    #[test]
+    fn sagitta_bounded_samples_stay_close_to_the_arc() {
+        let semicircle = [
+            BulgeVertex {
+                point: DVec2::new(-10.0, 0.0),
+                bulge: 1.0,
+            },
+            BulgeVertex {
+                point: DVec2::new(10.0, 0.0),
+                bulge: 0.0,
+            },
+        ];
+        let points = sample_closed_within(&semicircle, 0.01);
+        let arc_points = &points[..points.len() - 1];
+        for pair in arc_points.windows(2) {
+            let middle = (pair[0] + pair[1]) * 0.5;
+            assert!(10.0 - middle.length() <= 0.01 + 1e-12);
+        }
+        // 2 acos(1 - 0.01 / 10) = 0.0894 rad per step: 36 steps over the half circle.
+        assert_eq!(arc_points.len(), 36);
     }
 
     #[test]

@@ -360,7 +360,7 @@ mod tests {
     use super::*;
     use crate::export::bulge::{BulgeArc, distance_to_segment, sample_closed};
     use proptest::prelude::*;
-    use std::f64::consts::TAU;
+    use std::f64::consts::{FRAC_PI_2, TAU};
 
     /// Distance from `point` to a closed fitted contour.
     fn distance_to_closed(point: DVec2, vertices: &[BulgeVertex]) -> f64 {
@@ -478,6 +478,40 @@ mod tests {
             let arc =
                 BulgeArc::from_segment(vertex.point, next.point, vertex.bulge).expect("an arc");
             assert!(arc.center.length() < 1e-6 && (arc.radius - 5.0).abs() < 1e-6);
+        }
+    }
+
+    #[test]
+    fn rounded_rectangle_is_four_lines_and_four_tangent_arcs() {
+        let (width, height, radius) = (200.0, 100.0, 10.0);
+        let centres = [
+            DVec2::new(width - radius, radius),
+            DVec2::new(width - radius, height - radius),
+            DVec2::new(radius, height - radius),
+            DVec2::new(radius, radius),
+        ];
+        let mut ring = Vec::new();
+        for (corner, centre) in centres.iter().enumerate() {
+            let start = (corner as f64 - 1.0) * FRAC_PI_2;
+            let mut fillet = arc_points(radius, start, FRAC_PI_2, 100);
+            fillet.iter_mut().for_each(|point| *point += *centre);
+            let next_centre = centres[(corner + 1) % 4];
+            let side_start = fillet[fillet.len() - 1];
+            let side_end = next_centre + radius * DVec2::from_angle(start + FRAC_PI_2);
+            ring.extend(fillet);
+            ring.extend(line_points(side_start, side_end, 99));
+        }
+        let fitted = fit_closed(&ring, DEFAULT_CHORD_TOLERANCE).expect("a valid ring");
+        assert_eq!(fitted.len(), 8, "{fitted:?}");
+        assert_eq!(
+            fitted
+                .iter()
+                .filter(|vertex| vertex.bulge.abs() > 0.0)
+                .count(),
+            4
+        );
+        for point in &ring {
+            assert!(distance_to_closed(*point, &fitted) <= DEFAULT_CHORD_TOLERANCE);
         }
     }
 

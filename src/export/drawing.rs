@@ -27,6 +27,34 @@ pub struct PartDrawing {
     pub grain: Option<[DVec2; 2]>,
 }
 
+/// Grain arrowhead length as a fraction of the grain line, capped at [`ARROW_MAX_LENGTH_MM`].
+const ARROW_FRACTION: f64 = 0.1;
+
+/// Longest grain arrowhead, in mm.
+const ARROW_MAX_LENGTH_MM: f64 = 10.0;
+
+/// Angle between the grain line and each side of its arrowhead, in radians (25°).
+const ARROW_HALF_ANGLE: f64 = 25.0 * std::f64::consts::PI / 180.0;
+
+impl PartDrawing {
+    /// The grain line (tail, head) and its arrowhead (barb, head, barb) as drawn, or `None` when
+    /// the part has no grain line or one of zero or non-finite length.
+    pub fn grain_arrow(&self) -> Option<([DVec2; 2], [DVec2; 3])> {
+        let [tail, head] = self.grain?;
+        let length = tail.distance(head);
+        if !length.is_finite() || length <= 0.0 {
+            return None;
+        }
+        let maximum = ARROW_MAX_LENGTH_MM / self.units.millimetres();
+        let back = (tail - head) / length * (length * ARROW_FRACTION).min(maximum);
+        let barb = |angle: f64| head + DVec2::from_angle(angle).rotate(back);
+        Some((
+            [tail, head],
+            [barb(ARROW_HALF_ANGLE), head, barb(-ARROW_HALF_ANGLE)],
+        ))
+    }
+}
+
 /// A part placed on a sheet, its coordinates already in the sheet's frame.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct PlacedPart {
@@ -47,4 +75,16 @@ pub struct SheetDrawing {
     pub height: f64,
     /// The parts placed on it.
     pub parts: Vec<PlacedPart>,
+}
+
+impl SheetDrawing {
+    /// The sheet's corners, counter-clockwise from the origin.
+    pub fn corners(&self) -> [DVec2; 4] {
+        [
+            DVec2::ZERO,
+            DVec2::new(self.width, 0.0),
+            DVec2::new(self.width, self.height),
+            DVec2::new(0.0, self.height),
+        ]
+    }
 }

@@ -30,7 +30,8 @@ pub mod layers {
     pub const FOLD: &str = "FOLD";
     /// Sew lines of a part cut with a seam allowance: drawn, never cut. Magenta, dashed.
     pub const SEW: &str = "SEW";
-    /// Marks: grain line and label (part name, quantity, material). Yellow, continuous; not cut.
+    /// Marks: grain line with its arrowhead and label (part name, quantity, material). Yellow,
+    /// continuous; not cut.
     pub const MARKS: &str = "MARKS";
     /// The sheet outline, in sheet files. Grey, continuous; not cut.
     pub const SHEET: &str = "SHEET";
@@ -148,16 +149,10 @@ pub fn write_part_dxf(drawing: &PartDrawing, options: &DxfOptions) -> Result<Vec
 pub fn write_sheet_dxf(sheet: &SheetDrawing, options: &DxfOptions) -> Result<Vec<u8>, ExportError> {
     check_sheet(sheet)?;
     let mut document = new_document(options.version, sheet.units)?;
-    let corners = [
-        DVec2::ZERO,
-        DVec2::new(sheet.width, 0.0),
-        DVec2::new(sheet.width, sheet.height),
-        DVec2::new(0.0, sheet.height),
-    ];
     add_polyline(
         &mut document,
         layers::SHEET,
-        &corners.map(BulgeVertex::straight),
+        &sheet.corners().map(BulgeVertex::straight),
         true,
         options.version,
     );
@@ -283,14 +278,11 @@ fn add_part(
     for fold_line in &contours.fold_lines {
         add_polyline(document, layers::FOLD, fold_line, false, version);
     }
-    if let Some([tail, head]) = drawing.grain
-        && tail.distance(head) > 0.0
-    {
-        add_entity(
-            document,
-            layers::MARKS,
-            EntityType::Line(Line::new(point(tail), point(head))),
-        );
+    if let Some(([tail, head], arrowhead)) = drawing.grain_arrow() {
+        let line = Line::new(point(tail), point(head));
+        add_entity(document, layers::MARKS, EntityType::Line(line));
+        let arrowhead = arrowhead.map(BulgeVertex::straight);
+        add_polyline(document, layers::MARKS, &arrowhead, false, version);
     }
     add_label(document, drawing, &contours.outer);
 }

@@ -31,9 +31,10 @@ fn cone_part() -> PartDrawing {
         material: Some("steel 1.5".into()),
         outer: cone_development(120.0, 300.0, 2.0),
         holes: vec![circle(DVec2::new(200.0, 100.0), 10.0, 360)],
+        // A radial line across the sector, from the inner to the outer arc.
         fold_lines: vec![vec![
-            DVec2::new(150.0, 0.0),
-            DVec2::new(150.0 * 2.0f64.cos(), 150.0 * 2.0f64.sin()),
+            120.0 * DVec2::from_angle(1.2),
+            300.0 * DVec2::from_angle(1.2),
         ]],
         grain: Some([DVec2::new(140.0, 60.0), DVec2::new(200.0, 60.0)]),
         ..Default::default()
@@ -230,7 +231,7 @@ fn every_layer_is_defined_and_entities_sit_on_them() {
             on(layers::FOLD),
             on(layers::MARKS)
         ),
-        (1, 1, 1, 2)
+        (1, 1, 1, 3)
     );
     let label = document
         .entities()
@@ -329,6 +330,12 @@ fn bad_input_is_an_error_that_names_the_part() {
     part.holes.push(vec![DVec2::ZERO, DVec2::NAN, DVec2::X]);
     let error = write_part_dxf(&part, &DxfOptions::default()).expect_err("NaN refused");
     assert!(error.to_string().contains("cone") && error.to_string().contains("hole 2"));
+    let no_grain = PartDrawing {
+        grain: Some([DVec2::ZERO, DVec2::INFINITY]),
+        ..cone_part()
+    };
+    let error = write_part_dxf(&no_grain, &DxfOptions::default()).expect_err("infinity refused");
+    assert!(error.to_string().contains("grain line"));
     let options = DxfOptions {
         chord_tolerance: 0.0,
         ..Default::default()

@@ -34,6 +34,9 @@ pub fn part_contours(
     options: &DxfOptions,
 ) -> Result<PartContours, ExportError> {
     options.validate()?;
+    if let Some(grain) = drawing.grain {
+        check_finite(drawing, &grain, "grain line")?;
+    }
     let unit = drawing.units.millimetres();
     let tolerance = options.chord_tolerance / unit;
     let outer = fit_ring(
@@ -77,7 +80,7 @@ pub fn part_contours(
         fold_lines,
     };
     match options.seam_allowance {
-        Some(allowance) => with_seam_allowance(drawing, nominal, allowance),
+        Some(allowance) => with_seam_allowance(drawing, nominal, allowance, tolerance),
         None => Ok(nominal),
     }
 }
@@ -153,14 +156,16 @@ pub(crate) fn reverse_closed(vertices: &[BulgeVertex]) -> Vec<BulgeVertex> {
         .collect()
 }
 
-/// The cut contours moved out by the allowance (mm), the nominal ones kept as sew lines.
+/// The cut contours moved out by the allowance (mm) and fitted within `tolerance` (drawing
+/// units), the nominal ones kept as sew lines.
 fn with_seam_allowance(
     drawing: &PartDrawing,
     nominal: PartContours,
     allowance: f64,
+    tolerance: f64,
 ) -> Result<PartContours, ExportError> {
     let distance = allowance / drawing.units.millimetres();
-    let mut outer_offsets = offset_away_from_material(&nominal.outer, distance);
+    let mut outer_offsets = offset_away_from_material(&nominal.outer, distance, tolerance);
     if outer_offsets.len() != 1 {
         return Err(ExportError::SeamOffsetFailed {
             part: drawing.name.clone(),
@@ -170,7 +175,7 @@ fn with_seam_allowance(
     let outer = outer_offsets.remove(0);
     let mut holes = Vec::with_capacity(nominal.holes.len());
     for (index, hole) in nominal.holes.iter().enumerate() {
-        let offsets = offset_away_from_material(hole, distance);
+        let offsets = offset_away_from_material(hole, distance, tolerance);
         if offsets.is_empty() {
             return Err(ExportError::SeamAllowanceClosesHole {
                 part: drawing.name.clone(),
@@ -256,6 +261,34 @@ mod tests {
         assert_eq!(contours.outer.len(), 2, "{:?}", contours.outer);
         for point in crate::export::bulge::sample_closed(&contours.outer, 0.5) {
             assert!((point.length() - 62.0).abs() < 1e-6, "{point}");
+        }
+    }
+
+    #[test]
+    fn seam_allowance_leaves_no_micro_segments() {
+        // Fitted, the dense ellipse is a chain of nearly tangent arcs; the raw offset joins them
+        // with arcs a few micrometres long.
+        let ellipse: Vec<DVec2> = (0..2000)
+            .map(|step| {
+                let angle = step as f64 * std::f64::consts::TAU / 2000.0;
+                DVec2::new(200.0 * angle.cos(), 90.0 * angle.sin())
+            })
+            .collect();
+        let drawing = PartDrawing {
+            name: "panel".into(),
+            outer: ellipse,
+            ..Default::default()
+        };
+        let options = DxfOptions {
+            seam_allowance: Some(10.0),
+            ..Default::default()
+        };
+        let outer = part_contours(&drawing, &options).expect("valid part").outer;
+        let minimum = options.chord_tolerance * crate::export::MIN_SEGMENT_LENGTH_IN_TOLERANCES;
+        for (index, vertex) in outer.iter().enumerate() {
+            let next = outer[(index + 1) % outer.len()];
+            let length = crate::export::segment_length(vertex.point, next.point, vertex.bulge);
+            assert!(length >= minimum, "segment {index} is {length} mm long");
         }
     }
 

@@ -7,8 +7,14 @@
 //! orientation. Convex corners get round joins of radius equal to the allowance; concave corners
 //! are trimmed to a sharp corner. An outer contour gives one contour; a hole may shrink to nothing
 //! (no contour) or split in two where it is narrow.
+//!
+//! Joins between nearly tangent segments come out of the offset as arcs of a few micrometres; so
+//! the offset contour is sampled (chords within a quarter of the tolerance of its arcs) and fitted
+//! again by [`super::contour::fit_closed`] within the rest of the tolerance, which merges them into
+//! their neighbours and keeps the result within the tolerance of the exact offset.
 
-use super::bulge::BulgeVertex;
+use super::bulge::{BulgeVertex, sample_closed_within};
+use super::contour::fit_closed;
 use cavalier_contours::polyline::{
     PlineCreation, PlineSource, PlineSourceMut, PlineVertex, Polyline,
 };
@@ -17,11 +23,16 @@ use glam::DVec2;
 /// Positions closer than this fraction of the allowance are merged in the offset result.
 const MERGE_FRACTION: f64 = 1e-6;
 
+/// Share of the tolerance given to sampling the exact offset before it is fitted again; the fit
+/// gets the rest.
+const SAMPLING_SHARE: f64 = 0.25;
+
 /// The contours at `allowance` (drawing units, positive) from `contour`, on the side away from the
-/// material (its right).
+/// material (its right), fitted within `tolerance` (drawing units) of the exact offset.
 pub(crate) fn offset_away_from_material(
     contour: &[BulgeVertex],
     allowance: f64,
+    tolerance: f64,
 ) -> Vec<Vec<BulgeVertex>> {
     let mut polyline = Polyline::with_capacity(contour.len(), true);
     for vertex in contour {
@@ -37,7 +48,11 @@ pub(crate) fn offset_away_from_material(
                 .unwrap_or(offset)
         })
         .filter(|offset| offset.vertex_count() >= 2)
-        .map(|offset| offset.iter_vertexes().map(to_bulge_vertex).collect())
+        .filter_map(|offset| {
+            let exact: Vec<BulgeVertex> = offset.iter_vertexes().map(to_bulge_vertex).collect();
+            let samples = sample_closed_within(&exact, tolerance * SAMPLING_SHARE);
+            fit_closed(&samples, tolerance * (1.0 - SAMPLING_SHARE))
+        })
         .collect()
 }
 
@@ -64,7 +79,7 @@ mod tests {
             DVec2::new(0.0, 50.0),
         ]
         .map(BulgeVertex::straight);
-        let offsets = offset_away_from_material(&square, 10.0);
+        let offsets = offset_away_from_material(&square, 10.0, 0.01);
         assert_eq!(offsets.len(), 1);
         let outline = sample_closed(&offsets[0], 0.1);
         let area = signed_area(&outline);
@@ -90,7 +105,7 @@ mod tests {
             DVec2::new(4.0, 0.0),
         ]
         .map(BulgeVertex::straight);
-        assert!(offset_away_from_material(&hole, 3.0).is_empty());
-        assert_eq!(offset_away_from_material(&hole, 1.0).len(), 1);
+        assert!(offset_away_from_material(&hole, 3.0, 0.01).is_empty());
+        assert_eq!(offset_away_from_material(&hole, 1.0, 0.01).len(), 1);
     }
 }

@@ -1,5 +1,5 @@
 //! PNG preview of a nested sheet: the sheet outline, every part filled light with its cut contours,
-//! holes left open, fold and sew lines dashed. No text.
+//! holes left open, fold and sew lines dashed, grain lines with their arrowheads. No text.
 //!
 //! Input: a [`SheetDrawing`] and the same [`DxfOptions`] as its DXF, so the preview shows the
 //! contours that will be cut (fitted arcs, seam allowance). Output: PNG bytes, the longer side
@@ -28,7 +28,7 @@ const ARC_STEP_PIXELS: f64 = 1.0;
 /// Dash and gap of fold and sew lines, in pixels.
 const DASH_PIXELS: [f32; 2] = [6.0, 4.0];
 
-/// Colours: background, sheet, part fill, cut line, fold line, sew line (RGBA).
+/// Colours: background, sheet, part fill, cut line, fold line, sew line, grain line (RGBA).
 const BACKGROUND: [u8; 4] = [255, 255, 255, 255];
 const SHEET_FILL: [u8; 4] = [240, 240, 236, 255];
 const SHEET_LINE: [u8; 4] = [110, 110, 110, 255];
@@ -36,6 +36,7 @@ const PART_FILL: [u8; 4] = [190, 215, 240, 255];
 const CUT_LINE: [u8; 4] = [20, 60, 140, 255];
 const FOLD_LINE: [u8; 4] = [30, 140, 60, 255];
 const SEW_LINE: [u8; 4] = [170, 40, 150, 255];
+const GRAIN_LINE: [u8; 4] = [200, 120, 0, 255];
 
 /// Renders the sheet preview as PNG bytes, its longer side `pixels` wide.
 pub fn render_sheet_png(
@@ -52,13 +53,7 @@ pub fn render_sheet_png(
     let mut pixmap =
         Pixmap::new(view.width, view.height).ok_or(ExportError::InvalidPreviewSize { pixels })?;
     pixmap.fill(colour(BACKGROUND));
-    let corners = [
-        DVec2::ZERO,
-        DVec2::new(sheet.width, 0.0),
-        DVec2::new(sheet.width, sheet.height),
-        DVec2::new(0.0, sheet.height),
-    ];
-    if let Some(outline) = view.path(&[corners.to_vec()], true) {
+    if let Some(outline) = view.path(&[sheet.corners().to_vec()], true) {
         fill(&mut pixmap, &outline, SHEET_FILL);
         stroke(&mut pixmap, &outline, SHEET_LINE, None);
     }
@@ -75,6 +70,11 @@ pub fn render_sheet_png(
         }
         draw_dashed(&mut pixmap, &view, &contours.sew_lines, true, SEW_LINE);
         draw_dashed(&mut pixmap, &view, &contours.fold_lines, false, FOLD_LINE);
+        if let Some((line, arrowhead)) = placed.drawing.grain_arrow()
+            && let Some(path) = view.path(&[line.to_vec(), arrowhead.to_vec()], false)
+        {
+            stroke(&mut pixmap, &path, GRAIN_LINE, None);
+        }
     }
     pixmap
         .encode_png()
