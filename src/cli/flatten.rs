@@ -21,6 +21,10 @@ use flatcut::units::Units;
 
 use super::Outcome;
 
+/// Above this many triangles `--solver paper` warns that it will be slow (its phase one is
+/// quadratic: about 10 s at 5,000 triangles on a 2-core machine).
+const PAPER_SOLVER_ADVISED_TRIANGLES: usize = 5_000;
+
 /// Arguments shared by `flatten` and `run`.
 #[derive(Debug, Args)]
 pub struct FlattenArgs {
@@ -81,6 +85,16 @@ pub fn run(args: FlattenArgs, progress: &dyn Progress) -> anyhow::Result<Outcome
     for job in &jobs {
         for warning in &job.warnings {
             eprintln!("flatcut: warning: {}: {warning}", job.source.display());
+        }
+        if options.flatten.solver == Solver::Paper
+            && job.model.triangle_count() > PAPER_SOLVER_ADVISED_TRIANGLES
+        {
+            eprintln!(
+                "flatcut: warning: {}: {} triangles: the paper's solver is quadratic and will be slow; \
+                 the default solver minimises the same energy",
+                job.name,
+                job.model.triangle_count()
+            );
         }
     }
     let results = jobs

@@ -7,10 +7,14 @@
 //! an opposite edge than its 3D distance `h*` back by the shortfall, along the edge's normal.
 //!
 //! Damping. The paper drops the damping term of Eq. 8, and an undamped explicit integrator never
-//! settles: it trades potential for kinetic energy forever. We use kinetic damping (dynamic
-//! relaxation, Cundall 1976): whenever the total kinetic energy `Σ ½ m_i |v_i|²` falls, the
-//! system has just passed an energy minimum along its path, and every velocity is set to zero.
-//! The motion between resets is the paper's, and the spring energy decreases from reset to reset.
+//! settles: it trades potential for kinetic energy forever, and the explicit scheme of Eq. 12-13
+//! even gains energy in the fast modes. We use kinetic damping (dynamic relaxation, Cundall 1976)
+//! at two scales: a vertex whose velocity points against its force (it is climbing) loses its
+//! velocity before the step, and whenever the total kinetic energy `Σ ½ m_i |v_i|²` falls, the
+//! system has just passed an energy minimum along its path and every velocity is set to zero.
+//! Between resets the motion is the paper's. With the global reset alone the hemisphere's energy
+//! fell for 3000 steps and then rose again; with both it falls monotonically (the unit test
+//! below samples it every 500 steps).
 //!
 //! Stopping rule (the paper's): stop when `E_S` and `E_C` are both within the tolerance, or when
 //! the relative variation of the energy falls below `ε` (0.05 %), or after the step budget. The
@@ -72,12 +76,15 @@ impl Default for ReleaseParameters {
 }
 
 /// What a relaxation did.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct ReleaseOutcome {
     /// Steps taken.
     pub steps: usize,
     /// Why it stopped.
     pub stop_reason: StopReason,
+    /// The spring energy at the start and at the end of every relaxation cycle (each velocity
+    /// reset): the record that kinetic damping releases energy.
+    pub cycle_energies: Vec<f64>,
 }
 
 /// The precomputed spring-mass system of a facet model: masses and the 3D heights `h*` used by
@@ -196,6 +203,7 @@ impl<'a> EnergyRelease<'a> {
         let mut velocities = vec![DVec2::ZERO; positions.len()];
         let mut forces = vec![DVec2::ZERO; positions.len()];
         let mut energy_at_last_reset = self.system_energy(system, positions);
+        let mut cycle_energies = vec![energy_at_last_reset];
         let mut kinetic = 0.0;
         for step in 1..=parameters.max_steps {
             if measure_errors
@@ -205,6 +213,7 @@ impl<'a> EnergyRelease<'a> {
                 return ReleaseOutcome {
                     steps: step - 1,
                     stop_reason: StopReason::ToleranceMet,
+                    cycle_energies,
                 };
             }
             self.step(
@@ -235,16 +244,19 @@ impl<'a> EnergyRelease<'a> {
                 0.0
             };
             energy_at_last_reset = energy;
+            cycle_energies.push(energy);
             if measure_errors && variation < parameters.energy_variation {
                 return ReleaseOutcome {
                     steps: step,
                     stop_reason: StopReason::EnergyStalled,
+                    cycle_energies,
                 };
             }
         }
         ReleaseOutcome {
             steps: parameters.max_steps,
             stop_reason: StopReason::StepBudget,
+            cycle_energies,
         }
     }
 
@@ -261,6 +273,9 @@ impl<'a> EnergyRelease<'a> {
         for &v in &system.vertices {
             let v = v as usize;
             let acceleration = forces[v] / system.masses[v];
+            if velocities[v].dot(forces[v]) < 0.0 {
+                velocities[v] = DVec2::ZERO;
+            }
             positions[v] += dt * velocities[v] + 0.5 * dt * dt * acceleration;
             velocities[v] += dt * acceleration;
         }
@@ -330,3 +345,88 @@ impl<'a> EnergyRelease<'a> {
 /// has come within a quarter of its 3D distance keeps the penalty's purpose, stopping a triangle
 /// before it folds over, without fighting the springs.
 pub const PENALTY_REACH: f64 = 0.25;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::flatten::{InitRelease, Stiffness, init_flatten};
+    use crate::progress::NoProgress;
+
+    fn sample(name: &str) -> FacetModel {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("samples")
+            .join(name);
+        let soup = crate::ingest::read_mesh(&path, Default::default())
+            .expect("sample reads")
+            .soup;
+        crate::mesh::validate(&soup)
+            .expect("sample is valid")
+            .components
+            .remove(0)
+    }
+
+    #[test]
+    fn kinetic_damping_releases_energy_cycle_after_cycle() {
+        for name in ["hemisphere.obj", "saddle.obj"] {
+            let model = sample(name);
+            let springs = SpringSystem::new(&model, Stiffness::uniform(&model).factors(), 0.5);
+            let start = init_flatten(
+                &model,
+                &springs,
+                InitRelease::Neighbourhood { sweeps: 2 },
+                &NoProgress,
+            );
+            let release = EnergyRelease::new(&model, &springs);
+            let mut energies = vec![springs.energy(&start)];
+            for steps in (500..=4000).step_by(500) {
+                let parameters = ReleaseParameters {
+                    max_steps: steps,
+                    tolerance: 0.0,
+                    energy_variation: 0.0,
+                    ..ReleaseParameters::default()
+                };
+                let mut positions = start.clone();
+                release.release(&release.whole_system(), &mut positions, &parameters, true);
+                energies.push(springs.energy(&positions));
+            }
+            for pair in energies.windows(2) {
+                assert!(
+                    pair[1] < pair[0],
+                    "{name}: energy rose from {} to {}: {energies:?}",
+                    pair[0],
+                    pair[1]
+                );
+            }
+            assert!(
+                energies[energies.len() - 1] < 0.8 * energies[0],
+                "{name}: {energies:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn masses_follow_equation_10() {
+        let model = sample("cone_frustum.obj");
+        let springs = SpringSystem::new(&model, Stiffness::uniform(&model).factors(), 0.5);
+        let release = EnergyRelease::new(&model, &springs);
+        let system = release.whole_system();
+        let lightest = system.masses.iter().copied().fold(f64::INFINITY, f64::min);
+        assert!(
+            (lightest - 1.0).abs() < 1e-12,
+            "ρ = 1 / min m_i makes the lightest mass 1"
+        );
+        let total: f64 = system.masses.iter().sum();
+        let expected = model.area() / (lightest_vertex_area(&model));
+        assert!((total - expected).abs() < 1e-9 * expected);
+    }
+
+    fn lightest_vertex_area(model: &FacetModel) -> f64 {
+        let mut areas = vec![0.0; model.vertex_count()];
+        for (f, t) in model.triangles().iter().enumerate() {
+            for &v in t {
+                areas[v as usize] += model.triangle_area(f) / 3.0;
+            }
+        }
+        areas.into_iter().fold(f64::INFINITY, f64::min)
+    }
+}

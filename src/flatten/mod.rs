@@ -12,6 +12,7 @@ pub mod accuracy;
 pub mod energy_release;
 pub mod init_flatten;
 pub mod isolines;
+pub mod outline;
 pub mod springs;
 pub mod stiffness;
 

@@ -455,3 +455,137 @@ fn split_components(
     }
     models
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn soup(positions: &[[f64; 3]], triangles: &[[u32; 3]]) -> TriangleSoup {
+        TriangleSoup::new(
+            positions.iter().map(|&p| DVec3::from_array(p)).collect(),
+            triangles.to_vec(),
+        )
+    }
+
+    const SQUARE: [[f64; 3]; 4] = [[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.]];
+
+    #[test]
+    fn a_clean_square_gives_one_model_with_one_boundary_loop() {
+        let validated = validate(&soup(&SQUARE, &[[0, 1, 2], [0, 2, 3]])).expect("valid");
+        assert!(validated.warnings.is_empty());
+        let model = &validated.components[0];
+        assert_eq!(
+            (
+                model.vertex_count(),
+                model.triangle_count(),
+                model.edges().len()
+            ),
+            (4, 2, 5)
+        );
+        assert_eq!(model.boundary_loops(), &[vec![0, 1, 2, 3]]);
+        assert!((model.area() - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn every_defect_is_reported_at_once() {
+        let mut positions = SQUARE.to_vec();
+        positions.push([f64::NAN, 0.0, 0.0]);
+        let defects =
+            validate(&soup(&positions, &[[0, 1, 2], [0, 2, 9], [0, 2, 4]])).expect_err("defects");
+        assert!(defects.0.contains(&Defect::NonFiniteVertex { vertex: 4 }));
+        assert!(defects.0.contains(&Defect::IndexOutOfRange {
+            triangle: 1,
+            index: 9,
+            vertex_count: 5
+        }));
+    }
+
+    #[test]
+    fn bow_tie_vertex_is_non_manifold() {
+        let positions = [
+            [0., 0., 0.],
+            [1., 0., 0.],
+            [0., 1., 0.],
+            [-1., 0., 0.],
+            [0., -1., 0.],
+        ];
+        let defects = validate(&soup(&positions, &[[0, 1, 2], [0, 3, 4]])).expect_err("bow-tie");
+        assert_eq!(
+            defects.0,
+            vec![Defect::NonManifoldVertex { vertex: 0, fans: 2 }]
+        );
+    }
+
+    #[test]
+    fn flipped_face_is_reoriented_and_repeated_vertex_dropped() {
+        let validated =
+            validate(&soup(&SQUARE, &[[0, 1, 2], [0, 3, 2], [1, 1, 2]])).expect("repairable");
+        assert!(
+            validated
+                .warnings
+                .contains(&Defect::Reoriented { count: 1 })
+        );
+        assert!(
+            validated
+                .warnings
+                .contains(&Defect::RepeatedVertex { triangle: 2 })
+        );
+        assert_eq!(validated.components[0].triangles()[1], [0, 2, 3]);
+    }
+
+    #[test]
+    fn components_are_split_and_unreferenced_vertices_dropped() {
+        let mut positions = SQUARE.to_vec();
+        positions.extend([[5., 0., 0.], [6., 0., 0.], [5., 1., 0.], [9., 9., 9.]]);
+        let validated =
+            validate(&soup(&positions, &[[0, 1, 2], [4, 5, 6], [0, 2, 3]])).expect("valid");
+        assert_eq!(validated.components.len(), 2);
+        assert_eq!(validated.components[0].triangle_count(), 2);
+        assert_eq!(
+            validated.components[1].positions()[0],
+            DVec3::new(5., 0., 0.)
+        );
+        assert!(
+            validated
+                .warnings
+                .contains(&Defect::UnreferencedVertices { count: 1, first: 7 })
+        );
+    }
+
+    #[test]
+    fn mobius_strip_is_not_orientable() {
+        // A strip of 4 quads whose ends are glued with a half twist.
+        let positions: Vec<[f64; 3]> = (0..4)
+            .flat_map(|i| {
+                let angle = i as f64 * std::f64::consts::FRAC_PI_2;
+                let twist = angle / 2.0;
+                let (radial, height) = (0.3 * twist.cos(), 0.3 * twist.sin());
+                [-1.0, 1.0].map(|s| {
+                    [
+                        (1.0 + s * radial) * angle.cos(),
+                        (1.0 + s * radial) * angle.sin(),
+                        s * height,
+                    ]
+                })
+            })
+            .collect();
+        let mut triangles = Vec::new();
+        for i in 0..4u32 {
+            let (a, b) = (2 * i, 2 * i + 1);
+            let (c, d) = if i == 3 {
+                (1, 0)
+            } else {
+                (2 * i + 2, 2 * i + 3)
+            };
+            triangles.extend([[a, c, b], [b, c, d]]);
+        }
+        let defects = validate(&soup(&positions, &triangles)).expect_err("non-orientable");
+        assert!(
+            defects
+                .0
+                .iter()
+                .any(|d| matches!(d, Defect::NonOrientable { .. })),
+            "{defects}"
+        );
+    }
+}

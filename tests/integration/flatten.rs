@@ -1,0 +1,200 @@
+//! Flattening end to end: exact developments, accuracy recomputed independently, rigid-motion
+//! invariance, determinism and exit codes.
+
+use crate::util::{
+    flatcut, flatten_into, read_obj, read_report, recompute, sample, stderr, write_obj,
+};
+
+/// Developable meshes must unroll isometrically: errors at round-off level.
+const DEVELOPABLE_ERROR: f64 = 1e-6;
+
+#[test]
+fn developable_samples_unroll_exactly_with_both_solvers() {
+    for name in ["cone_frustum", "cylinder_segment"] {
+        for solver in ["fast", "paper"] {
+            let directory = tempfile::tempdir().expect("temporary directory");
+            let output = flatten_into(
+                &sample(&format!("{name}.obj")),
+                directory.path(),
+                &["--solver", solver],
+            );
+            assert_eq!(
+                output.status.code(),
+                Some(0),
+                "{name} {solver}: {}",
+                stderr(&output)
+            );
+            let figures = recompute(directory.path(), name);
+            assert!(
+                figures.area_error <= DEVELOPABLE_ERROR,
+                "{name} {solver}: E_S {}",
+                figures.area_error
+            );
+            assert!(
+                figures.shape_error <= DEVELOPABLE_ERROR,
+                "{name} {solver}: E_C {}",
+                figures.shape_error
+            );
+            assert_eq!(figures.flipped, 0, "{name} {solver}");
+        }
+    }
+}
+
+#[test]
+fn reported_errors_match_an_independent_recomputation() {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let output = flatten_into(&sample("saddle.obj"), directory.path(), &[]);
+    assert!(
+        matches!(output.status.code(), Some(0 | 3)),
+        "{}",
+        stderr(&output)
+    );
+    let report = read_report(directory.path());
+    let part = &report["parts"][0];
+    let figures = recompute(directory.path(), "saddle");
+    let reported = |key: &str| part[key].as_f64().expect("number");
+    assert!(
+        (reported("area_error") - figures.area_error).abs() < 1e-12,
+        "{} vs {figures:?}",
+        part
+    );
+    assert!(
+        (reported("shape_error") - figures.shape_error).abs() < 1e-12,
+        "{} vs {figures:?}",
+        part
+    );
+    assert_eq!(part["flipped"].as_u64(), Some(figures.flipped as u64));
+}
+
+#[test]
+fn hemisphere_has_no_flip_or_overlap_and_beats_arap() {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let output = flatten_into(&sample("hemisphere.obj"), directory.path(), &[]);
+    assert!(
+        matches!(output.status.code(), Some(0 | 3)),
+        "{}",
+        stderr(&output)
+    );
+    let part = &read_report(directory.path())["parts"][0];
+    assert_eq!(part["flipped"].as_u64(), Some(0));
+    assert_eq!(part["overlap"].as_bool(), Some(false));
+    // libigl ARAP on the same mesh: E_S 16.3 %, E_C 10.0 % (shared/bench/README.md).
+    assert!(
+        part["area_error"].as_f64().expect("number") < 0.163,
+        "{part}"
+    );
+    assert!(
+        part["shape_error"].as_f64().expect("number") < 0.100,
+        "{part}"
+    );
+}
+
+#[test]
+fn rigid_motion_changes_no_figure() {
+    let original = tempfile::tempdir().expect("temporary directory");
+    let moved = tempfile::tempdir().expect("temporary directory");
+    let (vertices, faces) = read_obj(&sample("saddle.obj"));
+    let (sin, cos) = 0.7f64.sin_cos();
+    let (sin2, cos2) = (-1.1f64).sin_cos();
+    let transformed: Vec<[f64; 3]> = vertices
+        .iter()
+        .map(|&[x, y, z]| {
+            let (x, y) = (cos * x - sin * y, sin * x + cos * y);
+            let (y, z) = (cos2 * y - sin2 * z, sin2 * y + cos2 * z);
+            [x + 1234.5, y - 678.25, z + 91.0]
+        })
+        .collect();
+    let moved_input = moved.path().join("saddle.obj");
+    write_obj(&moved_input, &transformed, &faces);
+    let moved_output = moved.path().join("out");
+    for (input, directory) in [
+        (sample("saddle.obj"), original.path().to_path_buf()),
+        (moved_input, moved_output.clone()),
+    ] {
+        let output = flatten_into(&input, &directory, &[]);
+        assert!(
+            matches!(output.status.code(), Some(0 | 3)),
+            "{}",
+            stderr(&output)
+        );
+    }
+    let a = &read_report(original.path())["parts"][0];
+    let b = &read_report(&moved_output)["parts"][0];
+    for key in ["area_error", "shape_error", "max_strain", "energy"] {
+        let (x, y) = (
+            a[key].as_f64().expect("number"),
+            b[key].as_f64().expect("number"),
+        );
+        assert!(
+            (x - y).abs() <= 1e-9 * x.abs().max(1e-12),
+            "{key}: {x} vs {y}"
+        );
+    }
+}
+
+#[test]
+fn same_input_gives_byte_identical_outputs() {
+    let first = tempfile::tempdir().expect("temporary directory");
+    let second = tempfile::tempdir().expect("temporary directory");
+    for directory in [first.path(), second.path()] {
+        let output = flatten_into(&sample("hemisphere.obj"), directory, &[]);
+        assert!(
+            matches!(output.status.code(), Some(0 | 3)),
+            "{}",
+            stderr(&output)
+        );
+    }
+    let mut names: Vec<_> = std::fs::read_dir(first.path())
+        .expect("list")
+        .map(|e| e.expect("entry").file_name())
+        .collect();
+    names.sort();
+    assert!(names.len() >= 3, "{names:?}");
+    for name in names {
+        let a = std::fs::read(first.path().join(&name)).expect("read");
+        let b = std::fs::read(second.path().join(&name)).expect("read");
+        assert!(a == b, "{name:?} differs between runs");
+    }
+}
+
+#[test]
+fn json_flag_prints_the_report() {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let output = flatten_into(&sample("cone_frustum.obj"), directory.path(), &["--json"]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let printed: serde_json::Value =
+        serde_json::from_slice(&output.stdout).expect("stdout is JSON");
+    assert_eq!(printed, read_report(directory.path()));
+    assert_eq!(printed["schema_version"].as_u64(), Some(1));
+    assert_eq!(printed["parts"][0]["tolerance_met"].as_bool(), Some(true));
+}
+
+#[test]
+fn over_tolerance_exits_3_and_still_writes_outputs() {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let output = flatten_into(
+        &sample("saddle.obj"),
+        directory.path(),
+        &["--tolerance", "0.0001"],
+    );
+    assert_eq!(output.status.code(), Some(3), "{}", stderr(&output));
+    let part = &read_report(directory.path())["parts"][0];
+    assert_eq!(part["tolerance_met"].as_bool(), Some(false));
+    assert!(directory.path().join("saddle.pattern.obj").exists());
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    assert_eq!(flatcut(&[]).status.code(), Some(2));
+    assert_eq!(
+        flatcut(&["flatten", "x.obj"]).status.code(),
+        Some(2),
+        "missing -o"
+    );
+    assert_eq!(
+        flatcut(&["flatten", "x.obj", "-o", "out", "--solver", "magic"])
+            .status
+            .code(),
+        Some(2)
+    );
+}
