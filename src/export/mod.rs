@@ -3,6 +3,7 @@
 
 pub mod atomic;
 pub mod colormap;
+mod energy_layout;
 pub mod energy_panel;
 pub mod energy_png;
 pub mod fold_polylines;
