@@ -124,7 +124,11 @@ pub fn draw_panel(
     let outline: Vec<Vec<DVec2>> = map
         .boundary_loops
         .iter()
-        .map(|ring| ring.iter().map(|&v| corners[v as usize]).collect())
+        .map(|ring| {
+            ring.iter()
+                .filter_map(|&v| corners.get(v as usize).copied())
+                .collect()
+        })
         .collect();
     stroke_polylines(pixmap, &outline, true, &styles.outline);
     let cuts = to_pixels(&map.cut_polylines, frame);
