@@ -2,6 +2,8 @@
 
 use std::path::PathBuf;
 
+use crate::export::ExportError;
+use crate::export::energy_png::EnergyPngError;
 use crate::flatten::FlattenError;
 use crate::ingest::IngestError;
 use crate::mesh::MeshDefects;
@@ -37,5 +39,21 @@ pub enum Error {
         path: PathBuf,
         /// The operating system's reason.
         source: std::io::Error,
+    },
+    /// A part's cut file could not be drawn.
+    #[error("part '{part}': cannot write its DXF: {source}")]
+    Export {
+        /// The part's name.
+        part: String,
+        /// Why.
+        source: ExportError,
+    },
+    /// A part's energy map could not be drawn.
+    #[error("part '{part}': cannot draw its energy map: {source}")]
+    EnergyMap {
+        /// The part's name.
+        part: String,
+        /// Why.
+        source: EnergyPngError,
     },
 }

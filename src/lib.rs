@@ -5,6 +5,8 @@
 //! `ingest` (files to triangle soups) → `mesh` (validated facet models) → `flatten` (the paper's
 //! energy model) → `cut` → `nest` → `export` (the only module that writes files).
 
+#![warn(missing_docs)]
+
 pub mod error;
 pub mod export;
 pub mod flatten;

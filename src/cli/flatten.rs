@@ -1,20 +1,15 @@
 //! `flatcut flatten INPUT -o OUT/` and `flatcut run INPUT... -o OUT/`: flatten parts and write
 //! their patterns, facet models and the report.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::Args;
 
-use flatcut::export::energy_png::{
-    EnergyMap, EnergyPngOptions, NEGLIGIBLE_STRAIN, PatternFigures, negligible_vertex_energy,
-    render_energy_png,
-};
-use flatcut::export::fold_polylines::fold_polylines;
-use flatcut::export::obj::{mesh_obj, pattern_obj};
+use flatcut::export::part_files::{PartFileOptions, write_part_files};
 use flatcut::export::report::{PartReport, Report};
-use flatcut::export::write_atomically;
-use flatcut::flatten::{FlattenOptions, Solver, SpringSystem};
+use flatcut::export::{DEFAULT_CHORD_TOLERANCE, DxfOptions, DxfVersion, write_atomically};
+use flatcut::flatten::{FlattenOptions, Solver};
 use flatcut::pipeline::{PartResult, RunOptions, flatten_part, load_parts};
 use flatcut::progress::Progress;
 use flatcut::units::Units;
@@ -46,6 +41,18 @@ pub struct FlattenArgs {
     /// Units of mesh coordinates.
     #[arg(long, value_enum, default_value_t = Units::default())]
     units: Units,
+    /// DXF version of the cut files: `r2000` (LWPOLYLINE, units in the header) or `r12` for old
+    /// controllers.
+    #[arg(long, value_enum, default_value_t = DxfVersionArg::R2000)]
+    dxf_version: DxfVersionArg,
+    /// Chord tolerance of the cut contours in mm: the written contour (lines and arcs) stays this
+    /// close to the pattern's outline.
+    #[arg(long, value_name = "MM", default_value_t = DEFAULT_CHORD_TOLERANCE)]
+    chord: f64,
+    /// Seam allowance in mm for garments: the cut contour is offset outward by it, and the
+    /// pattern's outline goes to the sew layer.
+    #[arg(long, value_name = "MM")]
+    seam_allowance: Option<f64>,
     /// Print the report to stdout as JSON.
     #[arg(long)]
     json: bool,
@@ -54,7 +61,33 @@ pub struct FlattenArgs {
     no_timings: bool,
 }
 
+/// DXF versions on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum DxfVersionArg {
+    /// AutoCAD 2000.
+    R2000,
+    /// AutoCAD R12.
+    R12,
+}
+
 impl FlattenArgs {
+    /// How part files are drawn.
+    fn part_file_options(&self) -> PartFileOptions {
+        let version = match self.dxf_version {
+            DxfVersionArg::R2000 => DxfVersion::R2000,
+            DxfVersionArg::R12 => DxfVersion::R12,
+        };
+        let dxf = DxfOptions {
+            version,
+            chord_tolerance: self.chord,
+            seam_allowance: self.seam_allowance,
+        };
+        PartFileOptions {
+            dxf,
+            ..PartFileOptions::default()
+        }
+    }
+
     /// The library options, converted in one place.
     fn run_options(&self) -> anyhow::Result<RunOptions> {
         anyhow::ensure!(
@@ -78,6 +111,8 @@ impl FlattenArgs {
 /// Runs `flatten` or `run`: every input is read and checked before anything is written.
 pub fn run(args: FlattenArgs, progress: &dyn Progress) -> anyhow::Result<Outcome> {
     let options = args.run_options()?;
+    let file_options = args.part_file_options();
+    file_options.dxf.validate()?;
     let mut jobs = Vec::new();
     for input in &args.inputs {
         jobs.extend(load_parts(input, &options)?);
@@ -108,7 +143,12 @@ pub fn run(args: FlattenArgs, progress: &dyn Progress) -> anyhow::Result<Outcome
         )
     })?;
     for result in &results {
-        write_part_files(&args.output, result, &options)?;
+        write_part_files(
+            &args.output,
+            result,
+            options.flatten.spring_constant,
+            &file_options,
+        )?;
     }
     let parts: Vec<PartReport> = results
         .iter()
@@ -141,74 +181,4 @@ pub fn run(args: FlattenArgs, progress: &dyn Progress) -> anyhow::Result<Outcome
     } else {
         Outcome::OverTolerance
     })
-}
-
-fn write_part_files(
-    directory: &Path,
-    result: &PartResult,
-    options: &RunOptions,
-) -> anyhow::Result<()> {
-    let job = &result.job;
-    let header = format!(
-        "flatcut {} part '{}' from {}",
-        env!("CARGO_PKG_VERSION"),
-        job.name,
-        job.source.display()
-    );
-    let files = [
-        (
-            "mesh.obj",
-            mesh_obj(
-                &format!("{header}\n3D facet model"),
-                job.model.positions(),
-                job.model.triangles(),
-            ),
-        ),
-        (
-            "pattern.obj",
-            pattern_obj(
-                &format!("{header}\nflat pattern (z = 0)"),
-                &result.flattened.positions,
-                job.model.triangles(),
-            ),
-        ),
-    ];
-    for (suffix, text) in files {
-        let path = directory.join(format!("{}.{suffix}", job.name));
-        write_atomically(&path, text.as_bytes())
-            .with_context(|| format!("{}: cannot write", path.display()))?;
-    }
-    let png = energy_png(result, options)
-        .with_context(|| format!("part '{}': cannot draw the energy map", job.name))?;
-    let path = directory.join(format!("{}.energy.png", job.name));
-    write_atomically(&path, &png).with_context(|| format!("{}: cannot write", path.display()))?;
-    Ok(())
-}
-
-/// The energy picture of a flattened part: per-vertex energy (Eq. 1) of the final pattern.
-fn energy_png(result: &PartResult, options: &RunOptions) -> anyhow::Result<Vec<u8>> {
-    let (job, flattened) = (&result.job, &result.flattened);
-    let constant = options.flatten.spring_constant;
-    let springs = SpringSystem::new(&job.model, job.stiffness.factors(), constant);
-    let energies = springs.vertex_energies(&flattened.positions);
-    let accuracy = flattened.stats.accuracy;
-    let map = EnergyMap {
-        name: job.name.clone(),
-        energy_units: format!("{}², C = {constant}", job.units.symbol()),
-        length_units: job.units.symbol().to_string(),
-        positions: &flattened.positions,
-        triangles: job.model.triangles(),
-        vertex_energies: &energies,
-        boundary_loops: job.model.boundary_loops(),
-        cut_polylines: Vec::new(),
-        fold_polylines: fold_polylines(&job.model, &flattened.positions),
-        figures: PatternFigures {
-            area_error: accuracy.area_error,
-            shape_error: accuracy.shape_error,
-            max_strain: accuracy.max_strain,
-            cuts: 0,
-        },
-        negligible_energy: negligible_vertex_energy(&springs, NEGLIGIBLE_STRAIN),
-    };
-    Ok(render_energy_png(&map, None, &EnergyPngOptions::default())?)
 }

@@ -1,0 +1,125 @@
+//! The files of one flattened part, written into the output directory:
+//! `<part>.mesh.obj` and `<part>.pattern.obj` (same vertices and faces), `<part>.dxf` (the cut
+//! file) and `<part>.energy.png` (the energy map). Every file is written atomically.
+
+use std::path::Path;
+
+use super::drawing::PartDrawing;
+use super::dxf::{DxfOptions, write_part_dxf};
+use super::energy_png::{
+    EnergyMap, EnergyPngError, EnergyPngOptions, NEGLIGIBLE_STRAIN, PatternFigures,
+    negligible_vertex_energy, render_energy_png,
+};
+use super::fold_polylines::fold_polylines;
+use super::obj::{mesh_obj, pattern_obj};
+use super::write_atomically;
+use crate::error::Error;
+use crate::flatten::SpringSystem;
+use crate::flatten::outline::Outline;
+use crate::pipeline::PartResult;
+
+/// How a part's files are drawn.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct PartFileOptions {
+    /// DXF version, chord tolerance and seam allowance.
+    pub dxf: DxfOptions,
+    /// Size of the energy picture.
+    pub energy: EnergyPngOptions,
+}
+
+/// Writes every file of a flattened part into `directory`; `spring_constant` is the `C` the part
+/// was flattened with (the energy map shows its energy).
+pub fn write_part_files(
+    directory: &Path,
+    result: &PartResult,
+    spring_constant: f64,
+    options: &PartFileOptions,
+) -> Result<(), Error> {
+    let job = &result.job;
+    let header = format!(
+        "flatcut {} part '{}' from {}",
+        env!("CARGO_PKG_VERSION"),
+        job.name,
+        job.source.display()
+    );
+    let (positions, triangles) = (&result.flattened.positions, job.model.triangles());
+    let mesh = mesh_obj(
+        &format!("{header}\n3D facet model"),
+        job.model.positions(),
+        triangles,
+    );
+    let pattern = pattern_obj(
+        &format!("{header}\nflat pattern (z = 0)"),
+        positions,
+        triangles,
+    );
+    let dxf =
+        write_part_dxf(&part_drawing(result), &options.dxf).map_err(|source| Error::Export {
+            part: job.name.clone(),
+            source,
+        })?;
+    let png = energy_png(result, spring_constant, &options.energy).map_err(|source| {
+        Error::EnergyMap {
+            part: job.name.clone(),
+            source,
+        }
+    })?;
+    let files: [(&str, &[u8]); 4] = [
+        ("mesh.obj", mesh.as_bytes()),
+        ("pattern.obj", pattern.as_bytes()),
+        ("dxf", &dxf),
+        ("energy.png", &png),
+    ];
+    for (suffix, bytes) in files {
+        let path = directory.join(format!("{}.{suffix}", job.name));
+        write_atomically(&path, bytes).map_err(|source| Error::Write { path, source })?;
+    }
+    Ok(())
+}
+
+/// What the part's DXF shows: its flat outline, holes and fold lines, with its name and quantity.
+pub fn part_drawing(result: &PartResult) -> PartDrawing {
+    let (job, positions) = (&result.job, &result.flattened.positions);
+    let outline = Outline::of_pattern(&job.model, positions);
+    PartDrawing {
+        name: job.name.clone(),
+        units: job.units,
+        quantity: job.quantity,
+        material: None,
+        outer: outline.outer,
+        holes: outline.holes,
+        fold_lines: fold_polylines(&job.model, positions),
+        grain: None,
+    }
+}
+
+/// The energy picture of a flattened part: per-vertex energy (Eq. 1) of the final pattern.
+fn energy_png(
+    result: &PartResult,
+    spring_constant: f64,
+    options: &EnergyPngOptions,
+) -> Result<Vec<u8>, EnergyPngError> {
+    let (job, flattened) = (&result.job, &result.flattened);
+    let springs = SpringSystem::new(&job.model, job.stiffness.factors(), spring_constant);
+    let energies = springs.vertex_energies(&flattened.positions);
+    let accuracy = flattened.stats.accuracy;
+    let map = EnergyMap {
+        name: job.name.clone(),
+        energy_units: format!("{}², C = {spring_constant}", job.units.symbol()),
+        length_units: job.units.symbol().to_string(),
+        positions: &flattened.positions,
+        triangles: job.model.triangles(),
+        vertex_energies: &energies,
+        boundary_loops: job.model.boundary_loops(),
+        cut_polylines: Vec::new(),
+        fold_polylines: fold_polylines(&job.model, &flattened.positions),
+        figures: PatternFigures {
+            area_error: accuracy.area_error,
+            shape_error: accuracy.shape_error,
+            max_strain: accuracy.max_strain,
+            cuts: 0,
+        },
+        negligible_energy: negligible_vertex_energy(&springs, NEGLIGIBLE_STRAIN),
+    };
+    render_energy_png(&map, None, options)
+}
