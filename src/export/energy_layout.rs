@@ -2,9 +2,8 @@
 //! pattern panels side by side at one common length scale with their captions, the legend column
 //! on the right, and the key with line samples and a scale bar at the bottom.
 //!
-//! Sizes are in pixels and scale with the image width (factor 1 at
-//! [`DEFAULT_WIDTH_PIXELS`](super::energy_png::DEFAULT_WIDTH_PIXELS)); text never shrinks below
-//! [`MIN_TEXT_FACTOR`] of its full size, so small images stay readable.
+//! Sizes are in pixels and scale with the image width (factor 1 at [`DEFAULT_WIDTH_PIXELS`]);
+//! text never shrinks below [`MIN_TEXT_FACTOR`] of its full size, so small images stay readable.
 
 use glam::DVec2;
 use tiny_skia::Pixmap;
