@@ -199,16 +199,7 @@ pub fn render_energy_png(
         check_map(before, "map before cutting")?;
     }
     let typeface = Typeface::embedded().map_err(|_| EnergyPngError::Font)?;
-    let panels: Vec<(&EnergyMap, String)> = match before {
-        Some(before) => vec![
-            (before, panel_caption("before cutting", &before.figures)),
-            (
-                map,
-                panel_caption(&cuts_phrase("after", map.figures.cuts), &map.figures),
-            ),
-        ],
-        None => vec![(map, single_caption(map))],
-    };
+    let panels = captioned_panels(map, before);
     let largest = panels
         .iter()
         .flat_map(|(panel, _)| panel.vertex_energies.iter().copied())
@@ -239,13 +230,7 @@ pub fn render_energy_png(
     let legend_text = LegendText {
         quantity: "Energy per vertex (Eq. 1)".to_string(),
         units: map.energy_units.clone(),
-        note: floored.then(|| {
-            let strain = format_value(NEGLIGIBLE_STRAIN);
-            format!(
-                "top: energy at strain {}",
-                strain.trim_start_matches("1.00×")
-            )
-        }),
+        note: floored.then(floor_note),
     };
     draw_legend(
         &mut pixmap,
@@ -257,6 +242,32 @@ pub fn render_energy_png(
     );
     layout.draw_key(&mut pixmap, &typeface, &styles, &map.length_units);
     encode_opaque_png(&pixmap).map_err(|error| EnergyPngError::Image(error.to_string()))
+}
+
+/// The panels in drawing order (before cutting first), each with its caption.
+fn captioned_panels<'m, 'a>(
+    map: &'m EnergyMap<'a>,
+    before: Option<&'m EnergyMap<'a>>,
+) -> Vec<(&'m EnergyMap<'a>, String)> {
+    match before {
+        Some(before) => {
+            let after = cuts_phrase("after", map.figures.cuts);
+            vec![
+                (before, panel_caption("before cutting", &before.figures)),
+                (map, panel_caption(&after, &map.figures)),
+            ]
+        }
+        None => vec![(map, single_caption(map))],
+    }
+}
+
+/// The legend's remark when the scale's top is the negligible-energy floor.
+fn floor_note() -> String {
+    let strain = format_value(NEGLIGIBLE_STRAIN);
+    format!(
+        "top: energy at strain {}",
+        strain.trim_start_matches("1.00×")
+    )
 }
 
 /// Encodes an opaque pixmap as an 8-bit RGB PNG with fast compression: several times faster than
@@ -295,26 +306,26 @@ fn check_map(map: &EnergyMap, panel: &'static str) -> Result<(), EnergyPngError>
             found: map.vertex_energies.len(),
         });
     }
-    let bad_index =
-        |what: &'static str, mut indices: Box<dyn Iterator<Item = u32> + '_>| match indices
-            .find(|&v| v as usize >= vertices)
-        {
-            Some(vertex) => Err(EnergyPngError::VertexIndex {
+    let indices = [
+        (
+            "triangle",
+            first_out_of_range(map.triangles.iter().flatten(), vertices),
+        ),
+        (
+            "boundary loop",
+            first_out_of_range(map.boundary_loops.iter().flatten(), vertices),
+        ),
+    ];
+    for (what, bad) in indices {
+        if let Some(vertex) = bad {
+            return Err(EnergyPngError::VertexIndex {
                 panel,
                 what,
                 vertex,
                 vertices,
-            }),
-            None => Ok(()),
-        };
-    bad_index(
-        "triangle",
-        Box::new(map.triangles.iter().flatten().copied()),
-    )?;
-    bad_index(
-        "boundary loop",
-        Box::new(map.boundary_loops.iter().flatten().copied()),
-    )?;
+            });
+        }
+    }
     let invalid = |what| EnergyPngError::InvalidValue { panel, what };
     if !map.positions.iter().all(|p| p.is_finite()) {
         return Err(invalid("position"));
@@ -333,6 +344,11 @@ fn check_map(map: &EnergyMap, panel: &'static str) -> Result<(), EnergyPngError>
         return Err(invalid("fold-line point"));
     }
     Ok(())
+}
+
+/// The first index not below `vertices`, if any.
+fn first_out_of_range<'a>(indices: impl Iterator<Item = &'a u32>, vertices: usize) -> Option<u32> {
+    indices.copied().find(|&v| v as usize >= vertices)
 }
 
 /// A panel's caption: what it shows and its errors.
