@@ -92,7 +92,8 @@ impl PanelFrame {
     }
 }
 
-/// Draws `map` into its frame: the energy fill, isolines, fold lines, outline and cuts.
+/// Draws `map` into its frame: the energy fill, isolines, fold lines, outline and cuts, and a
+/// ring on the vertex of highest energy unless that energy is negligible (round-off).
 pub fn draw_panel(
     pixmap: &mut Pixmap,
     map: &EnergyMap,
@@ -124,13 +125,18 @@ pub fn draw_panel(
     let outline: Vec<Vec<DVec2>> = map
         .boundary_loops
         .iter()
-        .map(|ring| ring.iter().map(|&v| corners[v as usize]).collect())
+        .map(|ring| {
+            ring.iter()
+                .filter_map(|&v| corners.get(v as usize).copied())
+                .collect()
+        })
         .collect();
     stroke_polylines(pixmap, &outline, true, &styles.outline);
     let cuts = to_pixels(&map.cut_polylines, frame);
     stroke_polylines(pixmap, &cuts, false, &styles.cut_under);
     stroke_polylines(pixmap, &cuts, false, &styles.cut_over);
-    if let Some(vertex) = maximum_vertex(map.vertex_energies) {
+    let deformed = |vertex: &usize| map.vertex_energies[*vertex] > map.negligible_energy;
+    if let Some(vertex) = maximum_vertex(map.vertex_energies).filter(deformed) {
         draw_marker(pixmap, corners[vertex], styles);
     }
 }

@@ -13,11 +13,10 @@ use glam::DVec2;
 use tiny_skia::{Color, Pixmap};
 
 use super::colormap::{ColorScale, ScaleMapping};
-use super::energy_panel::{
-    LineStyle, LineStyles, PanelFrame, draw_marker, draw_panel, stroke_polylines,
-};
-use super::legend::{LegendFrame, LegendText, draw_legend, format_percent, format_value};
-use super::text::{Align, Label, Typeface};
+use super::energy_layout::Layout;
+use super::energy_panel::{LineStyles, draw_panel};
+use super::legend::{LegendText, draw_legend, format_percent, format_value};
+use super::text::Typeface;
 use crate::flatten::SpringSystem;
 use crate::flatten::isolines::{evenly_spaced_levels, isolines};
 
@@ -200,23 +199,15 @@ pub fn render_energy_png(
         check_map(before, "map before cutting")?;
     }
     let typeface = Typeface::embedded().map_err(|_| EnergyPngError::Font)?;
-    let panels: Vec<(&EnergyMap, String)> = match before {
-        Some(before) => vec![
-            (before, panel_caption("before cutting", &before.figures)),
-            (
-                map,
-                panel_caption(&cuts_phrase("after", map.figures.cuts), &map.figures),
-            ),
-        ],
-        None => vec![(map, single_caption(map))],
-    };
+    let panels = captioned_panels(map, before);
     let largest = panels
         .iter()
         .flat_map(|(panel, _)| panel.vertex_energies.iter().copied())
         .fold(0.0, f64::max);
     let floored = largest < map.negligible_energy;
     let colours = ColorScale::new(largest.max(map.negligible_energy), options.mapping);
-    let layout = Layout::new(options.width_pixels, &panels);
+    let patterns: Vec<&[DVec2]> = panels.iter().map(|(panel, _)| panel.positions).collect();
+    let layout = Layout::new(options.width_pixels, &patterns);
     let mut pixmap = Pixmap::new(layout.width, layout.height)
         .ok_or_else(|| EnergyPngError::Image("the image size is invalid".to_string()))?;
     pixmap.fill(Color::WHITE);
@@ -239,13 +230,7 @@ pub fn render_energy_png(
     let legend_text = LegendText {
         quantity: "Energy per vertex (Eq. 1)".to_string(),
         units: map.energy_units.clone(),
-        note: floored.then(|| {
-            let strain = format_value(NEGLIGIBLE_STRAIN);
-            format!(
-                "top: energy at strain {}",
-                strain.trim_start_matches("1.00×")
-            )
-        }),
+        note: floored.then(floor_note),
     };
     draw_legend(
         &mut pixmap,
@@ -257,6 +242,32 @@ pub fn render_energy_png(
     );
     layout.draw_key(&mut pixmap, &typeface, &styles, &map.length_units);
     encode_opaque_png(&pixmap).map_err(|error| EnergyPngError::Image(error.to_string()))
+}
+
+/// The panels in drawing order (before cutting first), each with its caption.
+fn captioned_panels<'m, 'a>(
+    map: &'m EnergyMap<'a>,
+    before: Option<&'m EnergyMap<'a>>,
+) -> Vec<(&'m EnergyMap<'a>, String)> {
+    match before {
+        Some(before) => {
+            let after = cuts_phrase("after", map.figures.cuts);
+            vec![
+                (before, panel_caption("before cutting", &before.figures)),
+                (map, panel_caption(&after, &map.figures)),
+            ]
+        }
+        None => vec![(map, single_caption(map))],
+    }
+}
+
+/// The legend's remark when the scale's top is the negligible-energy floor.
+fn floor_note() -> String {
+    let strain = format_value(NEGLIGIBLE_STRAIN);
+    format!(
+        "top: energy at strain {}",
+        strain.trim_start_matches("1.00×")
+    )
 }
 
 /// Encodes an opaque pixmap as an 8-bit RGB PNG with fast compression: several times faster than
@@ -295,26 +306,26 @@ fn check_map(map: &EnergyMap, panel: &'static str) -> Result<(), EnergyPngError>
             found: map.vertex_energies.len(),
         });
     }
-    let bad_index =
-        |what: &'static str, mut indices: Box<dyn Iterator<Item = u32> + '_>| match indices
-            .find(|&v| v as usize >= vertices)
-        {
-            Some(vertex) => Err(EnergyPngError::VertexIndex {
+    let indices = [
+        (
+            "triangle",
+            first_out_of_range(map.triangles.iter().flatten(), vertices),
+        ),
+        (
+            "boundary loop",
+            first_out_of_range(map.boundary_loops.iter().flatten(), vertices),
+        ),
+    ];
+    for (what, bad) in indices {
+        if let Some(vertex) = bad {
+            return Err(EnergyPngError::VertexIndex {
                 panel,
                 what,
                 vertex,
                 vertices,
-            }),
-            None => Ok(()),
-        };
-    bad_index(
-        "triangle",
-        Box::new(map.triangles.iter().flatten().copied()),
-    )?;
-    bad_index(
-        "boundary loop",
-        Box::new(map.boundary_loops.iter().flatten().copied()),
-    )?;
+            });
+        }
+    }
     let invalid = |what| EnergyPngError::InvalidValue { panel, what };
     if !map.positions.iter().all(|p| p.is_finite()) {
         return Err(invalid("position"));
@@ -333,6 +344,11 @@ fn check_map(map: &EnergyMap, panel: &'static str) -> Result<(), EnergyPngError>
         return Err(invalid("fold-line point"));
     }
     Ok(())
+}
+
+/// The first index not below `vertices`, if any.
+fn first_out_of_range<'a>(indices: impl Iterator<Item = &'a u32>, vertices: usize) -> Option<u32> {
+    indices.copied().find(|&v| v as usize >= vertices)
 }
 
 /// A panel's caption: what it shows and its errors.
@@ -364,288 +380,11 @@ fn cuts_phrase(preposition: &str, cuts: usize) -> String {
     }
 }
 
-/// The bounding box of a pattern's positions.
-fn bounds(positions: &[DVec2]) -> (DVec2, DVec2) {
-    positions.iter().fold(
-        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-        |(low, high), &p| (low.min(p), high.max(p)),
-    )
-}
-
-/// Where everything goes, in pixels; sizes scale with the width (`size` 1 at 1600 pixels).
-struct Layout {
-    width: u32,
-    height: u32,
-    /// Scale of lines, margins and spacing: 1 at 1600 pixels.
-    size: f32,
-    /// Scale of text and of the bands that hold text: `size`, but never below
-    /// [`MIN_TEXT_FACTOR`], so labels stay readable in small images.
-    text: f32,
-    margin: f32,
-    frames: Vec<PanelFrame>,
-    legend: LegendFrame,
-    key_baseline: f32,
-}
-
-/// Header height (title and figures lines) at size 1, pixels.
-const HEADER_HEIGHT: f32 = 104.0;
-/// Caption band above each panel at size 1, pixels.
-const CAPTION_HEIGHT: f32 = 40.0;
-/// Key band (line styles, scale bar) below the panels at size 1, pixels.
-const KEY_HEIGHT: f32 = 64.0;
-/// Legend column width at size 1, pixels.
-const LEGEND_WIDTH: f32 = 250.0;
-/// Margin around everything and gap between panels at size 1, pixels.
-const MARGIN: f32 = 28.0;
-/// Blank space around a pattern inside its panel at size 1, pixels (room for the marker).
-const PANEL_PADDING: f32 = 14.0;
-/// Smallest panel height at size 1, pixels (room for the legend).
-const MIN_PANEL_HEIGHT: f32 = 520.0;
-/// Largest panel height as a multiple of the image width (for very tall patterns).
-const MAX_PANEL_HEIGHT_RATIO: f64 = 1.2;
-/// Smallest text scale: small images keep labels of at least 70 % of their 1600-pixel size.
-const MIN_TEXT_FACTOR: f32 = 0.7;
-/// Text sizes at size 1, pixels.
-const TITLE_TEXT: f32 = 32.0;
-const BODY_TEXT: f32 = 20.0;
-const SMALL_TEXT: f32 = 17.0;
-
-impl Layout {
-    /// Lays out `panels` side by side at one common length scale, the legend to their right.
-    fn new(width: u32, panels: &[(&EnergyMap, String)]) -> Self {
-        let size = width as f32 / DEFAULT_WIDTH_PIXELS as f32;
-        let text = size.max(MIN_TEXT_FACTOR);
-        let margin = MARGIN * size;
-        let count = panels.len().max(1) as f32;
-        let panels_width = width as f32 - 2.0 * margin - LEGEND_WIDTH * text;
-        let panel_width = f64::from((panels_width - (count - 1.0) * margin) / count);
-        let boxes: Vec<(DVec2, DVec2)> = panels.iter().map(|(m, _)| bounds(m.positions)).collect();
-        let extent = |(low, high): &(DVec2, DVec2)| (*high - *low).max(DVec2::splat(1e-12));
-        let widest = boxes.iter().map(|b| extent(b).x).fold(0.0, f64::max);
-        let tallest = boxes.iter().map(|b| extent(b).y).fold(0.0, f64::max);
-        let max_height = MAX_PANEL_HEIGHT_RATIO * f64::from(width);
-        let padding = f64::from(PANEL_PADDING * size);
-        let scale = ((panel_width - 2.0 * padding) / widest).min(max_height / tallest);
-        let panel_height =
-            (tallest * scale + 2.0 * padding).max(f64::from(MIN_PANEL_HEIGHT * size));
-        let panels_top = f64::from((HEADER_HEIGHT + CAPTION_HEIGHT) * text);
-        let frames = boxes
-            .iter()
-            .enumerate()
-            .map(|(k, (low, high))| {
-                let left = f64::from(margin) + k as f64 * (panel_width + f64::from(margin));
-                let drawn = (*high - *low) * scale;
-                PanelFrame {
-                    origin: DVec2::new(
-                        left + 0.5 * (panel_width - drawn.x),
-                        panels_top + 0.5 * (panel_height - drawn.y),
-                    ),
-                    scale,
-                    min: *low,
-                    max: *high,
-                }
-            })
-            .collect();
-        let panels_bottom = panels_top as f32 + panel_height as f32;
-        let legend = LegendFrame {
-            left: width as f32 - LEGEND_WIDTH * text,
-            top: panels_top as f32 - CAPTION_HEIGHT * text,
-            bottom: panels_bottom,
-            bar_width: 30.0 * size,
-            text_size: SMALL_TEXT * text,
-        };
-        let height = (panels_bottom + (KEY_HEIGHT * text) + margin).ceil() as u32;
-        Self {
-            width,
-            height,
-            size,
-            text,
-            margin,
-            frames,
-            legend,
-            key_baseline: panels_bottom + 0.5 * KEY_HEIGHT * text + 0.35 * BODY_TEXT * text,
-        }
-    }
-
-    /// The part name and its figures.
-    fn draw_header(&self, pixmap: &mut Pixmap, typeface: &Typeface, map: &EnergyMap) {
-        let title = format!("{}: elastic energy of the flat pattern", map.name);
-        let figures = &map.figures;
-        let line = format!(
-            "E_S {}     E_C {}     max strain {}     cuts {}",
-            format_percent(figures.area_error),
-            format_percent(figures.shape_error),
-            format_percent(figures.max_strain),
-            figures.cuts
-        );
-        let title_baseline = self.margin + typeface.ascent(TITLE_TEXT * self.text);
-        for (text, baseline, size) in [
-            (title.as_str(), title_baseline, TITLE_TEXT),
-            (
-                line.as_str(),
-                title_baseline + 1.9 * BODY_TEXT * self.text,
-                BODY_TEXT,
-            ),
-        ] {
-            typeface.draw(
-                pixmap,
-                &Label {
-                    text,
-                    x: self.margin,
-                    baseline,
-                    size: size * self.text,
-                    colour: [0, 0, 0],
-                    align: Align::Left,
-                },
-            );
-        }
-    }
-
-    /// A panel's caption, centred above its pattern's box.
-    fn draw_caption(
-        &self,
-        pixmap: &mut Pixmap,
-        typeface: &Typeface,
-        frame: &PanelFrame,
-        text: &str,
-    ) {
-        let centre = frame.origin.x + 0.5 * frame.scale * (frame.max.x - frame.min.x);
-        typeface.draw(
-            pixmap,
-            &Label {
-                text,
-                x: centre as f32,
-                baseline: (HEADER_HEIGHT + 0.7 * CAPTION_HEIGHT) * self.text,
-                size: BODY_TEXT * self.text,
-                colour: [40, 40, 40],
-                align: Align::Centre,
-            },
-        );
-    }
-
-    /// The key below the panels: a sample of each line style with its name, and a scale bar.
-    fn draw_key(
-        &self,
-        pixmap: &mut Pixmap,
-        typeface: &Typeface,
-        styles: &LineStyles,
-        length_units: &str,
-    ) {
-        let size = self.size;
-        let text_size = SMALL_TEXT * self.text;
-        let y = f64::from(self.key_baseline - 0.35 * text_size);
-        let entries: [(&str, &[LineStyle]); 4] = [
-            ("outline", &[styles.outline]),
-            ("cut", &[styles.cut_under, styles.cut_over]),
-            ("fold line", &[styles.fold_under, styles.fold_over]),
-            ("isolines", &[styles.isoline]),
-        ];
-        let sample = f64::from(44.0 * size);
-        let mut x = f64::from(self.margin);
-        for (name, layers) in entries {
-            let line = vec![vec![DVec2::new(x, y), DVec2::new(x + sample, y)]];
-            for layer in layers {
-                stroke_polylines(pixmap, &line, false, layer);
-            }
-            let label_x = x + sample + f64::from(0.5 * text_size);
-            typeface.draw(
-                pixmap,
-                &Label {
-                    text: name,
-                    x: label_x as f32,
-                    baseline: self.key_baseline,
-                    size: text_size,
-                    colour: [0, 0, 0],
-                    align: Align::Left,
-                },
-            );
-            x = label_x + f64::from(typeface.width(name, text_size) + 2.0 * text_size);
-        }
-        let radius = f64::from(styles.marker_radius);
-        draw_marker(pixmap, DVec2::new(x + radius, y), styles);
-        let name = "highest energy";
-        let label_x = x + 2.0 * radius + f64::from(0.5 * text_size);
-        typeface.draw(
-            pixmap,
-            &Label {
-                text: name,
-                x: label_x as f32,
-                baseline: self.key_baseline,
-                size: text_size,
-                colour: [0, 0, 0],
-                align: Align::Left,
-            },
-        );
-        let x = label_x + f64::from(typeface.width(name, text_size) + 2.0 * text_size);
-        self.draw_scale_bar(pixmap, typeface, x, y, length_units);
-    }
-
-    /// A scale bar of a round length near 150 pixels, starting at `x`.
-    fn draw_scale_bar(
-        &self,
-        pixmap: &mut Pixmap,
-        typeface: &Typeface,
-        x: f64,
-        y: f64,
-        length_units: &str,
-    ) {
-        let Some(frame) = self.frames.first() else {
-            return;
-        };
-        let length = round_length(f64::from(150.0 * self.size) / frame.scale);
-        let pixels = length * frame.scale;
-        let tick = f64::from(6.0 * self.size);
-        let bar = vec![
-            vec![DVec2::new(x, y - tick), DVec2::new(x, y + tick)],
-            vec![DVec2::new(x, y), DVec2::new(x + pixels, y)],
-            vec![
-                DVec2::new(x + pixels, y - tick),
-                DVec2::new(x + pixels, y + tick),
-            ],
-        ];
-        let style = LineStyle {
-            colour: [0, 0, 0, 255],
-            width: 2.0 * self.size,
-            dash: None,
-        };
-        stroke_polylines(pixmap, &bar, false, &style);
-        typeface.draw(
-            pixmap,
-            &Label {
-                text: &format!("{} {length_units}", format_length(length)),
-                x: (x + pixels) as f32 + 0.6 * SMALL_TEXT * self.text,
-                baseline: self.key_baseline,
-                size: SMALL_TEXT * self.text,
-                colour: [0, 0, 0],
-                align: Align::Left,
-            },
-        );
-    }
-}
-
-/// A scale-bar length: whole numbers without decimals.
-fn format_length(length: f64) -> String {
-    if length >= 1.0 {
-        format!("{length:.0}")
-    } else {
-        format_value(length)
-    }
-}
-
-/// The largest of 1, 2 or 5 times a power of ten not above `length` (positive).
-fn round_length(length: f64) -> f64 {
-    let power = 10f64.powf(length.log10().floor());
-    [5.0, 2.0, 1.0]
-        .into_iter()
-        .map(|step| step * power)
-        .find(|&candidate| candidate <= length)
-        .unwrap_or(power)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::export::colormap::palette_colour;
+    use crate::export::energy_panel::PanelFrame;
 
     /// A square grid pattern of `cells × cells` cells over `[0, 100]²` with per-vertex energy
     /// `energy(position)`, outlined by its border.
@@ -726,8 +465,8 @@ mod tests {
 
     /// The pixel frames the renderer uses for these panels.
     fn frames(width: u32, maps: &[&EnergyMap]) -> Vec<PanelFrame> {
-        let panels: Vec<(&EnergyMap, String)> = maps.iter().map(|&m| (m, String::new())).collect();
-        Layout::new(width, &panels).frames
+        let patterns: Vec<&[DVec2]> = maps.iter().map(|map| map.positions).collect();
+        Layout::new(width, &patterns).frames
     }
 
     #[test]

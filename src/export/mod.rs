@@ -13,6 +13,7 @@ mod contour;
 mod drawing;
 mod dxf;
 mod dxf_repair;
+mod energy_layout;
 pub mod energy_panel;
 pub mod energy_png;
 mod errors;

@@ -209,7 +209,7 @@ mod tests {
             &corners,
             &[[0, 1, 2]],
             &[0.0, 1.0, 0.0],
-            |value| marker(value),
+            marker,
         );
         let pixel = pixmap.pixel(49, 10).expect("inside the image");
         // x = 49.5 of 100: value 0.495, level 0.495 * 200 + 1 = 100.

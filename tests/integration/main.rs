@@ -1,6 +1,7 @@
 //! flatcut's integration tests: one binary, run against the real `flatcut` executable.
 
 mod bad_inputs;
+mod energy_png;
 mod flatten;
 mod golden;
 mod util;
