@@ -185,8 +185,12 @@ impl FacetModel {
     }
 }
 
-/// Unique edges (sorted), their faces and each face's edges, by sorting half-edges.
-fn build_edges(triangles: &[[u32; 3]]) -> (Vec<[u32; 2]>, Vec<[u32; 2]>, Vec<[u32; 3]>) {
+/// The edge tables of a mesh: unique edges (sorted), the faces of each edge, the edges of each
+/// face.
+type EdgeTables = (Vec<[u32; 2]>, Vec<[u32; 2]>, Vec<[u32; 3]>);
+
+/// Builds the [`EdgeTables`] by sorting half-edges.
+fn build_edges(triangles: &[[u32; 3]]) -> EdgeTables {
     let mut half_edges: Vec<([u32; 2], u32, u8)> = Vec::with_capacity(triangles.len() * 3);
     for (f, t) in triangles.iter().enumerate() {
         for k in 0..3 {
