@@ -5,6 +5,7 @@
 //! `ingest` (files to triangle soups) → `mesh` (validated facet models) → `flatten` (the paper's
 //! energy model) → `cut` → `nest` → `export` (the only module that writes files).
 
+pub mod cut;
 pub mod error;
 pub mod export;
 pub mod flatten;

@@ -1,0 +1,296 @@
+//! Crest lines of the energy map (paper §6.3): candidate cutting lines along mesh edges.
+//!
+//! Inputs: a [`FacetModel`], a per-vertex energy (Eq. 1 of the current flat pattern), and the
+//! vertices a cut may not pass through (on or next to a fold line, in a no-cut region).
+//! Output: candidate [`CrestLine`]s, best first.
+//!
+//! The paper's crest line passes through the maximum-energy point along the slowest descent of
+//! the energy. On the mesh, from a start vertex (a local maximum of the energy), each step goes to
+//! the unvisited neighbour of highest energy among those that do not climb (slowest descent).
+//! A crest line has two branches from its maximum:
+//! - the *opening branch* descends to the boundary (or an earlier cut, which is boundary now),
+//!   which is what opens the surface; when no neighbour descends any more, it finishes along the
+//!   shortest edge path to the boundary;
+//! - the *dart branch* continues from the maximum the other way and stops inside the part where
+//!   extending no longer pays: at the first vertex whose energy is below `dart_ratio` times the
+//!   maximum, or before it would touch the boundary (which would cut a piece off).
+//!
+//! A start on the boundary has only the dart branch: a dart inward from the boundary.
+//!
+//! Score (beyond the paper): the estimated energy released per unit of cut length,
+//! `Σ_{v on the line} E(v) / L`: a cut frees the springs of every vertex it passes to move apart,
+//! so the energy of those vertices is what it can release at most. Candidates start at the
+//! `candidates` highest local maxima; the best score is tried first.
+
+use super::paths::{Adjacency, dijkstra, path_length};
+use crate::mesh::FacetModel;
+
+/// Default number of crest lines traced per cut (from the highest local maxima).
+pub const DEFAULT_CANDIDATES: usize = 4;
+/// Default fraction of the crest energy below which the dart branch stops.
+pub const DEFAULT_DART_RATIO: f64 = 0.5;
+
+/// A candidate cutting line: a simple edge path.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CrestLine {
+    /// The path's vertices; consecutive ones share an edge.
+    pub vertices: Vec<u32>,
+    /// 3D length, model units.
+    pub length: f64,
+    /// Estimated energy the cut can release: the sum of the energies of its vertices.
+    pub estimated_release: f64,
+}
+
+impl CrestLine {
+    /// Estimated energy released per unit of cut length.
+    pub fn score(&self) -> f64 {
+        self.estimated_release / self.length
+    }
+}
+
+/// Where cuts may go and how crest lines are traced.
+#[derive(Debug, Clone, Copy)]
+pub struct CrestSettings<'a> {
+    /// Per-vertex flags: true where a cut may not pass.
+    pub blocked: &'a [bool],
+    /// Number of local maxima to start from.
+    pub candidates: usize,
+    /// Fraction of the crest energy below which the dart branch stops.
+    pub dart_ratio: f64,
+}
+
+/// Traces a crest line from each of the highest local energy maxima and returns them best score
+/// first (ties by start vertex). Lines of a single vertex are dropped.
+pub fn crest_lines(
+    model: &FacetModel,
+    adjacency: &Adjacency,
+    energies: &[f64],
+    settings: &CrestSettings<'_>,
+) -> Vec<CrestLine> {
+    let on_boundary = boundary_flags(model);
+    let tracer = Tracer {
+        model,
+        adjacency,
+        energies,
+        blocked: settings.blocked,
+        on_boundary: &on_boundary,
+    };
+    let mut lines: Vec<CrestLine> = local_maxima(adjacency, energies, settings.blocked)
+        .into_iter()
+        .take(settings.candidates)
+        .filter_map(|start| tracer.crest_line(start, settings.dart_ratio))
+        .collect();
+    lines.sort_by(|a, b| b.score().total_cmp(&a.score()));
+    lines
+}
+
+/// True for every vertex on a boundary loop.
+pub fn boundary_flags(model: &FacetModel) -> Vec<bool> {
+    let mut flags = vec![false; model.vertex_count()];
+    for &v in model.boundary_loops().iter().flatten() {
+        flags[v as usize] = true;
+    }
+    flags
+}
+
+/// Unblocked vertices whose energy is at least that of every neighbour (ties go to the lower
+/// index), highest energy first.
+fn local_maxima(adjacency: &Adjacency, energies: &[f64], blocked: &[bool]) -> Vec<u32> {
+    let mut maxima: Vec<u32> = (0..energies.len() as u32)
+        .filter(|&v| !blocked[v as usize])
+        .filter(|&v| {
+            adjacency.neighbours(v).iter().all(|&(w, _)| {
+                let (ev, ew) = (energies[v as usize], energies[w as usize]);
+                ev > ew || (ev >= ew && v < w)
+            })
+        })
+        .collect();
+    maxima.sort_by(|&a, &b| energies[b as usize].total_cmp(&energies[a as usize]));
+    maxima
+}
+
+/// The data one trace needs.
+struct Tracer<'a> {
+    model: &'a FacetModel,
+    adjacency: &'a Adjacency,
+    energies: &'a [f64],
+    blocked: &'a [bool],
+    on_boundary: &'a [bool],
+}
+
+impl Tracer<'_> {
+    /// The crest line through `start`: opening branch reversed, then the dart branch.
+    fn crest_line(&self, start: u32, dart_ratio: f64) -> Option<CrestLine> {
+        let mut visited = vec![false; self.model.vertex_count()];
+        visited[start as usize] = true;
+        let mut vertices = if self.on_boundary[start as usize] {
+            vec![start]
+        } else {
+            let mut opening = self.opening_branch(start, &mut visited)?;
+            opening.reverse();
+            opening
+        };
+        let floor = dart_ratio * self.energies[start as usize];
+        vertices.extend(self.dart_branch(start, floor, &mut visited));
+        if vertices.len() < 2 {
+            return None;
+        }
+        let estimated_release = vertices.iter().map(|&v| self.energies[v as usize]).sum();
+        Some(CrestLine {
+            length: path_length(self.model, &vertices),
+            vertices,
+            estimated_release,
+        })
+    }
+
+    /// From `start` (interior) down to the boundary: `start` first, a boundary vertex last.
+    fn opening_branch(&self, start: u32, visited: &mut [bool]) -> Option<Vec<u32>> {
+        let mut branch = vec![start];
+        let mut current = start;
+        while !self.on_boundary[current as usize] {
+            match self.slowest_descent(current, visited, true) {
+                Some(next) => {
+                    visited[next as usize] = true;
+                    branch.push(next);
+                    current = next;
+                }
+                None => {
+                    let rest = self.shortest_way_out(current, visited)?;
+                    for &v in &rest[1..] {
+                        visited[v as usize] = true;
+                    }
+                    branch.extend_from_slice(&rest[1..]);
+                    break;
+                }
+            }
+        }
+        Some(branch)
+    }
+
+    /// From `start` inward while the energy stays at or above `floor`, never onto the boundary;
+    /// `start` itself is not included.
+    fn dart_branch(&self, start: u32, floor: f64, visited: &mut [bool]) -> Vec<u32> {
+        let mut branch = Vec::new();
+        let mut current = start;
+        while let Some(next) = self.slowest_descent(current, visited, false) {
+            if self.energies[next as usize] < floor {
+                break;
+            }
+            visited[next as usize] = true;
+            branch.push(next);
+            current = next;
+        }
+        branch
+    }
+
+    /// The unvisited, unblocked neighbour of `current` with the highest energy not above that of
+    /// `current` (the slowest descent). A neighbour of a visited vertex other than `current` is
+    /// skipped, so the line never touches itself; boundary neighbours qualify only when
+    /// `boundary_allowed`.
+    fn slowest_descent(
+        &self,
+        current: u32,
+        visited: &[bool],
+        boundary_allowed: bool,
+    ) -> Option<u32> {
+        let here = self.energies[current as usize];
+        self.adjacency
+            .neighbours(current)
+            .iter()
+            .map(|&(w, _)| w)
+            .filter(|&w| {
+                !visited[w as usize]
+                    && !self.blocked[w as usize]
+                    && (boundary_allowed || !self.on_boundary[w as usize])
+                    && self.energies[w as usize] <= here
+                    && !self.touches_line(w, current, visited)
+            })
+            .max_by(|&a, &b| {
+                self.energies[a as usize]
+                    .total_cmp(&self.energies[b as usize])
+                    .then_with(|| b.cmp(&a))
+            })
+    }
+
+    /// True if `w` neighbours a visited vertex other than `current`.
+    fn touches_line(&self, w: u32, current: u32, visited: &[bool]) -> bool {
+        self.adjacency
+            .neighbours(w)
+            .iter()
+            .any(|&(x, _)| x != current && visited[x as usize])
+    }
+
+    /// The shortest edge path from `current` to the boundary through unvisited, unblocked
+    /// vertices (`current` first).
+    fn shortest_way_out(&self, current: u32, visited: &[bool]) -> Option<Vec<u32>> {
+        let passable = |v: u32| !visited[v as usize] && !self.blocked[v as usize];
+        let is_exit = |v: u32| self.on_boundary[v as usize];
+        let (paths, reached) = dijkstra(self.model, self.adjacency, &[current], passable, is_exit);
+        paths.path_to(reached?)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cut::paths::tests::grid;
+
+    #[test]
+    fn the_crest_runs_along_the_energy_ridge_to_the_boundary() {
+        let model = grid();
+        let adjacency = Adjacency::new(&model);
+        // Energy peaks at vertex 5 (interior) and falls along the column x = 1 towards y = 0.
+        let mut energies = vec![0.0; 16];
+        energies[5] = 10.0;
+        energies[1] = 8.0;
+        energies[9] = 2.0;
+        let blocked = vec![false; 16];
+        let settings = CrestSettings {
+            blocked: &blocked,
+            candidates: 1,
+            dart_ratio: DEFAULT_DART_RATIO,
+        };
+        let lines = crest_lines(&model, &adjacency, &energies, &settings);
+        assert_eq!(lines[0].vertices, vec![1, 5]);
+        assert!((lines[0].score() - 18.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_dart_extends_while_the_energy_stays_high() {
+        let model = grid();
+        let adjacency = Adjacency::new(&model);
+        let mut energies = vec![0.0; 16];
+        energies[1] = 10.0;
+        energies[5] = 9.0;
+        energies[9] = 6.0;
+        energies[13] = 5.0;
+        let blocked = vec![false; 16];
+        let settings = CrestSettings {
+            blocked: &blocked,
+            candidates: 1,
+            dart_ratio: DEFAULT_DART_RATIO,
+        };
+        let lines = crest_lines(&model, &adjacency, &energies, &settings);
+        // From boundary vertex 1 inward; 13 is on the far boundary and is never reached.
+        assert_eq!(lines[0].vertices, vec![1, 5, 9]);
+    }
+
+    #[test]
+    fn blocked_vertices_are_never_on_a_line() {
+        let model = grid();
+        let adjacency = Adjacency::new(&model);
+        let mut energies = vec![0.0; 16];
+        energies[5] = 10.0;
+        energies[1] = 8.0;
+        let mut blocked = vec![false; 16];
+        blocked[1] = true;
+        let settings = CrestSettings {
+            blocked: &blocked,
+            candidates: 1,
+            dart_ratio: DEFAULT_DART_RATIO,
+        };
+        let lines = crest_lines(&model, &adjacency, &energies, &settings);
+        assert!(!lines[0].vertices.contains(&1));
+        assert!(lines[0].vertices.contains(&5));
+    }
+}

@@ -1,0 +1,387 @@
+//! Cutting (paper §6.3): seams that open closed and ring surfaces, then crest-line cuts of the
+//! energy map, each followed by a new flattening, until `E_S` and `E_C` are within tolerance or
+//! the cut budget is spent.
+//!
+//! [`cut_and_flatten`] is the one-shot entry point:
+//! 1. user seams ([`CutOptions::seams`]) are laid on the mesh and cut;
+//! 2. automatic seams ([`seam`]) open the surface to a disk: one per ring loop, a cut graph for a
+//!    closed surface;
+//! 3. the part is flattened; while it is over tolerance and cuts are left, the crest lines of its
+//!    energy map ([`crest`]) are tried best score first, and the first whose cut lowers the error
+//!    (`max(E_S, E_C)`, an overlapping pattern counting as worse than any other) is kept;
+//! 4. the cut model, its pattern and every cut with its figures before and after come back.
+//!
+//! Cuts never run along or across a fold line (no vertex of a fold-line edge is crossed) nor
+//! through a no-cut region; a developable part within tolerance gets no cut.
+
+pub mod crest;
+pub mod energy_field;
+mod errors;
+pub mod paths;
+pub mod seam;
+pub mod split;
+
+use glam::DVec3;
+use serde::Serialize;
+
+pub use errors::CutError;
+pub use seam::SeamKind;
+
+use crate::flatten::{Accuracy, FlattenOptions, Flattened, SpringSystem, Stiffness, flatten};
+use crate::mesh::{FacetModel, NONE};
+use crate::progress::Progress;
+use crest::{CrestLine, CrestSettings, DEFAULT_CANDIDATES, DEFAULT_DART_RATIO, crest_lines};
+use paths::{Adjacency, path_edges, path_length};
+use split::split_along_edges;
+
+/// Default largest number of crest-line cuts per part (seams not counted).
+pub const DEFAULT_MAX_CUTS: usize = 8;
+
+/// Options of [`cut_and_flatten`]. `Default` is the only source of defaults. The tolerance is the
+/// flattening's ([`FlattenOptions::tolerance`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CutOptions {
+    /// Largest number of crest-line cuts; default [`DEFAULT_MAX_CUTS`]. 0 disables cutting
+    /// (seams are still made).
+    pub max_cuts: usize,
+    /// Crest lines traced before each cut, from the highest energy maxima; default
+    /// [`DEFAULT_CANDIDATES`].
+    pub candidates: usize,
+    /// A dart stops where the energy falls below this fraction of its crest energy; default
+    /// [`DEFAULT_DART_RATIO`].
+    pub dart_ratio: f64,
+    /// User seams: 3D polylines in model units, cut before anything else.
+    pub seams: Vec<Vec<[f64; 3]>>,
+    /// Regions no cut or automatic seam may pass through.
+    pub no_cut_regions: Vec<NoCutRegion>,
+}
+
+impl Default for CutOptions {
+    fn default() -> Self {
+        Self {
+            max_cuts: DEFAULT_MAX_CUTS,
+            candidates: DEFAULT_CANDIDATES,
+            dart_ratio: DEFAULT_DART_RATIO,
+            seams: Vec::new(),
+            no_cut_regions: Vec::new(),
+        }
+    }
+}
+
+/// A ball of the part where nothing may be cut.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct NoCutRegion {
+    /// Centre, model units.
+    pub center: [f64; 3],
+    /// Radius, model units.
+    pub radius: f64,
+}
+
+/// Energy and errors of a pattern, before or after a cut.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CutFigures {
+    /// Spring energy of the pattern.
+    pub energy: f64,
+    /// `E_S` (Eq. 4), a fraction.
+    pub area_error: f64,
+    /// `E_C` (Eq. 6), a fraction.
+    pub shape_error: f64,
+}
+
+impl CutFigures {
+    fn of(flattened: &Flattened) -> Self {
+        Self {
+            energy: flattened.stats.energy,
+            area_error: flattened.stats.accuracy.area_error,
+            shape_error: flattened.stats.accuracy.shape_error,
+        }
+    }
+}
+
+/// One crest-line cut.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cut {
+    /// The cut as a 3D polyline, model units.
+    pub points: Vec<DVec3>,
+    /// Its 3D length.
+    pub length: f64,
+    /// The pattern before the cut.
+    pub before: CutFigures,
+    /// The pattern after the cut.
+    pub after: CutFigures,
+}
+
+/// One seam.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Seam {
+    /// Why it was made.
+    pub kind: SeamKind,
+    /// The seam as a 3D polyline, model units.
+    pub points: Vec<DVec3>,
+    /// Its 3D length.
+    pub length: f64,
+}
+
+/// Why the cutting stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CutStop {
+    /// `E_S` and `E_C` are within tolerance (and the pattern does not overlap).
+    ToleranceMet,
+    /// [`CutOptions::max_cuts`] cuts were made.
+    CutBudget,
+    /// No candidate cut lowered the error.
+    NoBetterCut,
+}
+
+/// The cut part and its pattern.
+#[derive(Debug, Clone)]
+pub struct CutResult {
+    /// The facet model after every seam and cut.
+    pub model: FacetModel,
+    /// Its stiffness factors (carried over from the input's edges).
+    pub stiffness: Stiffness,
+    /// For each vertex of `model`, the input vertex it copies.
+    pub original_vertex: Vec<u32>,
+    /// The pattern of `model`.
+    pub flattened: Flattened,
+    /// Seams, in the order they were cut.
+    pub seams: Vec<Seam>,
+    /// Crest-line cuts, in the order they were made.
+    pub cuts: Vec<Cut>,
+    /// Why cutting stopped.
+    pub stop: CutStop,
+}
+
+impl CutResult {
+    /// Total 3D length of the crest-line cuts.
+    pub fn total_cut_length(&self) -> f64 {
+        self.cuts.iter().map(|cut| cut.length).sum()
+    }
+}
+
+/// Opens the part with seams, flattens it and cuts it along crest lines until it is within
+/// tolerance; see the module documentation.
+pub fn cut_and_flatten(
+    model: &FacetModel,
+    stiffness: &Stiffness,
+    flatten_options: &FlattenOptions,
+    options: &CutOptions,
+    progress: &dyn Progress,
+) -> Result<CutResult, CutError> {
+    let mut state = CutState {
+        model: model.clone(),
+        stiffness: stiffness.clone(),
+        original_vertex: (0..model.vertex_count() as u32).collect(),
+    };
+    let mut seams = Vec::new();
+    lay_user_seams(&mut state, options, &mut seams)?;
+    open_to_disk(&mut state, options, &mut seams)?;
+    let mut flattened = flatten(&state.model, &state.stiffness, flatten_options, progress)?;
+    let mut cuts = Vec::new();
+    let stop = loop {
+        if flattened.stats.accuracy.within(flatten_options.tolerance) {
+            break CutStop::ToleranceMet;
+        }
+        if cuts.len() >= options.max_cuts {
+            break CutStop::CutBudget;
+        }
+        let Some(improvement) = best_cut(&state, &flattened, flatten_options, options, progress)?
+        else {
+            break CutStop::NoBetterCut;
+        };
+        cuts.push(Cut {
+            points: polyline(&state.model, &improvement.line.vertices),
+            length: improvement.line.length,
+            before: CutFigures::of(&flattened),
+            after: CutFigures::of(&improvement.flattened),
+        });
+        state = improvement.state;
+        flattened = improvement.flattened;
+    };
+    Ok(CutResult {
+        model: state.model,
+        stiffness: state.stiffness,
+        original_vertex: state.original_vertex,
+        flattened,
+        seams,
+        cuts,
+        stop,
+    })
+}
+
+/// The model being cut, with its stiffness and the way back to the input's vertices.
+#[derive(Debug, Clone)]
+struct CutState {
+    model: FacetModel,
+    stiffness: Stiffness,
+    original_vertex: Vec<u32>,
+}
+
+impl CutState {
+    /// The state after cutting along a vertex path.
+    fn cut_along(&self, path: &[u32]) -> Result<CutState, CutError> {
+        let edges = path_edges(&self.model, path).ok_or_else(|| {
+            CutError::InvalidResult("a cut path skips from a vertex to a non-neighbour".into())
+        })?;
+        let split = split_along_edges(&self.model, &edges)?;
+        let factors = split
+            .original_edge
+            .iter()
+            .map(|&e| self.stiffness.factors()[e])
+            .collect();
+        let original_vertex = split
+            .original_vertex
+            .iter()
+            .map(|&v| self.original_vertex[v as usize])
+            .collect();
+        Ok(CutState {
+            model: split.model,
+            stiffness: Stiffness::from_factors(factors),
+            original_vertex,
+        })
+    }
+
+    /// Vertices no cut may pass: the ends of fold-line edges and those in no-cut regions.
+    fn blocked(&self, regions: &[NoCutRegion]) -> Vec<bool> {
+        let positions = self.model.positions();
+        let mut blocked: Vec<bool> = positions
+            .iter()
+            .map(|&p| {
+                regions
+                    .iter()
+                    .any(|region| p.distance(DVec3::from(region.center)) <= region.radius)
+            })
+            .collect();
+        for (&[a, b], &line) in self.model.edges().iter().zip(self.model.edge_fold_lines()) {
+            if line != NONE {
+                blocked[a as usize] = true;
+                blocked[b as usize] = true;
+            }
+        }
+        blocked
+    }
+}
+
+/// Cuts the user's seams, in order.
+fn lay_user_seams(
+    state: &mut CutState,
+    options: &CutOptions,
+    seams: &mut Vec<Seam>,
+) -> Result<(), CutError> {
+    for (index, points) in options.seams.iter().enumerate() {
+        let points: Vec<DVec3> = points.iter().map(|&p| DVec3::from(p)).collect();
+        let adjacency = Adjacency::new(&state.model);
+        let blocked = state.blocked(&options.no_cut_regions);
+        let path = seam::lay_polyline(&state.model, &adjacency, &blocked, &points, index)?;
+        *state = state.cut_along(&path).map_err(|error| match error {
+            CutError::Disconnects => CutError::SeamNotLaid {
+                seam: index,
+                from: 0,
+                to: points.len() - 1,
+            },
+            other => other,
+        })?;
+        seams.push(make_seam(&state.model, SeamKind::User, &path));
+    }
+    Ok(())
+}
+
+/// Cuts automatic seams until the model is a disk.
+fn open_to_disk(
+    state: &mut CutState,
+    options: &CutOptions,
+    seams: &mut Vec<Seam>,
+) -> Result<(), CutError> {
+    let was_closed = state.model.is_closed();
+    // Every seam removes a boundary loop, a handle or a corner, so this bounds the count.
+    for _ in 0..=state.model.vertex_count() {
+        let adjacency = Adjacency::new(&state.model);
+        let blocked = state.blocked(&options.no_cut_regions);
+        let Some((kind, path)) = seam::next_seam(&state.model, &adjacency, &blocked, was_closed)?
+        else {
+            return Ok(());
+        };
+        *state = state.cut_along(&path)?;
+        seams.push(make_seam(&state.model, kind, &path));
+    }
+    Err(CutError::NoSeam)
+}
+
+fn make_seam(model: &FacetModel, kind: SeamKind, path: &[u32]) -> Seam {
+    Seam {
+        kind,
+        points: polyline(model, path),
+        length: path_length(model, path),
+    }
+}
+
+/// 3D positions of a vertex path (copies keep their original's position, so the path's indices
+/// are valid in the cut model too).
+fn polyline(model: &FacetModel, path: &[u32]) -> Vec<DVec3> {
+    path.iter()
+        .map(|&v| model.positions()[v as usize])
+        .collect()
+}
+
+/// A cut that lowered the error.
+struct Improvement {
+    state: CutState,
+    flattened: Flattened,
+    line: CrestLine,
+}
+
+/// Tries the crest lines of the current pattern, best score first, and returns the first cut
+/// whose new pattern has a lower error.
+fn best_cut(
+    state: &CutState,
+    flattened: &Flattened,
+    flatten_options: &FlattenOptions,
+    options: &CutOptions,
+    progress: &dyn Progress,
+) -> Result<Option<Improvement>, CutError> {
+    let springs = SpringSystem::new(
+        &state.model,
+        state.stiffness.factors(),
+        flatten_options.spring_constant,
+    );
+    let energies = energy_field::vertex_energies(&springs, &flattened.positions);
+    let adjacency = Adjacency::new(&state.model);
+    let blocked = state.blocked(&options.no_cut_regions);
+    let settings = CrestSettings {
+        blocked: &blocked,
+        candidates: options.candidates,
+        dart_ratio: options.dart_ratio,
+    };
+    for line in crest_lines(&state.model, &adjacency, &energies, &settings) {
+        let next = match state.cut_along(&line.vertices) {
+            Ok(next) => next,
+            Err(
+                CutError::Disconnects | CutError::BoundaryEdge { .. } | CutError::FoldLine { .. },
+            ) => {
+                continue;
+            }
+            Err(other) => return Err(other),
+        };
+        let candidate = flatten(&next.model, &next.stiffness, flatten_options, progress)?;
+        if is_better(&candidate.stats.accuracy, &flattened.stats.accuracy) {
+            return Ok(Some(Improvement {
+                state: next,
+                flattened: candidate,
+                line,
+            }));
+        }
+    }
+    Ok(None)
+}
+
+/// True if `candidate` is a better pattern than `current`: it does not overlap while `current`
+/// does, or both agree on overlapping and its larger error is lower.
+fn is_better(candidate: &Accuracy, current: &Accuracy) -> bool {
+    let error = |a: &Accuracy| a.area_error.max(a.shape_error);
+    match (candidate.overlap, current.overlap) {
+        (false, true) => true,
+        (true, false) => false,
+        _ => error(candidate) < error(current),
+    }
+}
