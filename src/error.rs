@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+use crate::cut::CutError;
 use crate::flatten::FlattenError;
 use crate::ingest::IngestError;
 use crate::mesh::MeshDefects;
@@ -29,6 +30,16 @@ pub enum Error {
         part: String,
         /// Why.
         source: FlattenError,
+    },
+    /// A part could not be opened by seams, cut or flattened after cutting.
+    #[error("{path}: part '{part}': {source}")]
+    Cut {
+        /// The input file.
+        path: PathBuf,
+        /// The part's name.
+        part: String,
+        /// Why.
+        source: CutError,
     },
     /// An output file could not be written.
     #[error("{path}: cannot write: {source}")]

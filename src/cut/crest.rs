@@ -48,6 +48,15 @@ impl CrestLine {
     }
 }
 
+/// How a line descends the energy map.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Descent {
+    /// The paper's crest line: the slowest descent, along a ridge of the energy.
+    Slowest,
+    /// The gradient line: the steepest descent, across the isolines.
+    Steepest,
+}
+
 /// Where cuts may go and how crest lines are traced.
 #[derive(Debug, Clone, Copy)]
 pub struct CrestSettings<'a> {
@@ -59,8 +68,9 @@ pub struct CrestSettings<'a> {
     pub dart_ratio: f64,
 }
 
-/// Traces a crest line from each of the highest local energy maxima and returns them best score
-/// first (ties by start vertex). Lines of a single vertex are dropped.
+/// Traces a line of each [`Descent`] from each of the highest local energy maxima and returns
+/// them best estimated score first (ties keep the order of tracing). Lines of a single vertex and
+/// repeated lines are dropped.
 pub fn crest_lines(
     model: &FacetModel,
     adjacency: &Adjacency,
@@ -68,18 +78,25 @@ pub fn crest_lines(
     settings: &CrestSettings<'_>,
 ) -> Vec<CrestLine> {
     let on_boundary = boundary_flags(model);
-    let tracer = Tracer {
-        model,
-        adjacency,
-        energies,
-        blocked: settings.blocked,
-        on_boundary: &on_boundary,
-    };
-    let mut lines: Vec<CrestLine> = local_maxima(adjacency, energies, settings.blocked)
-        .into_iter()
-        .take(settings.candidates)
-        .filter_map(|start| tracer.crest_line(start, settings.dart_ratio))
-        .collect();
+    let starts = local_maxima(adjacency, energies, settings.blocked);
+    let mut lines: Vec<CrestLine> = Vec::new();
+    for &start in starts.iter().take(settings.candidates) {
+        for descent in [Descent::Slowest, Descent::Steepest] {
+            let tracer = Tracer {
+                descent,
+                model,
+                adjacency,
+                energies,
+                blocked: settings.blocked,
+                on_boundary: &on_boundary,
+            };
+            if let Some(line) = tracer.crest_line(start, settings.dart_ratio)
+                && !lines.iter().any(|known| known.vertices == line.vertices)
+            {
+                lines.push(line);
+            }
+        }
+    }
     lines.sort_by(|a, b| b.score().total_cmp(&a.score()));
     lines
 }
@@ -111,6 +128,7 @@ fn local_maxima(adjacency: &Adjacency, energies: &[f64], blocked: &[bool]) -> Ve
 
 /// The data one trace needs.
 struct Tracer<'a> {
+    descent: Descent,
     model: &'a FacetModel,
     adjacency: &'a Adjacency,
     energies: &'a [f64],
@@ -148,7 +166,7 @@ impl Tracer<'_> {
         let mut branch = vec![start];
         let mut current = start;
         while !self.on_boundary[current as usize] {
-            match self.slowest_descent(current, visited, true) {
+            match self.descend(current, visited, true) {
                 Some(next) => {
                     visited[next as usize] = true;
                     branch.push(next);
@@ -172,7 +190,7 @@ impl Tracer<'_> {
     fn dart_branch(&self, start: u32, floor: f64, visited: &mut [bool]) -> Vec<u32> {
         let mut branch = Vec::new();
         let mut current = start;
-        while let Some(next) = self.slowest_descent(current, visited, false) {
+        while let Some(next) = self.descend(current, visited, false) {
             if self.energies[next as usize] < floor {
                 break;
             }
@@ -183,17 +201,21 @@ impl Tracer<'_> {
         branch
     }
 
-    /// The unvisited, unblocked neighbour of `current` with the highest energy not above that of
-    /// `current` (the slowest descent). A neighbour of a visited vertex other than `current` is
-    /// skipped, so the line never touches itself; boundary neighbours qualify only when
-    /// `boundary_allowed`.
-    fn slowest_descent(
-        &self,
-        current: u32,
-        visited: &[bool],
-        boundary_allowed: bool,
-    ) -> Option<u32> {
+    /// The next vertex of a descent from `current`: among the unvisited, unblocked neighbours
+    /// whose energy is not above that of `current`, the one of highest energy ([`Descent::Slowest`])
+    /// or of steepest energy drop per unit length ([`Descent::Steepest`]). A neighbour of a visited
+    /// vertex other than `current` is skipped, so the line never touches itself; boundary
+    /// neighbours qualify only when `boundary_allowed`.
+    fn descend(&self, current: u32, visited: &[bool], boundary_allowed: bool) -> Option<u32> {
         let here = self.energies[current as usize];
+        let positions = self.model.positions();
+        let key = |w: u32| match self.descent {
+            Descent::Slowest => self.energies[w as usize],
+            Descent::Steepest => {
+                let run = positions[current as usize].distance(positions[w as usize]);
+                (here - self.energies[w as usize]) / run
+            }
+        };
         self.adjacency
             .neighbours(current)
             .iter()
@@ -205,11 +227,7 @@ impl Tracer<'_> {
                     && self.energies[w as usize] <= here
                     && !self.touches_line(w, current, visited)
             })
-            .max_by(|&a, &b| {
-                self.energies[a as usize]
-                    .total_cmp(&self.energies[b as usize])
-                    .then_with(|| b.cmp(&a))
-            })
+            .max_by(|&a, &b| key(a).total_cmp(&key(b)).then_with(|| b.cmp(&a)))
     }
 
     /// True if `w` neighbours a visited vertex other than `current`.

@@ -21,13 +21,15 @@ pub mod paths;
 pub mod seam;
 pub mod split;
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use serde::Serialize;
 
 pub use errors::CutError;
 pub use seam::SeamKind;
 
-use crate::flatten::{Accuracy, FlattenOptions, Flattened, SpringSystem, Stiffness, flatten};
+use crate::flatten::{
+    Accuracy, FlattenOptions, Flattened, SpringSystem, Stiffness, flatten, flatten_from,
+};
 use crate::mesh::{FacetModel, NONE};
 use crate::progress::Progress;
 use crest::{CrestLine, CrestSettings, DEFAULT_CANDIDATES, DEFAULT_DART_RATIO, crest_lines};
@@ -156,7 +158,7 @@ pub struct CutResult {
 impl CutResult {
     /// Total 3D length of the crest-line cuts.
     pub fn total_cut_length(&self) -> f64 {
-        self.cuts.iter().map(|cut| cut.length).sum()
+        self.cuts.iter().fold(0.0, |total, cut| total + cut.length)
     }
 }
 
@@ -186,8 +188,7 @@ pub fn cut_and_flatten(
         if cuts.len() >= options.max_cuts {
             break CutStop::CutBudget;
         }
-        let Some(improvement) = best_cut(&state, &flattened, flatten_options, options, progress)?
-        else {
+        let Some(improvement) = best_cut(&state, &flattened, flatten_options, options)? else {
             break CutStop::NoBetterCut;
         };
         cuts.push(Cut {
@@ -219,8 +220,9 @@ struct CutState {
 }
 
 impl CutState {
-    /// The state after cutting along a vertex path.
-    fn cut_along(&self, path: &[u32]) -> Result<CutState, CutError> {
+    /// The state after cutting along a vertex path, and for each of its vertices the vertex of
+    /// `self` it copies.
+    fn cut_along(&self, path: &[u32]) -> Result<(CutState, Vec<u32>), CutError> {
         let edges = path_edges(&self.model, path).ok_or_else(|| {
             CutError::InvalidResult("a cut path skips from a vertex to a non-neighbour".into())
         })?;
@@ -235,11 +237,12 @@ impl CutState {
             .iter()
             .map(|&v| self.original_vertex[v as usize])
             .collect();
-        Ok(CutState {
+        let state = CutState {
             model: split.model,
             stiffness: Stiffness::from_factors(factors),
             original_vertex,
-        })
+        };
+        Ok((state, split.original_vertex))
     }
 
     /// Vertices no cut may pass: the ends of fold-line edges and those in no-cut regions.
@@ -274,7 +277,7 @@ fn lay_user_seams(
         let adjacency = Adjacency::new(&state.model);
         let blocked = state.blocked(&options.no_cut_regions);
         let path = seam::lay_polyline(&state.model, &adjacency, &blocked, &points, index)?;
-        *state = state.cut_along(&path).map_err(|error| match error {
+        (*state, _) = state.cut_along(&path).map_err(|error| match error {
             CutError::Disconnects => CutError::SeamNotLaid {
                 seam: index,
                 from: 0,
@@ -302,7 +305,7 @@ fn open_to_disk(
         else {
             return Ok(());
         };
-        *state = state.cut_along(&path)?;
+        (*state, _) = state.cut_along(&path)?;
         seams.push(make_seam(&state.model, kind, &path));
     }
     Err(CutError::NoSeam)
@@ -331,14 +334,13 @@ struct Improvement {
     line: CrestLine,
 }
 
-/// Tries the crest lines of the current pattern, best score first, and returns the first cut
-/// whose new pattern has a lower error.
+/// Cuts along each crest line of the current pattern in turn, flattens, and returns the cut of
+/// largest measured energy drop per unit length among those that lower the error.
 fn best_cut(
     state: &CutState,
     flattened: &Flattened,
     flatten_options: &FlattenOptions,
     options: &CutOptions,
-    progress: &dyn Progress,
 ) -> Result<Option<Improvement>, CutError> {
     let springs = SpringSystem::new(
         &state.model,
@@ -353,9 +355,10 @@ fn best_cut(
         candidates: options.candidates,
         dart_ratio: options.dart_ratio,
     };
+    let mut best: Option<(f64, Improvement)> = None;
     for line in crest_lines(&state.model, &adjacency, &energies, &settings) {
-        let next = match state.cut_along(&line.vertices) {
-            Ok(next) => next,
+        let (next, copied_vertex) = match state.cut_along(&line.vertices) {
+            Ok(cut) => cut,
             Err(
                 CutError::Disconnects | CutError::BoundaryEdge { .. } | CutError::FoldLine { .. },
             ) => {
@@ -363,16 +366,28 @@ fn best_cut(
             }
             Err(other) => return Err(other),
         };
-        let candidate = flatten(&next.model, &next.stiffness, flatten_options, progress)?;
-        if is_better(&candidate.stats.accuracy, &flattened.stats.accuracy) {
-            return Ok(Some(Improvement {
+        let start: Vec<DVec2> = copied_vertex
+            .iter()
+            .map(|&v| flattened.positions[v as usize])
+            .collect();
+        let candidate = flatten_from(&next.model, &next.stiffness, &start, flatten_options)?;
+        if !is_better(&candidate.stats.accuracy, &flattened.stats.accuracy) {
+            continue;
+        }
+        let drop_per_length = (flattened.stats.energy - candidate.stats.energy) / line.length;
+        if best
+            .as_ref()
+            .is_none_or(|(known, _)| drop_per_length > *known)
+        {
+            let improvement = Improvement {
                 state: next,
                 flattened: candidate,
                 line,
-            }));
+            };
+            best = Some((drop_per_length, improvement));
         }
     }
-    Ok(None)
+    Ok(best.map(|(_, improvement)| improvement))
 }
 
 /// True if `candidate` is a better pattern than `current`: it does not overlap while `current`

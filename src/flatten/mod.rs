@@ -84,6 +84,14 @@ pub enum FlattenError {
          open it in the CAD system or give a mesh with a seam"
     )]
     ClosedSurface,
+    /// The warm-start positions do not match the model.
+    #[error("the initial pattern has {found} positions but the model has {expected} vertices")]
+    InitialMismatch {
+        /// Vertices of the model.
+        expected: usize,
+        /// Positions given.
+        found: usize,
+    },
     /// The stiffness map does not match the model.
     #[error("the stiffness map has {found} factors but the model has {expected} edges")]
     StiffnessMismatch {
@@ -128,15 +136,7 @@ pub fn flatten(
     progress: &dyn Progress,
 ) -> Result<Flattened, FlattenError> {
     let started = Instant::now();
-    if model.is_closed() {
-        return Err(FlattenError::ClosedSurface);
-    }
-    if stiffness.factors().len() != model.edges().len() {
-        return Err(FlattenError::StiffnessMismatch {
-            expected: model.edges().len(),
-            found: stiffness.factors().len(),
-        });
-    }
+    check_input(model, stiffness)?;
     let springs = SpringSystem::new(model, stiffness.factors(), options.spring_constant);
     let release = match options.solver {
         Solver::Paper => InitRelease::WholeSystem {
@@ -147,9 +147,55 @@ pub fn flatten(
             sweeps: init_flatten::NEIGHBOURHOOD_SWEEPS,
         },
     };
-    let mut positions = init_flatten(model, &springs, release, progress);
+    let positions = init_flatten(model, &springs, release, progress);
+    Ok(finish(model, &springs, positions, options, started))
+}
+
+/// Flattens a facet model from given flat positions (a warm start: phase one is skipped), for
+/// the cut → re-flatten loop, where the pattern before a cut is a good start for the cut model.
+/// `initial[v]` is the start of vertex `v`; a missing or extra entry is an error.
+pub fn flatten_from(
+    model: &FacetModel,
+    stiffness: &Stiffness,
+    initial: &[DVec2],
+    options: &FlattenOptions,
+) -> Result<Flattened, FlattenError> {
+    let started = Instant::now();
+    check_input(model, stiffness)?;
+    if initial.len() != model.vertex_count() {
+        return Err(FlattenError::InitialMismatch {
+            expected: model.vertex_count(),
+            found: initial.len(),
+        });
+    }
+    let springs = SpringSystem::new(model, stiffness.factors(), options.spring_constant);
+    Ok(finish(model, &springs, initial.to_vec(), options, started))
+}
+
+/// Refuses closed surfaces and stiffness maps of another model.
+fn check_input(model: &FacetModel, stiffness: &Stiffness) -> Result<(), FlattenError> {
+    if model.is_closed() {
+        return Err(FlattenError::ClosedSurface);
+    }
+    if stiffness.factors().len() != model.edges().len() {
+        return Err(FlattenError::StiffnessMismatch {
+            expected: model.edges().len(),
+            found: stiffness.factors().len(),
+        });
+    }
+    Ok(())
+}
+
+/// Phase two from the initial pattern `positions`, then the figures.
+fn finish(
+    model: &FacetModel,
+    springs: &SpringSystem,
+    mut positions: Vec<DVec2>,
+    options: &FlattenOptions,
+    started: Instant,
+) -> Flattened {
     let initial_accuracy = Accuracy::measure(model, &positions);
-    let outcome = relax(model, &springs, &mut positions, options);
+    let outcome = relax(model, springs, &mut positions, options);
     move_to_origin(&mut positions);
     let stats = FlattenStats {
         accuracy: Accuracy::measure(model, &positions),
@@ -159,7 +205,7 @@ pub fn flatten(
         stop_reason: outcome.stop_reason,
         seconds: started.elapsed().as_secs_f64(),
     };
-    Ok(Flattened { positions, stats })
+    Flattened { positions, stats }
 }
 
 /// Phase two: EnergyRelease over the whole model.
