@@ -10,6 +10,7 @@
 
 pub mod accuracy;
 pub mod energy_release;
+pub mod fast;
 pub mod init_flatten;
 pub mod springs;
 pub mod stiffness;
@@ -21,6 +22,7 @@ use serde::Serialize;
 
 pub use accuracy::Accuracy;
 pub use energy_release::{EnergyRelease, ReleaseOutcome, ReleaseParameters, StopReason};
+pub use fast::{FastError, FastOptions, FastOutcome, FastSolver, fast_solve};
 pub use init_flatten::{InitRelease, init_flatten};
 pub use springs::{PAPER_SPRING_CONSTANT, SpringSystem};
 pub use stiffness::Stiffness;
@@ -59,6 +61,8 @@ pub struct FlattenOptions {
     pub time_step: f64,
     /// Steps of EnergyRelease after each triangle in the paper's phase one; default 50.
     pub init_release_steps: usize,
+    /// Options of the fast solver's phase two (the step budget there is its own).
+    pub fast: FastOptions,
 }
 
 impl Default for FlattenOptions {
@@ -71,6 +75,7 @@ impl Default for FlattenOptions {
             energy_variation: energy_release::PAPER_ENERGY_VARIATION,
             time_step: energy_release::PAPER_TIME_STEP,
             init_release_steps: init_flatten::PAPER_INIT_RELEASE_STEPS,
+            fast: FastOptions::default(),
         }
     }
 }
@@ -100,6 +105,9 @@ pub enum FlattenError {
         /// Factors given.
         found: usize,
     },
+    /// The fast solver could not be set up.
+    #[error(transparent)]
+    Fast(#[from] FastError),
 }
 
 /// What a flattening produced besides the pattern.
@@ -148,7 +156,7 @@ pub fn flatten(
         },
     };
     let positions = init_flatten(model, &springs, release, progress);
-    Ok(finish(model, &springs, positions, options, started))
+    finish(model, &springs, positions, options, started)
 }
 
 /// Flattens a facet model from given flat positions (a warm start: phase one is skipped), for
@@ -169,7 +177,7 @@ pub fn flatten_from(
         });
     }
     let springs = SpringSystem::new(model, stiffness.factors(), options.spring_constant);
-    Ok(finish(model, &springs, initial.to_vec(), options, started))
+    finish(model, &springs, initial.to_vec(), options, started)
 }
 
 /// Refuses closed surfaces and stiffness maps of another model.
@@ -193,9 +201,12 @@ fn finish(
     mut positions: Vec<DVec2>,
     options: &FlattenOptions,
     started: Instant,
-) -> Flattened {
+) -> Result<Flattened, FlattenError> {
     let initial_accuracy = Accuracy::measure(model, &positions);
-    let outcome = relax(model, springs, &mut positions, options);
+    let outcome = match options.solver {
+        Solver::Paper => relax(model, springs, &mut positions, options),
+        Solver::Fast => minimise(model, springs, &mut positions, options)?,
+    };
     move_to_origin(&mut positions);
     let stats = FlattenStats {
         accuracy: Accuracy::measure(model, &positions),
@@ -205,10 +216,10 @@ fn finish(
         stop_reason: outcome.stop_reason,
         seconds: started.elapsed().as_secs_f64(),
     };
-    Flattened { positions, stats }
+    Ok(Flattened { positions, stats })
 }
 
-/// Phase two: EnergyRelease over the whole model.
+/// Phase two of the paper's solver: EnergyRelease over the whole model.
 fn relax(
     model: &FacetModel,
     springs: &SpringSystem,
@@ -224,6 +235,20 @@ fn relax(
         max_steps: options.max_steps,
     };
     energy.release(&system, positions, &parameters, true)
+}
+
+/// Phase two of the fast solver: the spring energy minimised by [`FastSolver`].
+fn minimise(
+    model: &FacetModel,
+    springs: &SpringSystem,
+    positions: &mut [DVec2],
+    options: &FlattenOptions,
+) -> Result<ReleaseOutcome, FlattenError> {
+    let outcome = fast_solve(model, springs, positions, options.fast)?;
+    Ok(ReleaseOutcome {
+        steps: outcome.iterations,
+        stop_reason: outcome.stop_reason,
+    })
 }
 
 /// Translates the pattern so its bounding box starts at the origin.
