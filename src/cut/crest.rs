@@ -12,23 +12,31 @@
 //!   which is what opens the surface; when no neighbour descends any more, it finishes along the
 //!   shortest edge path to the boundary;
 //! - the *dart branch* continues from the maximum the other way and stops inside the part where
-//!   extending no longer pays: at the first vertex whose energy is below `dart_ratio` times the
-//!   maximum, or before it would touch the boundary (which would cut a piece off).
+//!   extending no longer pays: at the first vertex whose energy is below `dart_floor` times the
+//!   mean vertex energy (the cut would run through less strained material than the average), or
+//!   before it would touch the boundary (which would cut a piece off).
 //!
 //! A start on the boundary has only the dart branch: a dart inward from the boundary.
 //!
-//! Score (beyond the paper): the estimated energy released per unit of cut length,
+//! Candidates: from each of the `candidates` highest local maxima, one line per [`Descent`] (the
+//! paper's slowest descent, and the steepest descent, which on a dome is the radial dart the
+//! slowest descent misses by running along the rim), and the first half of each line of four or
+//! more vertices (a shorter dart from the same boundary point).
+//!
+//! Estimated score (beyond the paper): the energy released per unit of cut length,
 //! `Σ_{v on the line} E(v) / L`: a cut frees the springs of every vertex it passes to move apart,
-//! so the energy of those vertices is what it can release at most. Candidates start at the
-//! `candidates` highest local maxima; the best score is tried first.
+//! so the energy of those vertices is what it can release at most. The cut loop measures the real
+//! release of each candidate by flattening; the estimate only orders them.
 
 use super::paths::{Adjacency, dijkstra, path_length};
 use crate::mesh::FacetModel;
 
 /// Default number of crest lines traced per cut (from the highest local maxima).
 pub const DEFAULT_CANDIDATES: usize = 4;
-/// Default fraction of the crest energy below which the dart branch stops.
-pub const DEFAULT_DART_RATIO: f64 = 0.5;
+/// Default multiple of the mean vertex energy below which the dart branch stops.
+pub const DEFAULT_DART_FLOOR: f64 = 1.0;
+/// Lines of at least this many vertices also yield their first half as a candidate.
+const PREFIX_MIN_VERTICES: usize = 4;
 
 /// A candidate cutting line: a simple edge path.
 #[derive(Debug, Clone, PartialEq)]
@@ -42,6 +50,21 @@ pub struct CrestLine {
 }
 
 impl CrestLine {
+    /// The line along `vertices`, with its length and estimated release.
+    fn along(model: &FacetModel, energies: &[f64], vertices: Vec<u32>) -> Self {
+        let estimated_release = vertices.iter().map(|&v| energies[v as usize]).sum();
+        Self {
+            length: path_length(model, &vertices),
+            vertices,
+            estimated_release,
+        }
+    }
+
+    /// The line's first `count` vertices (it starts on the boundary, so any prefix is a dart).
+    fn prefix(&self, model: &FacetModel, energies: &[f64], count: usize) -> Self {
+        Self::along(model, energies, self.vertices[..count].to_vec())
+    }
+
     /// Estimated energy released per unit of cut length.
     pub fn score(&self) -> f64 {
         self.estimated_release / self.length
@@ -64,8 +87,8 @@ pub struct CrestSettings<'a> {
     pub blocked: &'a [bool],
     /// Number of local maxima to start from.
     pub candidates: usize,
-    /// Fraction of the crest energy below which the dart branch stops.
-    pub dart_ratio: f64,
+    /// Multiple of the mean vertex energy below which the dart branch stops.
+    pub dart_floor: f64,
 }
 
 /// Traces a line of each [`Descent`] from each of the highest local energy maxima and returns
@@ -79,6 +102,8 @@ pub fn crest_lines(
 ) -> Vec<CrestLine> {
     let on_boundary = boundary_flags(model);
     let starts = local_maxima(adjacency, energies, settings.blocked);
+    let mean = energies.iter().sum::<f64>() / energies.len().max(1) as f64;
+    let floor = settings.dart_floor * mean;
     let mut lines: Vec<CrestLine> = Vec::new();
     for &start in starts.iter().take(settings.candidates) {
         for descent in [Descent::Slowest, Descent::Steepest] {
@@ -90,10 +115,18 @@ pub fn crest_lines(
                 blocked: settings.blocked,
                 on_boundary: &on_boundary,
             };
-            if let Some(line) = tracer.crest_line(start, settings.dart_ratio)
-                && !lines.iter().any(|known| known.vertices == line.vertices)
-            {
-                lines.push(line);
+            let Some(line) = tracer.crest_line(start, floor) else {
+                continue;
+            };
+            let half = (line.vertices.len() >= PREFIX_MIN_VERTICES)
+                .then(|| line.prefix(model, energies, line.vertices.len().div_ceil(2)));
+            for candidate in std::iter::once(line).chain(half) {
+                if !lines
+                    .iter()
+                    .any(|known| known.vertices == candidate.vertices)
+                {
+                    lines.push(candidate);
+                }
             }
         }
     }
@@ -137,8 +170,9 @@ struct Tracer<'a> {
 }
 
 impl Tracer<'_> {
-    /// The crest line through `start`: opening branch reversed, then the dart branch.
-    fn crest_line(&self, start: u32, dart_ratio: f64) -> Option<CrestLine> {
+    /// The crest line through `start`: opening branch reversed (so the line starts on the
+    /// boundary), then the dart branch down to `floor`.
+    fn crest_line(&self, start: u32, floor: f64) -> Option<CrestLine> {
         let mut visited = vec![false; self.model.vertex_count()];
         visited[start as usize] = true;
         let mut vertices = if self.on_boundary[start as usize] {
@@ -148,17 +182,11 @@ impl Tracer<'_> {
             opening.reverse();
             opening
         };
-        let floor = dart_ratio * self.energies[start as usize];
         vertices.extend(self.dart_branch(start, floor, &mut visited));
         if vertices.len() < 2 {
             return None;
         }
-        let estimated_release = vertices.iter().map(|&v| self.energies[v as usize]).sum();
-        Some(CrestLine {
-            length: path_length(self.model, &vertices),
-            vertices,
-            estimated_release,
-        })
+        Some(CrestLine::along(self.model, self.energies, vertices))
     }
 
     /// From `start` (interior) down to the boundary: `start` first, a boundary vertex last.
@@ -266,11 +294,12 @@ mod tests {
         let settings = CrestSettings {
             blocked: &blocked,
             candidates: 1,
-            dart_ratio: DEFAULT_DART_RATIO,
+            dart_floor: DEFAULT_DART_FLOOR,
         };
         let lines = crest_lines(&model, &adjacency, &energies, &settings);
-        assert_eq!(lines[0].vertices, vec![1, 5]);
-        assert!((lines[0].score() - 18.0).abs() < 1e-12);
+        // The dart branch goes on to 9, whose energy is above the mean (1.25).
+        assert_eq!(lines[0].vertices, vec![1, 5, 9]);
+        assert!((lines[0].score() - 10.0).abs() < 1e-12);
     }
 
     #[test]
@@ -286,7 +315,7 @@ mod tests {
         let settings = CrestSettings {
             blocked: &blocked,
             candidates: 1,
-            dart_ratio: DEFAULT_DART_RATIO,
+            dart_floor: DEFAULT_DART_FLOOR,
         };
         let lines = crest_lines(&model, &adjacency, &energies, &settings);
         // From boundary vertex 1 inward; 13 is on the far boundary and is never reached.
@@ -305,7 +334,7 @@ mod tests {
         let settings = CrestSettings {
             blocked: &blocked,
             candidates: 1,
-            dart_ratio: DEFAULT_DART_RATIO,
+            dart_floor: DEFAULT_DART_FLOOR,
         };
         let lines = crest_lines(&model, &adjacency, &energies, &settings);
         assert!(!lines[0].vertices.contains(&1));

@@ -28,16 +28,20 @@ pub use errors::CutError;
 pub use seam::SeamKind;
 
 use crate::flatten::{
-    Accuracy, FlattenOptions, Flattened, SpringSystem, Stiffness, flatten, flatten_from,
+    Accuracy, FlattenOptions, Flattened, SpringSystem, Stiffness, StopReason, flatten, flatten_from,
 };
 use crate::mesh::{FacetModel, NONE};
 use crate::progress::Progress;
-use crest::{CrestLine, CrestSettings, DEFAULT_CANDIDATES, DEFAULT_DART_RATIO, crest_lines};
+use crest::{CrestLine, CrestSettings, DEFAULT_CANDIDATES, DEFAULT_DART_FLOOR, crest_lines};
 use paths::{Adjacency, path_edges, path_length};
 use split::split_along_edges;
 
 /// Default largest number of crest-line cuts per part (seams not counted).
 pub const DEFAULT_MAX_CUTS: usize = 8;
+/// Extensions of a cut from its inner end allowed per cut, on average: the loop makes at most
+/// `max_cuts × (1 + EXTENSIONS_PER_CUT)` cut steps. An extension lengthens a cut and does not
+/// count as a new one.
+pub const EXTENSIONS_PER_CUT: usize = 3;
 
 /// Options of [`cut_and_flatten`]. `Default` is the only source of defaults. The tolerance is the
 /// flattening's ([`FlattenOptions::tolerance`]).
@@ -49,9 +53,9 @@ pub struct CutOptions {
     /// Crest lines traced before each cut, from the highest energy maxima; default
     /// [`DEFAULT_CANDIDATES`].
     pub candidates: usize,
-    /// A dart stops where the energy falls below this fraction of its crest energy; default
-    /// [`DEFAULT_DART_RATIO`].
-    pub dart_ratio: f64,
+    /// A dart stops where the energy falls below this multiple of the mean vertex energy;
+    /// default [`DEFAULT_DART_FLOOR`].
+    pub dart_floor: f64,
     /// User seams: 3D polylines in model units, cut before anything else.
     pub seams: Vec<Vec<[f64; 3]>>,
     /// Regions no cut or automatic seam may pass through.
@@ -63,7 +67,7 @@ impl Default for CutOptions {
         Self {
             max_cuts: DEFAULT_MAX_CUTS,
             candidates: DEFAULT_CANDIDATES,
-            dart_ratio: DEFAULT_DART_RATIO,
+            dart_floor: DEFAULT_DART_FLOOR,
             seams: Vec::new(),
             no_cut_regions: Vec::new(),
         }
@@ -180,23 +184,60 @@ pub fn cut_and_flatten(
     lay_user_seams(&mut state, options, &mut seams)?;
     open_to_disk(&mut state, options, &mut seams)?;
     let mut flattened = flatten(&state.model, &state.stiffness, flatten_options, progress)?;
-    let mut cuts = Vec::new();
+    let mut cuts: Vec<Cut> = Vec::new();
+    let mut tips: Vec<u32> = Vec::new();
+    let step_budget = options.max_cuts * (1 + EXTENSIONS_PER_CUT);
+    let mut steps = 0;
     let stop = loop {
         if flattened.stats.accuracy.within(flatten_options.tolerance) {
             break CutStop::ToleranceMet;
         }
-        if cuts.len() >= options.max_cuts {
+        let new_cut_allowed = cuts.len() < options.max_cuts;
+        if steps >= step_budget || (!new_cut_allowed && tips.is_empty()) {
             break CutStop::CutBudget;
         }
-        let Some(improvement) = best_cut(&state, &flattened, flatten_options, options)? else {
-            break CutStop::NoBetterCut;
+        let starts = Starts {
+            tips: &tips,
+            new_cut_allowed,
         };
-        cuts.push(Cut {
-            points: polyline(&state.model, &improvement.line.vertices),
-            length: improvement.line.length,
-            before: CutFigures::of(&flattened),
-            after: CutFigures::of(&improvement.flattened),
-        });
+        let Some(improvement) = best_cut(
+            &state,
+            &flattened,
+            flatten_options,
+            options,
+            &starts,
+            progress,
+        )?
+        else {
+            break if new_cut_allowed {
+                CutStop::NoBetterCut
+            } else {
+                CutStop::CutBudget
+            };
+        };
+        steps += 1;
+        let line = &improvement.line;
+        let points = polyline(&state.model, &line.vertices);
+        let tip = line.vertices[line.vertices.len() - 1];
+        let after = CutFigures::of(&improvement.flattened);
+        match tips.iter().position(|&known| known == line.vertices[0]) {
+            Some(extended) => {
+                let cut = &mut cuts[extended];
+                cut.points.extend_from_slice(&points[1..]);
+                cut.length += line.length;
+                cut.after = after;
+                tips[extended] = tip;
+            }
+            None => {
+                cuts.push(Cut {
+                    points,
+                    length: line.length,
+                    before: CutFigures::of(&flattened),
+                    after,
+                });
+                tips.push(tip);
+            }
+        }
         state = improvement.state;
         flattened = improvement.flattened;
     };
@@ -334,13 +375,23 @@ struct Improvement {
     line: CrestLine,
 }
 
-/// Cuts along each crest line of the current pattern in turn, flattens, and returns the cut of
-/// largest measured energy drop per unit length among those that lower the error.
+/// Where the next cut step may start: at the inner end of an existing cut (an extension), and
+/// elsewhere only while new cuts are allowed.
+struct Starts<'a> {
+    tips: &'a [u32],
+    new_cut_allowed: bool,
+}
+
+/// Cuts along each crest line of the current pattern in turn, flattens (warm-started from the
+/// current pattern), and returns the cut of largest measured energy drop per unit length among
+/// those that lower the error.
 fn best_cut(
     state: &CutState,
     flattened: &Flattened,
     flatten_options: &FlattenOptions,
     options: &CutOptions,
+    starts: &Starts<'_>,
+    progress: &dyn Progress,
 ) -> Result<Option<Improvement>, CutError> {
     let springs = SpringSystem::new(
         &state.model,
@@ -353,10 +404,13 @@ fn best_cut(
     let settings = CrestSettings {
         blocked: &blocked,
         candidates: options.candidates,
-        dart_ratio: options.dart_ratio,
+        dart_floor: options.dart_floor,
     };
     let mut best: Option<(f64, Improvement)> = None;
     for line in crest_lines(&state.model, &adjacency, &energies, &settings) {
+        if !starts.new_cut_allowed && !starts.tips.contains(&line.vertices[0]) {
+            continue;
+        }
         let (next, copied_vertex) = match state.cut_along(&line.vertices) {
             Ok(cut) => cut,
             Err(
@@ -366,11 +420,7 @@ fn best_cut(
             }
             Err(other) => return Err(other),
         };
-        let start: Vec<DVec2> = copied_vertex
-            .iter()
-            .map(|&v| flattened.positions[v as usize])
-            .collect();
-        let candidate = flatten_from(&next.model, &next.stiffness, &start, flatten_options)?;
+        let candidate = reflatten(&next, &copied_vertex, flattened, flatten_options, progress)?;
         if !is_better(&candidate.stats.accuracy, &flattened.stats.accuracy) {
             continue;
         }
@@ -388,6 +438,32 @@ fn best_cut(
         }
     }
     Ok(best.map(|(_, improvement)| improvement))
+}
+
+/// The pattern of a cut model, warm-started from the pattern before the cut (each copy starts
+/// where its original was). When the warm start cannot move (the solver's orientation guard
+/// blocks it), a cold flattening is tried too and the better pattern kept.
+fn reflatten(
+    next: &CutState,
+    copied_vertex: &[u32],
+    before: &Flattened,
+    flatten_options: &FlattenOptions,
+    progress: &dyn Progress,
+) -> Result<Flattened, CutError> {
+    let start: Vec<DVec2> = copied_vertex
+        .iter()
+        .map(|&v| before.positions[v as usize])
+        .collect();
+    let warm = flatten_from(&next.model, &next.stiffness, &start, flatten_options)?;
+    if warm.stats.stop_reason != StopReason::OrientationBlocked {
+        return Ok(warm);
+    }
+    let cold = flatten(&next.model, &next.stiffness, flatten_options, progress)?;
+    Ok(if is_better(&cold.stats.accuracy, &warm.stats.accuracy) {
+        cold
+    } else {
+        warm
+    })
 }
 
 /// True if `candidate` is a better pattern than `current`: it does not overlap while `current`
