@@ -32,11 +32,16 @@ use super::paths::{Adjacency, dijkstra, path_length};
 use crate::mesh::FacetModel;
 
 /// Default number of crest lines traced per cut (from the highest local maxima).
-pub const DEFAULT_CANDIDATES: usize = 4;
+pub const DEFAULT_CANDIDATES: usize = 3;
 /// Default multiple of the mean vertex energy below which the dart branch stops.
-pub const DEFAULT_DART_FLOOR: f64 = 1.0;
-/// Lines of at least this many vertices also yield their first half as a candidate.
+pub const DEFAULT_DART_FLOOR: f64 = 0.25;
+/// Smallest distance between the starts of candidate lines, as a fraction of the part's bounding
+/// diagonal: candidates from one energy peak would all be near copies of one another.
+pub const START_SPACING: f64 = 0.1;
+/// Lines of at least this many vertices also yield their shorter prefixes as candidates.
 const PREFIX_MIN_VERTICES: usize = 4;
+/// A long line also yields its first `k / PREFIX_PARTS` for `k = 1 .. PREFIX_PARTS − 1`.
+const PREFIX_PARTS: usize = 3;
 
 /// A candidate cutting line: a simple edge path.
 #[derive(Debug, Clone, PartialEq)]
@@ -105,7 +110,7 @@ pub fn crest_lines(
     let mean = energies.iter().sum::<f64>() / energies.len().max(1) as f64;
     let floor = settings.dart_floor * mean;
     let mut lines: Vec<CrestLine> = Vec::new();
-    for &start in starts.iter().take(settings.candidates) {
+    for start in spread_out(model, &starts, settings.candidates) {
         for descent in [Descent::Slowest, Descent::Steepest] {
             let tracer = Tracer {
                 descent,
@@ -118,9 +123,16 @@ pub fn crest_lines(
             let Some(line) = tracer.crest_line(start, floor) else {
                 continue;
             };
-            let half = (line.vertices.len() >= PREFIX_MIN_VERTICES)
-                .then(|| line.prefix(model, energies, line.vertices.len().div_ceil(2)));
-            for candidate in std::iter::once(line).chain(half) {
+            let count = line.vertices.len();
+            let prefixes: Vec<CrestLine> = if count >= PREFIX_MIN_VERTICES {
+                (1..PREFIX_PARTS)
+                    .map(|part| (count * part).div_ceil(PREFIX_PARTS).max(2))
+                    .map(|length| line.prefix(model, energies, length))
+                    .collect()
+            } else {
+                Vec::new()
+            };
+            for candidate in std::iter::once(line).chain(prefixes) {
                 if !lines
                     .iter()
                     .any(|known| known.vertices == candidate.vertices)
@@ -157,6 +169,27 @@ fn local_maxima(adjacency: &Adjacency, energies: &[f64], blocked: &[bool]) -> Ve
         .collect();
     maxima.sort_by(|&a, &b| energies[b as usize].total_cmp(&energies[a as usize]));
     maxima
+}
+
+/// The first `count` of `starts` (in their order) that lie at least [`START_SPACING`] times the
+/// part's size away from every start taken before, so candidates come from different regions.
+fn spread_out(model: &FacetModel, starts: &[u32], count: usize) -> Vec<u32> {
+    let spacing = START_SPACING * model.bounding_diagonal();
+    let positions = model.positions();
+    let mut taken: Vec<u32> = Vec::with_capacity(count);
+    for &start in starts {
+        if taken.len() == count {
+            break;
+        }
+        let position = positions[start as usize];
+        if taken
+            .iter()
+            .all(|&known| positions[known as usize].distance(position) >= spacing)
+        {
+            taken.push(start);
+        }
+    }
+    taken
 }
 
 /// The data one trace needs.
