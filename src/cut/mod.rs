@@ -6,9 +6,12 @@
 //! 1. user seams ([`CutOptions::seams`]) are laid on the mesh and cut;
 //! 2. automatic seams ([`seam`]) open the surface to a disk: one per ring loop, a cut graph for a
 //!    closed surface;
-//! 3. the part is flattened; while it is over tolerance and cuts are left, the crest lines of its
-//!    energy map ([`crest`]) are tried best score first, and the first whose cut lowers the error
-//!    (`max(E_S, E_C)`, an overlapping pattern counting as worse than any other) is kept;
+//! 3. the part is flattened; while it is over tolerance and cuts are left, every candidate line of
+//!    its energy map ([`crest`]) is cut and flattened, warm-started from the current pattern;
+//!    among those that lower the error (`max(E_S, E_C)`, an overlapping pattern counting as worse
+//!    than any other) the shortest that meets the tolerance is kept, or else the one of largest
+//!    measured gain `ΔE / L^LENGTH_EXPONENT`; a line from the inner end of an earlier cut extends
+//!    that cut;
 //! 4. the cut model, its pattern and every cut with its figures before and after come back.
 //!
 //! Cuts never run along or across a fold line (no vertex of a fold-line edge is crossed) nor
