@@ -5,10 +5,10 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-use crate::cut::{Cut, CutOptions, CutStop, Seam, cut_and_flatten};
+use crate::cut::{Cut, CutConstraints, CutOptions, CutStop, Seam, cut_and_flatten};
 use crate::error::Error;
 use crate::flatten::{FlattenOptions, Flattened, Stiffness};
-use crate::ingest::read_mesh;
+use crate::ingest::{read_cut_sidecar, read_mesh};
 use crate::mesh::{FacetModel, validate};
 use crate::progress::Progress;
 use crate::units::Units;
@@ -39,6 +39,8 @@ pub struct PartJob {
     pub model: FacetModel,
     /// Per-edge stiffness factors.
     pub stiffness: Stiffness,
+    /// User seams and no-cut regions (from the part's sidecar file).
+    pub constraints: CutConstraints,
     /// Repairs made to the input, as messages.
     pub warnings: Vec<String>,
 }
@@ -67,6 +69,7 @@ pub fn load_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Err
     })?;
     let warnings: Vec<String> = validated.warnings.iter().map(ToString::to_string).collect();
     let several = validated.components.len() > 1;
+    let constraints = read_cut_sidecar(path, validated.components.len())?.unwrap_or_default();
     Ok(validated
         .components
         .into_iter()
@@ -81,6 +84,7 @@ pub fn load_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Err
             units: input.units,
             quantity: 1,
             stiffness: Stiffness::uniform(&model),
+            constraints: constraints.clone(),
             model,
             warnings: warnings.clone(),
         })
@@ -97,6 +101,7 @@ pub fn flatten_part(
     let result = cut_and_flatten(
         &job.model,
         &job.stiffness,
+        &job.constraints,
         &options.flatten,
         &options.cut,
         progress,

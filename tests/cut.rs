@@ -4,7 +4,10 @@
 
 use std::path::Path;
 
-use flatcut::cut::{CutError, CutOptions, CutResult, CutStop, SeamKind, cut_and_flatten};
+use flatcut::cut::{
+    CutConstraints, CutError, CutOptions, CutResult, CutStop, NoCutRegion, SeamKind,
+    cut_and_flatten,
+};
 use flatcut::flatten::{Accuracy, FlattenOptions, Stiffness};
 use flatcut::ingest::read_mesh;
 use flatcut::mesh::{FacetModel, TriangleSoup, validate};
@@ -27,9 +30,18 @@ fn sample(name: &str) -> FacetModel {
 }
 
 fn run(model: &FacetModel, options: &CutOptions) -> Result<CutResult, CutError> {
+    run_constrained(model, &CutConstraints::default(), options)
+}
+
+fn run_constrained(
+    model: &FacetModel,
+    constraints: &CutConstraints,
+    options: &CutOptions,
+) -> Result<CutResult, CutError> {
     cut_and_flatten(
         model,
         &Stiffness::uniform(model),
+        constraints,
         &FlattenOptions::default(),
         options,
         &NoProgress,
@@ -216,15 +228,39 @@ fn cutting_is_deterministic() {
 #[test]
 fn cuts_avoid_no_cut_regions() {
     let model = sample("hemisphere.obj");
-    let everywhere = flatcut::cut::NoCutRegion {
+    let everywhere = NoCutRegion {
         center: [0.0, 0.0, 0.0],
         radius: 1e6,
     };
-    let options = CutOptions {
+    let constraints = CutConstraints {
         no_cut_regions: vec![everywhere],
-        ..CutOptions::default()
+        ..CutConstraints::default()
     };
-    let result = run(&model, &options).expect("flattens");
+    let result = run_constrained(&model, &constraints, &CutOptions::default()).expect("flattens");
     assert!(result.cuts.is_empty());
     assert_eq!(result.stop, CutStop::NoBetterCut);
+}
+
+#[test]
+fn a_user_seam_opens_a_ring_where_the_user_says() {
+    let model = sample("cone_ring.obj");
+    // A straight line on the cone from the large rim (radius 100 at z = 0) to the small one
+    // (radius 50 at z = 100), at the angle of -90 degrees.
+    let seam: Vec<[f64; 3]> = (0..=4)
+        .map(|i| {
+            let t = i as f64 / 4.0;
+            [0.0, -(100.0 - 50.0 * t), 100.0 * t]
+        })
+        .collect();
+    let constraints = CutConstraints {
+        seams: vec![seam],
+        ..CutConstraints::default()
+    };
+    let result = run_constrained(&model, &constraints, &CutOptions::default()).expect("flattens");
+    assert_eq!(result.seams.len(), 1);
+    assert_eq!(result.seams[0].kind, SeamKind::User);
+    for point in &result.seams[0].points {
+        assert!(point.y < 0.0, "the seam stays on the user's side: {point}");
+    }
+    assert!(error(&result.flattened.stats.accuracy) < ISOMETRIC);
 }

@@ -3,7 +3,7 @@
 //! the cut budget is spent.
 //!
 //! [`cut_and_flatten`] is the one-shot entry point:
-//! 1. user seams ([`CutOptions::seams`]) are laid on the mesh and cut;
+//! 1. user seams ([`CutConstraints::seams`]) are laid on the mesh and cut;
 //! 2. automatic seams ([`seam`]) open the surface to a disk: one per ring loop, a cut graph for a
 //!    closed surface;
 //! 3. the part is flattened; while it is over tolerance and cuts are left, every candidate line of
@@ -25,7 +25,7 @@ pub mod seam;
 pub mod split;
 
 use glam::{DVec2, DVec3};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 pub use errors::CutError;
 pub use seam::SeamKind;
@@ -64,9 +64,18 @@ pub struct CutOptions {
     /// A dart stops where the energy falls below this multiple of the mean vertex energy;
     /// default [`DEFAULT_DART_FLOOR`].
     pub dart_floor: f64,
+}
+
+/// What the user says about where a part is cut: read from the part's sidecar file (see
+/// [`crate::ingest::read_cut_sidecar`]), empty by default.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CutConstraints {
     /// User seams: 3D polylines in model units, cut before anything else.
+    #[serde(default)]
     pub seams: Vec<Vec<[f64; 3]>>,
     /// Regions no cut or automatic seam may pass through.
+    #[serde(default)]
     pub no_cut_regions: Vec<NoCutRegion>,
 }
 
@@ -76,14 +85,13 @@ impl Default for CutOptions {
             max_cuts: DEFAULT_MAX_CUTS,
             candidates: DEFAULT_CANDIDATES,
             dart_floor: DEFAULT_DART_FLOOR,
-            seams: Vec::new(),
-            no_cut_regions: Vec::new(),
         }
     }
 }
 
 /// A ball of the part where nothing may be cut.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct NoCutRegion {
     /// Centre, model units.
     pub center: [f64; 3],
@@ -179,6 +187,7 @@ impl CutResult {
 pub fn cut_and_flatten(
     model: &FacetModel,
     stiffness: &Stiffness,
+    constraints: &CutConstraints,
     flatten_options: &FlattenOptions,
     options: &CutOptions,
     progress: &dyn Progress,
@@ -189,8 +198,8 @@ pub fn cut_and_flatten(
         original_vertex: (0..model.vertex_count() as u32).collect(),
     };
     let mut seams = Vec::new();
-    lay_user_seams(&mut state, options, &mut seams)?;
-    open_to_disk(&mut state, options, &mut seams)?;
+    lay_user_seams(&mut state, constraints, &mut seams)?;
+    open_to_disk(&mut state, constraints, &mut seams)?;
     let mut flattened = flatten(&state.model, &state.stiffness, flatten_options, progress)?;
     let mut cuts: Vec<Cut> = Vec::new();
     let mut tips: Vec<u32> = Vec::new();
@@ -204,9 +213,11 @@ pub fn cut_and_flatten(
         if steps >= step_budget || (!new_cut_allowed && tips.is_empty()) {
             break CutStop::CutBudget;
         }
+        let blocked = state.blocked(&constraints.no_cut_regions);
         let starts = Starts {
             tips: &tips,
             new_cut_allowed,
+            blocked: &blocked,
         };
         let Some(improvement) = best_cut(
             &state,
@@ -318,13 +329,13 @@ impl CutState {
 /// Cuts the user's seams, in order.
 fn lay_user_seams(
     state: &mut CutState,
-    options: &CutOptions,
+    constraints: &CutConstraints,
     seams: &mut Vec<Seam>,
 ) -> Result<(), CutError> {
-    for (index, points) in options.seams.iter().enumerate() {
+    for (index, points) in constraints.seams.iter().enumerate() {
         let points: Vec<DVec3> = points.iter().map(|&p| DVec3::from(p)).collect();
         let adjacency = Adjacency::new(&state.model);
-        let blocked = state.blocked(&options.no_cut_regions);
+        let blocked = state.blocked(&constraints.no_cut_regions);
         let path = seam::lay_polyline(&state.model, &adjacency, &blocked, &points, index)?;
         (*state, _) = state.cut_along(&path).map_err(|error| match error {
             CutError::Disconnects => CutError::SeamNotLaid {
@@ -342,14 +353,14 @@ fn lay_user_seams(
 /// Cuts automatic seams until the model is a disk.
 fn open_to_disk(
     state: &mut CutState,
-    options: &CutOptions,
+    constraints: &CutConstraints,
     seams: &mut Vec<Seam>,
 ) -> Result<(), CutError> {
     let was_closed = state.model.is_closed();
     // Every seam removes a boundary loop, a handle or a corner, so this bounds the count.
     for _ in 0..=state.model.vertex_count() {
         let adjacency = Adjacency::new(&state.model);
-        let blocked = state.blocked(&options.no_cut_regions);
+        let blocked = state.blocked(&constraints.no_cut_regions);
         let Some((kind, path)) = seam::next_seam(&state.model, &adjacency, &blocked, was_closed)?
         else {
             return Ok(());
@@ -383,11 +394,12 @@ struct Improvement {
     line: CrestLine,
 }
 
-/// Where the next cut step may start: at the inner end of an existing cut (an extension), and
-/// elsewhere only while new cuts are allowed.
+/// Where the next cut step may go: it may start at the inner end of an existing cut (an
+/// extension), elsewhere only while new cuts are allowed, and never pass a blocked vertex.
 struct Starts<'a> {
     tips: &'a [u32],
     new_cut_allowed: bool,
+    blocked: &'a [bool],
 }
 
 /// Cuts along each crest line of the current pattern in turn, flattens (warm-started from the
@@ -408,9 +420,8 @@ fn best_cut(
     );
     let energies = energy_field::vertex_energies(&springs, &flattened.positions);
     let adjacency = Adjacency::new(&state.model);
-    let blocked = state.blocked(&options.no_cut_regions);
     let settings = CrestSettings {
-        blocked: &blocked,
+        blocked: starts.blocked,
         candidates: options.candidates,
         dart_floor: options.dart_floor,
     };
