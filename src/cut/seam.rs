@@ -284,3 +284,63 @@ fn nearest_vertex(model: &FacetModel, point: DVec3) -> u32 {
         })
         .map_or(0, |(v, _)| v as u32)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{TriangleSoup, validate};
+
+    /// A band of `segments` quads around the z axis between two circles: `(radius, z)` inner and
+    /// outer. A flat washer when both z are equal, a cylinder when both radii are.
+    fn band(inner: (f64, f64), outer: (f64, f64), segments: u32) -> FacetModel {
+        let mut positions = Vec::new();
+        for &(radius, z) in &[inner, outer] {
+            for i in 0..segments {
+                let angle = TAU * i as f64 / segments as f64;
+                positions.push(DVec3::new(radius * angle.cos(), radius * angle.sin(), z));
+            }
+        }
+        let mut triangles = Vec::new();
+        for i in 0..segments {
+            let next = (i + 1) % segments;
+            let (a, b, c, d) = (i, next, segments + next, segments + i);
+            triangles.push([a, d, c]);
+            triangles.push([a, c, b]);
+        }
+        let soup = TriangleSoup::new(positions, triangles);
+        validate(&soup).expect("valid band").components.remove(0)
+    }
+
+    #[test]
+    fn a_flat_washer_keeps_its_hole() {
+        let washer = band((50.0, 0.0), (100.0, 0.0), 24);
+        assert_eq!(genus(&washer), 0);
+        assert_eq!(loop_needing_seam(&washer), None);
+    }
+
+    #[test]
+    fn a_cylinder_ring_gets_one_seam_across() {
+        let ring = band((50.0, 0.0), (50.0, 80.0), 24);
+        let adjacency = Adjacency::new(&ring);
+        let blocked = vec![false; ring.vertex_count()];
+        let (kind, path) = next_seam(&ring, &adjacency, &blocked, false)
+            .expect("no error")
+            .expect("a seam is needed");
+        assert_eq!(kind, SeamKind::Ring);
+        // One straight edge from one rim to the other.
+        assert_eq!(path.len(), 2);
+        let [a, b] = [path[0], path[1]].map(|v| ring.positions()[v as usize]);
+        assert!((a.distance(b) - 80.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_seam_avoids_blocked_vertices() {
+        let ring = band((50.0, 0.0), (50.0, 80.0), 24);
+        let adjacency = Adjacency::new(&ring);
+        let blocked = vec![true; ring.vertex_count()];
+        assert_eq!(
+            next_seam(&ring, &adjacency, &blocked, false),
+            Err(CutError::NoSeam)
+        );
+    }
+}
