@@ -31,7 +31,8 @@ pub use errors::CutError;
 pub use seam::SeamKind;
 
 use crate::flatten::{
-    Accuracy, FlattenOptions, Flattened, SpringSystem, Stiffness, StopReason, flatten, flatten_from,
+    Accuracy, FastOptions, FlattenOptions, Flattened, SpringSystem, Stiffness, StopReason, flatten,
+    flatten_from,
 };
 use crate::mesh::{FacetModel, NONE};
 use crate::progress::Progress;
@@ -46,6 +47,10 @@ pub const DEFAULT_MAX_CUTS: usize = 8;
 /// returns diminish along a cut, and spends its budget on millimetre extensions; with 1/2 a cut
 /// three times as long wins if it releases more than `√3 ≈ 1.7` times the energy.
 pub const LENGTH_EXPONENT: f64 = 0.5;
+/// Candidate cuts are flattened with the fast solver's convergence threshold raised to this (a
+/// fraction of the mean rest length; see [`FastOptions::step_tolerance`]): enough to rank them,
+/// at a fraction of the cost. The chosen cut is then flattened to the full threshold.
+pub const TRIAL_STEP_TOLERANCE: f64 = 1e-4;
 /// Extensions of a cut from its inner end allowed per cut, on average: the loop makes at most
 /// `max_cuts × (1 + EXTENSIONS_PER_CUT)` cut steps. An extension lengthens a cut and does not
 /// count as a new one.
@@ -425,6 +430,16 @@ fn best_cut(
         candidates: options.candidates,
         dart_floor: options.dart_floor,
     };
+    let trial_options = FlattenOptions {
+        fast: FastOptions {
+            step_tolerance: flatten_options
+                .fast
+                .step_tolerance
+                .max(TRIAL_STEP_TOLERANCE),
+            ..flatten_options.fast
+        },
+        ..flatten_options.clone()
+    };
     let mut best: Option<(f64, Improvement)> = None;
     for line in crest_lines(&state.model, &adjacency, &energies, &settings) {
         if !starts.new_cut_allowed && !starts.tips.contains(&line.vertices[0]) {
@@ -439,7 +454,7 @@ fn best_cut(
             }
             Err(other) => return Err(other),
         };
-        let candidate = reflatten(&next, &copied_vertex, flattened, flatten_options, progress)?;
+        let candidate = reflatten(&next, &copied_vertex, flattened, &trial_options, progress)?;
         if !is_better(&candidate.stats.accuracy, &flattened.stats.accuracy) {
             continue;
         }
@@ -458,7 +473,23 @@ fn best_cut(
             best = Some((gain, improvement));
         }
     }
-    Ok(best.map(|(_, improvement)| improvement))
+    let Some((_, mut improvement)) = best else {
+        return Ok(None);
+    };
+    let refined = flatten_from(
+        &improvement.state.model,
+        &improvement.state.stiffness,
+        &improvement.flattened.positions,
+        flatten_options,
+    )?;
+    if is_better(
+        &refined.stats.accuracy,
+        &improvement.flattened.stats.accuracy,
+    ) || refined.stats.accuracy.within(flatten_options.tolerance)
+    {
+        improvement.flattened = refined;
+    }
+    Ok(Some(improvement))
 }
 
 /// The pattern of a cut model, warm-started from the pattern before the cut (each copy starts
