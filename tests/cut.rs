@@ -264,3 +264,56 @@ fn a_user_seam_opens_a_ring_where_the_user_says() {
     }
     assert!(error(&result.flattened.stats.accuracy) < ISOMETRIC);
 }
+
+#[test]
+fn cuts_never_touch_a_fold_line() {
+    let plain = sample("hemisphere.obj");
+    // A fold line around the dome along the ring of vertices at z = 50: no cut may cross it.
+    let on_fold = |p: DVec3| (p.z - 50.0).abs() < 1e-6;
+    let fold_edges = plain
+        .edges()
+        .iter()
+        .filter(|&&[a, b]| {
+            on_fold(plain.positions()[a as usize]) && on_fold(plain.positions()[b as usize])
+        })
+        .map(|&vertices| flatcut::mesh::FoldEdge {
+            vertices,
+            fold_line: 0,
+        })
+        .collect::<Vec<_>>();
+    assert!(fold_edges.len() > 5, "the fold line has edges");
+    let soup = TriangleSoup {
+        fold_edges,
+        ..TriangleSoup::new(plain.positions().to_vec(), plain.triangles().to_vec())
+    };
+    let model = validate(&soup).expect("valid").components.remove(0);
+    let fold_points: Vec<DVec3> = model
+        .edges()
+        .iter()
+        .zip(model.edge_fold_lines())
+        .filter(|&(_, &line)| line != flatcut::mesh::NONE)
+        .flat_map(|(&[a, b], _)| [a, b])
+        .map(|v| model.positions()[v as usize])
+        .collect();
+    let options = CutOptions {
+        max_cuts: 3,
+        ..CutOptions::default()
+    };
+    let result = run(&model, &options).expect("flattens");
+    assert!(!result.cuts.is_empty());
+    for cut in &result.cuts {
+        for point in &cut.points {
+            assert!(
+                fold_points.iter().all(|fold| fold.distance(*point) > 1e-9),
+                "cut point {point} is on the fold line"
+            );
+        }
+    }
+    let folds_after = result
+        .model
+        .edge_fold_lines()
+        .iter()
+        .filter(|&&line| line != flatcut::mesh::NONE)
+        .count();
+    assert_eq!(folds_after, fold_points.len() / 2, "fold edges are kept");
+}
