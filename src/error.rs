@@ -32,14 +32,14 @@ pub enum Error {
         source: FlattenError,
     },
     /// A part could not be opened by seams, cut or flattened after cutting.
-    #[error("{path}: part '{part}': {source}")]
+    #[error("{path}: part '{part}': {reason}")]
     Cut {
         /// The input file.
         path: PathBuf,
         /// The part's name.
         part: String,
-        /// Why.
-        source: CutError,
+        /// Why (in the message, not repeated as a source).
+        reason: CutError,
     },
     /// An output file could not be written.
     #[error("{path}: cannot write: {source}")]

@@ -106,10 +106,10 @@ pub fn flatten_part(
         &options.cut,
         progress,
     )
-    .map_err(|source| Error::Cut {
+    .map_err(|reason| Error::Cut {
         path: job.source.clone(),
         part: job.name.clone(),
-        source,
+        reason,
     })?;
     job.model = result.model;
     job.stiffness = result.stiffness;

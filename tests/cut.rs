@@ -317,3 +317,17 @@ fn cuts_never_touch_a_fold_line() {
         .count();
     assert_eq!(folds_after, fold_points.len() / 2, "fold edges are kept");
 }
+
+#[test]
+fn a_closed_tetrahedron_opens_to_its_net() {
+    let positions = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+    let triangles = vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+    let soup = TriangleSoup::new(positions, triangles);
+    let model = validate(&soup).expect("valid").components.remove(0);
+    let result = run(&model, &CutOptions::default()).expect("flattens");
+    assert_eq!(result.model.boundary_loops().len(), 1);
+    assert_eq!(result.model.triangle_count(), 4);
+    let accuracy = result.flattened.stats.accuracy;
+    assert!(error(&accuracy) < ISOMETRIC, "{accuracy:?}");
+    assert!(!accuracy.overlap);
+}

@@ -24,6 +24,9 @@ pub enum CutError {
     /// The cut would separate the part into pieces.
     #[error("the cut would separate the part into pieces")]
     Disconnects,
+    /// The cut duplicates no vertex, so it opens nothing (a single edge inside the surface).
+    #[error("the cut opens nothing: a slit of one interior edge cannot be represented")]
+    OpensNothing,
     /// Rebuilding the cut model failed (an internal inconsistency).
     #[error("the cut model is invalid: {0}")]
     InvalidResult(String),

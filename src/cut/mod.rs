@@ -448,7 +448,10 @@ fn best_cut(
         let (next, copied_vertex) = match state.cut_along(&line.vertices) {
             Ok(cut) => cut,
             Err(
-                CutError::Disconnects | CutError::BoundaryEdge { .. } | CutError::FoldLine { .. },
+                CutError::Disconnects
+                | CutError::OpensNothing
+                | CutError::BoundaryEdge { .. }
+                | CutError::FoldLine { .. },
             ) => {
                 continue;
             }

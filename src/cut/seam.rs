@@ -13,7 +13,8 @@
 //!   turning of a hole in a flat sheet; the outer loop is the one that turns most.
 //! - A closed surface without handles (genus 0): the shortest path between two far-apart
 //!   vertices (the vertex farthest from vertex 0, and the vertex farthest from that) opens it to a
-//!   disk with a slit. Corners where the surface concentrates its curvature (angle deficit at least
+//!   disk with a slit (a path of one edge goes on by one more edge: a one-edge slit duplicates no
+//!   vertex and opens nothing). Corners where the surface concentrates its curvature (angle deficit at least
 //!   [`CONE_ANGLE_DEFICIT`], like the corners of a box) are preferred as those two ends, and every
 //!   further such corner is then joined to the opening by its shortest path, so the seams form a
 //!   tree through the corners (a cut graph).
@@ -181,10 +182,27 @@ fn closed_surface_seam(
     let first = farthest_of(model, adjacency, start, &candidates, &passable);
     let second = farthest_of(model, adjacency, first, &candidates, &passable);
     let (paths, _) = dijkstra(model, adjacency, &[first], passable, |v| v == second);
-    match paths.path_to(second) {
-        Some(path) if path.len() >= 2 => Ok((SeamKind::Closed, path)),
-        _ => Err(CutError::NoSeam),
+    let mut path = paths.path_to(second).ok_or(CutError::NoSeam)?;
+    if path.len() == 2 {
+        // A slit of one edge cannot open a closed mesh (no vertex is duplicated): go on to the
+        // neighbour of largest deficit.
+        let next = adjacency
+            .neighbours(second)
+            .iter()
+            .map(|&(w, _)| w)
+            .filter(|&w| w != first && !blocked[w as usize])
+            .max_by(|&a, &b| {
+                deficits[a as usize]
+                    .total_cmp(&deficits[b as usize])
+                    .then(b.cmp(&a))
+            })
+            .ok_or(CutError::NoSeam)?;
+        path.push(next);
     }
+    if path.len() < 3 {
+        return Err(CutError::NoSeam);
+    }
+    Ok((SeamKind::Closed, path))
 }
 
 /// The candidate farthest (along edges) from `start`; ties go to the lower index.

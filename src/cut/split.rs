@@ -14,7 +14,9 @@
 //! [`validate`], so every facet model invariant holds; rest lengths, face sources and fold lines
 //! are carried over, so `E_S` and `E_C` of the cut model measure the same surface.
 //!
-//! A cut that would separate the part into pieces is refused ([`CutError::Disconnects`]).
+//! A cut that would separate the part into pieces is refused ([`CutError::Disconnects`]), and so
+//! is one that duplicates no vertex ([`CutError::OpensNothing`]: a single interior edge, whose two
+//! sides cannot be told apart in an indexed mesh).
 
 use crate::mesh::{FacetModel, FoldEdge, NONE, TriangleSoup, validate};
 
@@ -52,6 +54,9 @@ pub fn split_along_edges(model: &FacetModel, cut_edges: &[usize]) -> Result<Spli
                 }
             }
         }
+    }
+    if original_vertex.len() == model.vertex_count() {
+        return Err(CutError::OpensNothing);
     }
     let positions = original_vertex
         .iter()
