@@ -1,6 +1,7 @@
 //! Cutting (paper §6.3) end to end: developable parts get no cut, a ring gets one seam, a closed
-//! box opens along a cut graph to its exact net, a torus is refused, a dome gets crest-line cuts
-//! that lower its error, and the result is deterministic.
+//! box opens along a cut graph to its exact net, a torus opens to a disk along its tree-cotree
+//! cut graph (and is refused with a hole in it), a dome gets crest-line cuts that lower its error,
+//! and the result is deterministic.
 
 use std::path::Path;
 
@@ -174,8 +175,35 @@ fn a_closed_box_opens_along_its_corners_to_an_exact_net() {
 }
 
 #[test]
-fn a_torus_is_refused_with_its_genus() {
-    let error = run(&torus(12), &CutOptions::default()).expect_err("a torus has a handle");
+fn a_closed_torus_opens_along_its_cut_graph() {
+    let model = torus(16);
+    let options = CutOptions {
+        max_cuts: 0,
+        ..CutOptions::default()
+    };
+    let result = run(&model, &options).expect("flattens");
+    assert!(
+        result
+            .seams
+            .iter()
+            .all(|seam| seam.kind == SeamKind::Handle)
+    );
+    assert!(result.seams.len() >= 2, "two loops at least");
+    assert_eq!(result.model.boundary_loops().len(), 1);
+    let euler = result.model.vertex_count() as i64 - result.model.edges().len() as i64
+        + result.model.triangle_count() as i64;
+    assert_eq!(euler, 1, "a disk");
+    assert!(error(&result.flattened.stats.accuracy).is_finite());
+}
+
+#[test]
+fn handles_with_a_boundary_are_refused_with_their_genus() {
+    let closed = torus(12);
+    let mut triangles = closed.triangles().to_vec();
+    triangles.pop();
+    let soup = TriangleSoup::new(closed.positions().to_vec(), triangles);
+    let holed = validate(&soup).expect("valid").components.remove(0);
+    let error = run(&holed, &CutOptions::default()).expect_err("a torus has a handle");
     assert_eq!(error, CutError::HigherGenus { genus: 1 });
 }
 

@@ -4,8 +4,8 @@
 //!
 //! [`cut_and_flatten`] is the one-shot entry point:
 //! 1. user seams ([`CutConstraints::seams`]) are laid on the mesh and cut;
-//! 2. automatic seams ([`seam`]) open the surface to a disk: one per ring loop, a cut graph for a
-//!    closed surface;
+//! 2. automatic seams ([`seam`]) open the surface to a disk: one per ring loop, a tree through the
+//!    corners of a closed surface, a tree–cotree cut graph ([`cut_graph`]) first if it has handles;
 //! 3. the part is flattened; while it is over tolerance and cuts are left, every candidate line of
 //!    its energy map ([`crest`]) is cut and flattened, warm-started from the current pattern;
 //!    among those that lower the error (`max(E_S, E_C)`, an overlapping pattern counting as worse
@@ -18,6 +18,7 @@
 //! through a no-cut region; a developable part within tolerance gets no cut.
 
 pub mod crest;
+pub mod cut_graph;
 pub mod energy_field;
 mod errors;
 pub mod paths;
@@ -291,7 +292,13 @@ impl CutState {
         let edges = path_edges(&self.model, path).ok_or_else(|| {
             CutError::InvalidResult("a cut path skips from a vertex to a non-neighbour".into())
         })?;
-        let split = split_along_edges(&self.model, &edges)?;
+        self.cut_edges(&edges)
+    }
+
+    /// The state after cutting along a set of edges, and for each of its vertices the vertex of
+    /// `self` it copies.
+    fn cut_edges(&self, edges: &[usize]) -> Result<(CutState, Vec<u32>), CutError> {
+        let split = split_along_edges(&self.model, edges)?;
         let factors = split
             .original_edge
             .iter()
@@ -362,6 +369,13 @@ fn open_to_disk(
     seams: &mut Vec<Seam>,
 ) -> Result<(), CutError> {
     let was_closed = state.model.is_closed();
+    if was_closed && seam::genus(&state.model) > 0 {
+        let graph = cut_graph::tree_cotree_cut_graph(&state.model, &Adjacency::new(&state.model));
+        (*state, _) = state.cut_edges(&graph.edges)?;
+        for chain in &graph.chains {
+            seams.push(make_seam(&state.model, SeamKind::Handle, chain));
+        }
+    }
     // Every seam removes a boundary loop, a handle or a corner, so this bounds the count.
     for _ in 0..=state.model.vertex_count() {
         let adjacency = Adjacency::new(&state.model);

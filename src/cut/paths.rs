@@ -71,6 +71,12 @@ pub struct ShortestPaths {
 }
 
 impl ShortestPaths {
+    /// The vertex before `v` on its shortest path, or `None` for a source or an unreached vertex.
+    pub fn predecessor(&self, v: u32) -> Option<u32> {
+        let parent = self.predecessors[v as usize];
+        (parent != u32::MAX).then_some(parent)
+    }
+
     /// The path from the nearest source to `target` (source first), or `None` if unreached.
     pub fn path_to(&self, target: u32) -> Option<Vec<u32>> {
         if !self.distances[target as usize].is_finite() {

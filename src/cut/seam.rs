@@ -18,7 +18,9 @@
 //!   [`CONE_ANGLE_DEFICIT`], like the corners of a box) are preferred as those two ends, and every
 //!   further such corner is then joined to the opening by its shortest path, so the seams form a
 //!   tree through the corners (a cut graph).
-//! - Handles (genus > 0) are refused with [`CutError::HigherGenus`].
+//! - Handles (genus > 0) of a closed surface are cut first by the caller along the tree–cotree
+//!   cut graph ([`super::cut_graph`]); a surface with both handles and a boundary is refused with
+//!   [`CutError::HigherGenus`].
 //!
 //! User seams ([`lay_polyline`]): each 3D point snaps to its nearest vertex and consecutive
 //! vertices are joined by shortest edge paths through interior, unblocked vertices.
@@ -51,6 +53,8 @@ pub enum SeamKind {
     Closed,
     /// Joins a corner of a closed surface to the seams made before.
     Corner,
+    /// Part of the cut graph that opens the handles of a closed surface.
+    Handle,
 }
 
 /// The next automatic seam to cut, or `None` when the model is a disk (one boundary loop, no
