@@ -36,7 +36,7 @@ use crate::flatten::{
     flatten_from,
 };
 use crate::mesh::{FacetModel, NONE};
-use crate::progress::Progress;
+use crate::progress::{NoProgress, Progress};
 use crest::{CrestLine, CrestSettings, DEFAULT_CANDIDATES, DEFAULT_DART_FLOOR, crest_lines};
 use paths::{Adjacency, path_edges, path_length};
 use split::split_along_edges;
@@ -210,6 +210,7 @@ pub fn cut_and_flatten(
     let mut cuts: Vec<Cut> = Vec::new();
     let mut tips: Vec<u32> = Vec::new();
     let step_budget = options.max_cuts * (1 + EXTENSIONS_PER_CUT);
+    let mut reporting = false;
     let mut steps = 0;
     let stop = loop {
         if flattened.stats.accuracy.within(flatten_options.tolerance) {
@@ -225,14 +226,11 @@ pub fn cut_and_flatten(
             new_cut_allowed,
             blocked: &blocked,
         };
-        let Some(improvement) = best_cut(
-            &state,
-            &flattened,
-            flatten_options,
-            options,
-            &starts,
-            progress,
-        )?
+        if !reporting {
+            progress.start("cut", step_budget as u64);
+            reporting = true;
+        }
+        let Some(improvement) = best_cut(&state, &flattened, flatten_options, options, &starts)?
         else {
             break if new_cut_allowed {
                 CutStop::NoBetterCut
@@ -241,6 +239,7 @@ pub fn cut_and_flatten(
             };
         };
         steps += 1;
+        progress.advance(steps as u64);
         let line = &improvement.line;
         let points = polyline(&state.model, &line.vertices);
         let tip = line.vertices[line.vertices.len() - 1];
@@ -266,6 +265,9 @@ pub fn cut_and_flatten(
         state = improvement.state;
         flattened = improvement.flattened;
     };
+    if reporting {
+        progress.finish();
+    }
     Ok(CutResult {
         model: state.model,
         stiffness: state.stiffness,
@@ -430,7 +432,6 @@ fn best_cut(
     flatten_options: &FlattenOptions,
     options: &CutOptions,
     starts: &Starts<'_>,
-    progress: &dyn Progress,
 ) -> Result<Option<Improvement>, CutError> {
     let springs = SpringSystem::new(
         &state.model,
@@ -471,7 +472,7 @@ fn best_cut(
             }
             Err(other) => return Err(other),
         };
-        let candidate = reflatten(&next, &copied_vertex, flattened, &trial_options, progress)?;
+        let candidate = reflatten(&next, &copied_vertex, flattened, &trial_options)?;
         if !is_better(&candidate.stats.accuracy, &flattened.stats.accuracy) {
             continue;
         }
@@ -517,7 +518,6 @@ fn reflatten(
     copied_vertex: &[u32],
     before: &Flattened,
     flatten_options: &FlattenOptions,
-    progress: &dyn Progress,
 ) -> Result<Flattened, CutError> {
     let start: Vec<DVec2> = copied_vertex
         .iter()
@@ -527,7 +527,7 @@ fn reflatten(
     if warm.stats.stop_reason != StopReason::OrientationBlocked {
         return Ok(warm);
     }
-    let cold = flatten(&next.model, &next.stiffness, flatten_options, progress)?;
+    let cold = flatten(&next.model, &next.stiffness, flatten_options, &NoProgress)?;
     Ok(if is_better(&cold.stats.accuracy, &warm.stats.accuracy) {
         cold
     } else {
