@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+use crate::cut::CutError;
 use crate::export::ExportError;
 use crate::export::energy_png::EnergyPngError;
 use crate::flatten::FlattenError;
@@ -31,6 +32,16 @@ pub enum Error {
         part: String,
         /// Why.
         source: FlattenError,
+    },
+    /// A part could not be opened by seams, cut or flattened after cutting.
+    #[error("{path}: part '{part}': {reason}")]
+    Cut {
+        /// The input file.
+        path: PathBuf,
+        /// The part's name.
+        part: String,
+        /// Why (in the message, not repeated as a source).
+        reason: CutError,
     },
     /// An output file could not be written.
     #[error("{path}: cannot write: {source}")]

@@ -7,6 +7,7 @@
 
 #![warn(missing_docs)]
 
+pub mod cut;
 pub mod error;
 pub mod export;
 pub mod flatten;

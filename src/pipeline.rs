@@ -5,9 +5,10 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
+use crate::cut::{Cut, CutConstraints, CutOptions, CutStop, Seam, cut_and_flatten};
 use crate::error::Error;
-use crate::flatten::{FlattenOptions, Flattened, Stiffness, flatten};
-use crate::ingest::read_mesh;
+use crate::flatten::{FlattenOptions, Flattened, Stiffness};
+use crate::ingest::{read_cut_sidecar, read_mesh};
 use crate::mesh::{FacetModel, validate};
 use crate::progress::Progress;
 use crate::units::Units;
@@ -19,6 +20,8 @@ pub struct RunOptions {
     pub units: Units,
     /// Flattening options.
     pub flatten: FlattenOptions,
+    /// Cutting options (seams, crest-line cuts).
+    pub cut: CutOptions,
 }
 
 /// One part ready to flatten: a connected facet model with its stiffness map.
@@ -36,6 +39,8 @@ pub struct PartJob {
     pub model: FacetModel,
     /// Per-edge stiffness factors.
     pub stiffness: Stiffness,
+    /// User seams and no-cut regions (from the part's sidecar file).
+    pub constraints: CutConstraints,
     /// Repairs made to the input, as messages.
     pub warnings: Vec<String>,
 }
@@ -43,10 +48,16 @@ pub struct PartJob {
 /// A flattened part.
 #[derive(Debug, Clone)]
 pub struct PartResult {
-    /// What was flattened.
+    /// What was flattened: its model and stiffness are those after seams and cuts.
     pub job: PartJob,
-    /// The pattern and its figures.
+    /// The pattern of the cut model and its figures.
     pub flattened: Flattened,
+    /// Seams made to open the part.
+    pub seams: Vec<Seam>,
+    /// Crest-line cuts made.
+    pub cuts: Vec<Cut>,
+    /// Why cutting stopped.
+    pub cut_stop: CutStop,
 }
 
 /// Reads an input file and splits it into parts, one per connected component.
@@ -58,6 +69,7 @@ pub fn load_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Err
     })?;
     let warnings: Vec<String> = validated.warnings.iter().map(ToString::to_string).collect();
     let several = validated.components.len() > 1;
+    let constraints = read_cut_sidecar(path, validated.components.len())?.unwrap_or_default();
     Ok(validated
         .components
         .into_iter()
@@ -72,25 +84,40 @@ pub fn load_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Err
             units: input.units,
             quantity: 1,
             stiffness: Stiffness::uniform(&model),
+            constraints: constraints.clone(),
             model,
             warnings: warnings.clone(),
         })
         .collect())
 }
 
-/// Flattens one part.
+/// Flattens one part, with seams and crest-line cuts until it is within tolerance or the cut
+/// budget is spent.
 pub fn flatten_part(
-    job: PartJob,
+    mut job: PartJob,
     options: &RunOptions,
     progress: &dyn Progress,
 ) -> Result<PartResult, Error> {
-    let flattened =
-        flatten(&job.model, &job.stiffness, &options.flatten, progress).map_err(|source| {
-            Error::Flatten {
-                path: job.source.clone(),
-                part: job.name.clone(),
-                source,
-            }
-        })?;
-    Ok(PartResult { job, flattened })
+    let result = cut_and_flatten(
+        &job.model,
+        &job.stiffness,
+        &job.constraints,
+        &options.flatten,
+        &options.cut,
+        progress,
+    )
+    .map_err(|reason| Error::Cut {
+        path: job.source.clone(),
+        part: job.name.clone(),
+        reason,
+    })?;
+    job.model = result.model;
+    job.stiffness = result.stiffness;
+    Ok(PartResult {
+        job,
+        flattened: result.flattened,
+        seams: result.seams,
+        cuts: result.cuts,
+        cut_stop: result.stop,
+    })
 }

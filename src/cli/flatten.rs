@@ -6,6 +6,7 @@ use std::path::PathBuf;
 use anyhow::Context;
 use clap::Args;
 
+use flatcut::cut::CutOptions;
 use flatcut::export::part_files::{PartFileOptions, write_part_files};
 use flatcut::export::report::{PartReport, Report};
 use flatcut::export::{DEFAULT_CHORD_TOLERANCE, DxfOptions, DxfVersion, write_atomically};
@@ -38,6 +39,9 @@ pub struct FlattenArgs {
     /// Step budget of the energy release (phase two).
     #[arg(long, default_value_t = FlattenOptions::default().max_steps)]
     max_steps: usize,
+    /// Largest number of crest-line cuts per part (0: no cuts; seams are still made).
+    #[arg(long, default_value_t = CutOptions::default().max_cuts)]
+    max_cuts: usize,
     /// Units of mesh coordinates.
     #[arg(long, value_enum, default_value_t = Units::default())]
     units: Units,
@@ -101,9 +105,14 @@ impl FlattenArgs {
             max_steps: self.max_steps,
             ..FlattenOptions::default()
         };
+        let cut = CutOptions {
+            max_cuts: self.max_cuts,
+            ..CutOptions::default()
+        };
         Ok(RunOptions {
             units: self.units,
             flatten,
+            cut,
         })
     }
 }
@@ -157,11 +166,14 @@ pub fn run(args: FlattenArgs, progress: &dyn Progress) -> anyhow::Result<Outcome
     let all_met = parts.iter().all(|p| p.tolerance_met);
     for part in &parts {
         eprintln!(
-            "flatcut: {}: E_S {:.4} %, E_C {:.4} %, {} flipped, {}",
+            "flatcut: {}: E_S {:.4} %, E_C {:.4} %, {} flipped, {} seam(s), {} cut(s) of total length {:.4}, {}",
             part.name,
             part.area_error * 100.0,
             part.shape_error * 100.0,
             part.flipped,
+            part.seams.len(),
+            part.cuts.len(),
+            part.total_cut_length,
             if part.tolerance_met {
                 "within tolerance"
             } else {

@@ -6,6 +6,7 @@
 
 use serde::Serialize;
 
+use crate::cut::{Cut, CutFigures, CutStop, Seam, SeamKind};
 use crate::flatten::{Solver, StopReason};
 use crate::pipeline::{PartResult, RunOptions};
 
@@ -70,8 +71,15 @@ pub struct PartReport {
     pub initial_area_error: f64,
     /// `E_C` after phase one.
     pub initial_shape_error: f64,
-    /// Cuts made (3D polylines).
+    /// Crest-line cuts made (3D polylines), in order.
     pub cuts: Vec<CutReport>,
+    /// Total 3D length of the cuts (seams not included).
+    pub total_cut_length: f64,
+    /// Why cutting stopped: `tolerance_met`, `cut_budget` (`--max-cuts` reached) or
+    /// `no_better_cut`.
+    pub cut_stop: CutStop,
+    /// Seams made to open a closed or ring surface, or given by the user.
+    pub seams: Vec<SeamReport>,
     /// Fold lines and how well their length was kept.
     pub fold_lines: Vec<FoldLineReport>,
     /// Repairs made to the input.
@@ -85,6 +93,42 @@ pub struct CutReport {
     pub length: f64,
     /// The 3D polyline.
     pub points: Vec<[f64; 3]>,
+    /// Energy and errors of the pattern before the cut.
+    pub before: CutFigures,
+    /// Energy and errors of the pattern after the cut.
+    pub after: CutFigures,
+}
+
+impl CutReport {
+    fn new(cut: &Cut) -> Self {
+        Self {
+            length: cut.length,
+            points: cut.points.iter().map(|p| p.to_array()).collect(),
+            before: cut.before,
+            after: cut.after,
+        }
+    }
+}
+
+/// One seam.
+#[derive(Debug, Clone, Serialize)]
+pub struct SeamReport {
+    /// Why it was made: `user`, `ring`, `closed` or `corner`.
+    pub kind: SeamKind,
+    /// Length in model units.
+    pub length: f64,
+    /// The 3D polyline.
+    pub points: Vec<[f64; 3]>,
+}
+
+impl SeamReport {
+    fn new(seam: &Seam) -> Self {
+        Self {
+            kind: seam.kind,
+            length: seam.length,
+            points: seam.points.iter().map(|p| p.to_array()).collect(),
+        }
+    }
 }
 
 /// One fold line.
@@ -124,7 +168,13 @@ impl PartReport {
             energy: stats.energy,
             initial_area_error: stats.initial_accuracy.area_error,
             initial_shape_error: stats.initial_accuracy.shape_error,
-            cuts: Vec::new(),
+            cuts: result.cuts.iter().map(CutReport::new).collect(),
+            total_cut_length: result
+                .cuts
+                .iter()
+                .fold(0.0, |total, cut| total + cut.length),
+            cut_stop: result.cut_stop,
+            seams: result.seams.iter().map(SeamReport::new).collect(),
             fold_lines: Vec::new(),
             warnings: job.warnings.clone(),
         }

@@ -49,6 +49,8 @@ pub enum StopReason {
     Converged,
     /// The time limit was reached.
     TimeLimit,
+    /// Every further step would have flipped a triangle (the fast solver's orientation guard).
+    OrientationBlocked,
 }
 
 /// Parameters of the explicit relaxation.

@@ -10,6 +10,7 @@
 
 pub mod accuracy;
 pub mod energy_release;
+pub mod fast;
 pub mod init_flatten;
 pub mod isolines;
 pub mod outline;
@@ -23,6 +24,7 @@ use serde::Serialize;
 
 pub use accuracy::Accuracy;
 pub use energy_release::{EnergyRelease, ReleaseOutcome, ReleaseParameters, StopReason};
+pub use fast::{FastError, FastOptions, FastOutcome, FastSolver, fast_solve};
 pub use init_flatten::{InitRelease, init_flatten};
 pub use springs::{PAPER_SPRING_CONSTANT, SpringSystem};
 pub use stiffness::Stiffness;
@@ -61,6 +63,8 @@ pub struct FlattenOptions {
     pub time_step: f64,
     /// Steps of EnergyRelease after each triangle in the paper's phase one; default 50.
     pub init_release_steps: usize,
+    /// Options of the fast solver's phase two (the step budget there is its own).
+    pub fast: FastOptions,
 }
 
 impl Default for FlattenOptions {
@@ -73,6 +77,7 @@ impl Default for FlattenOptions {
             energy_variation: energy_release::PAPER_ENERGY_VARIATION,
             time_step: energy_release::PAPER_TIME_STEP,
             init_release_steps: init_flatten::PAPER_INIT_RELEASE_STEPS,
+            fast: FastOptions::default(),
         }
     }
 }
@@ -86,6 +91,14 @@ pub enum FlattenError {
          open it in the CAD system or give a mesh with a seam"
     )]
     ClosedSurface,
+    /// The warm-start positions do not match the model.
+    #[error("the initial pattern has {found} positions but the model has {expected} vertices")]
+    InitialMismatch {
+        /// Vertices of the model.
+        expected: usize,
+        /// Positions given.
+        found: usize,
+    },
     /// The stiffness map does not match the model.
     #[error("the stiffness map has {found} factors but the model has {expected} edges")]
     StiffnessMismatch {
@@ -94,6 +107,9 @@ pub enum FlattenError {
         /// Factors given.
         found: usize,
     },
+    /// The fast solver could not be set up.
+    #[error(transparent)]
+    Fast(#[from] FastError),
 }
 
 /// What a flattening produced besides the pattern.
@@ -130,15 +146,7 @@ pub fn flatten(
     progress: &dyn Progress,
 ) -> Result<Flattened, FlattenError> {
     let started = Instant::now();
-    if model.is_closed() {
-        return Err(FlattenError::ClosedSurface);
-    }
-    if stiffness.factors().len() != model.edges().len() {
-        return Err(FlattenError::StiffnessMismatch {
-            expected: model.edges().len(),
-            found: stiffness.factors().len(),
-        });
-    }
+    check_input(model, stiffness)?;
     let springs = SpringSystem::new(model, stiffness.factors(), options.spring_constant);
     let release = match options.solver {
         Solver::Paper => InitRelease::WholeSystem {
@@ -149,22 +157,74 @@ pub fn flatten(
             sweeps: init_flatten::NEIGHBOURHOOD_SWEEPS,
         },
     };
-    let mut positions = init_flatten(model, &springs, release, progress);
+    let positions = init_flatten(model, &springs, release, progress);
+    finish(model, &springs, positions, options, started)
+}
+
+/// Flattens a facet model from given flat positions (a warm start: phase one is skipped), for
+/// the cut → re-flatten loop, where the pattern before a cut is a good start for the cut model.
+/// `initial[v]` is the start of vertex `v`; a missing or extra entry is an error.
+pub fn flatten_from(
+    model: &FacetModel,
+    stiffness: &Stiffness,
+    initial: &[DVec2],
+    options: &FlattenOptions,
+) -> Result<Flattened, FlattenError> {
+    let started = Instant::now();
+    check_input(model, stiffness)?;
+    if initial.len() != model.vertex_count() {
+        return Err(FlattenError::InitialMismatch {
+            expected: model.vertex_count(),
+            found: initial.len(),
+        });
+    }
+    let springs = SpringSystem::new(model, stiffness.factors(), options.spring_constant);
+    finish(model, &springs, initial.to_vec(), options, started)
+}
+
+/// Refuses closed surfaces and stiffness maps of another model.
+fn check_input(model: &FacetModel, stiffness: &Stiffness) -> Result<(), FlattenError> {
+    if model.is_closed() {
+        return Err(FlattenError::ClosedSurface);
+    }
+    if stiffness.factors().len() != model.edges().len() {
+        return Err(FlattenError::StiffnessMismatch {
+            expected: model.edges().len(),
+            found: stiffness.factors().len(),
+        });
+    }
+    Ok(())
+}
+
+/// Phase two from the initial pattern `positions`, then the figures.
+fn finish(
+    model: &FacetModel,
+    springs: &SpringSystem,
+    mut positions: Vec<DVec2>,
+    options: &FlattenOptions,
+    started: Instant,
+) -> Result<Flattened, FlattenError> {
     let initial_accuracy = Accuracy::measure(model, &positions);
-    let outcome = relax(model, &springs, &mut positions, options);
+    let (iterations, stop_reason) = match options.solver {
+        Solver::Paper => {
+            let outcome = relax(model, springs, &mut positions, options);
+            (outcome.steps, outcome.stop_reason)
+        }
+        Solver::Fast => minimise(model, springs, &mut positions, options)?,
+    };
     move_to_origin(&mut positions);
     let stats = FlattenStats {
         accuracy: Accuracy::measure(model, &positions),
         initial_accuracy,
         energy: springs.energy(&positions),
-        iterations: outcome.steps,
-        stop_reason: outcome.stop_reason,
+        iterations,
+        stop_reason,
         seconds: started.elapsed().as_secs_f64(),
     };
     Ok(Flattened { positions, stats })
 }
 
-/// Phase two: EnergyRelease over the whole model.
+/// Phase two of the paper's solver: EnergyRelease over the whole model.
 fn relax(
     model: &FacetModel,
     springs: &SpringSystem,
@@ -180,6 +240,18 @@ fn relax(
         max_steps: options.max_steps,
     };
     energy.release(&system, positions, &parameters, true)
+}
+
+/// Phase two of the fast solver: the spring energy minimised by [`FastSolver`]; returns the
+/// iterations and why it stopped.
+fn minimise(
+    model: &FacetModel,
+    springs: &SpringSystem,
+    positions: &mut [DVec2],
+    options: &FlattenOptions,
+) -> Result<(usize, StopReason), FlattenError> {
+    let outcome = fast_solve(model, springs, positions, options.fast)?;
+    Ok((outcome.iterations, outcome.stop_reason))
 }
 
 /// Translates the pattern so its bounding box starts at the origin.

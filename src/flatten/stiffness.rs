@@ -23,6 +23,12 @@ impl Stiffness {
         }
     }
 
+    /// Stiffness from explicit factors, one per edge of the model they are used with (a cut
+    /// model carries its edges' factors over from the model it was cut from).
+    pub fn from_factors(factors: Vec<f64>) -> Self {
+        Self { factors }
+    }
+
     /// The factors, one per edge of the model.
     pub fn factors(&self) -> &[f64] {
         &self.factors

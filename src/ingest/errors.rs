@@ -19,6 +19,14 @@ pub enum IngestError {
         /// The file.
         path: PathBuf,
     },
+    /// A cut sidecar (`part.cut.json`) is malformed or does not fit the mesh.
+    #[error("{path}: {message}")]
+    Sidecar {
+        /// The sidecar file.
+        path: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
     /// The content is malformed.
     #[error("{path}: {defect}")]
     Malformed {

@@ -1,12 +1,15 @@
 //! Ingest: the only stage that reads files. Turns mesh files (OBJ, STL) into raw
-//! [`TriangleSoup`]s in the part's units; validation happens in [`crate::mesh`].
+//! [`TriangleSoup`]s in the part's units, and reads a mesh's cut sidecar (user seams, no-cut
+//! regions); validation happens in [`crate::mesh`].
 
+mod cut_sidecar;
 mod errors;
 mod obj;
 mod stl;
 
 use std::path::Path;
 
+pub use cut_sidecar::{cut_sidecar_path, read_cut_sidecar};
 pub use errors::{FormatDefect, IngestError};
 pub use obj::parse_obj;
 pub use stl::{STL_WELD_TOLERANCE, parse_stl};

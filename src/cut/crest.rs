@@ -1,0 +1,376 @@
+//! Crest lines of the energy map (paper §6.3): candidate cutting lines along mesh edges.
+//!
+//! Inputs: a [`FacetModel`], a per-vertex energy (Eq. 1 of the current flat pattern), and the
+//! vertices a cut may not pass through (on or next to a fold line, in a no-cut region).
+//! Output: candidate [`CrestLine`]s, best first.
+//!
+//! The paper's crest line passes through the maximum-energy point along the slowest descent of
+//! the energy. On the mesh, from a start vertex (a local maximum of the energy), each step goes to
+//! the unvisited neighbour of highest energy among those that do not climb (slowest descent).
+//! A crest line has two branches from its maximum:
+//! - the *opening branch* descends to the boundary (or an earlier cut, which is boundary now),
+//!   which is what opens the surface; when no neighbour descends any more, it finishes along the
+//!   shortest edge path to the boundary;
+//! - the *dart branch* continues from the maximum the other way and stops inside the part where
+//!   extending no longer pays: at the first vertex whose energy is below `dart_floor` times the
+//!   mean vertex energy (the cut would run through less strained material than the average), or
+//!   before it would touch the boundary (which would cut a piece off).
+//!
+//! A start on the boundary has only the dart branch: a dart inward from the boundary.
+//!
+//! Candidates: from each of the `candidates` highest local maxima, one line per [`Descent`] (the
+//! paper's slowest descent, and the steepest descent, which on a dome is the radial dart the
+//! slowest descent misses by running along the rim), and the first half of each line of four or
+//! more vertices (a shorter dart from the same boundary point).
+//!
+//! Estimated score (beyond the paper): the energy released per unit of cut length,
+//! `Σ_{v on the line} E(v) / L`: a cut frees the springs of every vertex it passes to move apart,
+//! so the energy of those vertices is what it can release at most. The cut loop measures the real
+//! release of each candidate by flattening; the estimate only orders them.
+
+use super::paths::{Adjacency, dijkstra, path_length};
+use crate::mesh::FacetModel;
+
+/// Default number of crest lines traced per cut (from the highest local maxima).
+pub const DEFAULT_CANDIDATES: usize = 3;
+/// Default multiple of the mean vertex energy below which the dart branch stops.
+pub const DEFAULT_DART_FLOOR: f64 = 0.25;
+/// Smallest distance between the starts of candidate lines, as a fraction of the part's bounding
+/// diagonal: candidates from one energy peak would all be near copies of one another.
+pub const START_SPACING: f64 = 0.1;
+/// Lines of at least this many vertices also yield their shorter prefixes as candidates.
+const PREFIX_MIN_VERTICES: usize = 4;
+/// A long line also yields its first `k / PREFIX_PARTS` for `k = 1 .. PREFIX_PARTS − 1`.
+const PREFIX_PARTS: usize = 3;
+
+/// A candidate cutting line: a simple edge path.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CrestLine {
+    /// The path's vertices; consecutive ones share an edge.
+    pub vertices: Vec<u32>,
+    /// 3D length, model units.
+    pub length: f64,
+    /// Estimated energy the cut can release: the sum of the energies of its vertices.
+    pub estimated_release: f64,
+}
+
+impl CrestLine {
+    /// The line along `vertices`, with its length and estimated release.
+    fn along(model: &FacetModel, energies: &[f64], vertices: Vec<u32>) -> Self {
+        let estimated_release = vertices.iter().map(|&v| energies[v as usize]).sum();
+        Self {
+            length: path_length(model, &vertices),
+            vertices,
+            estimated_release,
+        }
+    }
+
+    /// The line's first `count` vertices (it starts on the boundary, so any prefix is a dart).
+    fn prefix(&self, model: &FacetModel, energies: &[f64], count: usize) -> Self {
+        Self::along(model, energies, self.vertices[..count].to_vec())
+    }
+
+    /// Estimated energy released per unit of cut length.
+    pub fn score(&self) -> f64 {
+        self.estimated_release / self.length
+    }
+}
+
+/// How a line descends the energy map.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Descent {
+    /// The paper's crest line: the slowest descent, along a ridge of the energy.
+    Slowest,
+    /// The gradient line: the steepest descent, across the isolines.
+    Steepest,
+}
+
+/// Where cuts may go and how crest lines are traced.
+#[derive(Debug, Clone, Copy)]
+pub struct CrestSettings<'a> {
+    /// Per-vertex flags: true where a cut may not pass.
+    pub blocked: &'a [bool],
+    /// Number of local maxima to start from.
+    pub candidates: usize,
+    /// Multiple of the mean vertex energy below which the dart branch stops.
+    pub dart_floor: f64,
+}
+
+/// Traces a line of each [`Descent`] from each of the highest local energy maxima and returns
+/// them best estimated score first (ties keep the order of tracing). Lines of a single vertex and
+/// repeated lines are dropped.
+pub fn crest_lines(
+    model: &FacetModel,
+    adjacency: &Adjacency,
+    energies: &[f64],
+    settings: &CrestSettings<'_>,
+) -> Vec<CrestLine> {
+    let on_boundary = boundary_flags(model);
+    let starts = local_maxima(adjacency, energies, settings.blocked);
+    let mean = energies.iter().sum::<f64>() / energies.len().max(1) as f64;
+    let floor = settings.dart_floor * mean;
+    let mut lines: Vec<CrestLine> = Vec::new();
+    for start in spread_out(model, &starts, settings.candidates) {
+        for descent in [Descent::Slowest, Descent::Steepest] {
+            let tracer = Tracer {
+                descent,
+                model,
+                adjacency,
+                energies,
+                blocked: settings.blocked,
+                on_boundary: &on_boundary,
+            };
+            let Some(line) = tracer.crest_line(start, floor) else {
+                continue;
+            };
+            let count = line.vertices.len();
+            let prefixes: Vec<CrestLine> = if count >= PREFIX_MIN_VERTICES {
+                (1..PREFIX_PARTS)
+                    .map(|part| (count * part).div_ceil(PREFIX_PARTS).max(2))
+                    .map(|length| line.prefix(model, energies, length))
+                    .collect()
+            } else {
+                Vec::new()
+            };
+            for candidate in std::iter::once(line).chain(prefixes) {
+                if !lines
+                    .iter()
+                    .any(|known| known.vertices == candidate.vertices)
+                {
+                    lines.push(candidate);
+                }
+            }
+        }
+    }
+    lines.sort_by(|a, b| b.score().total_cmp(&a.score()));
+    lines
+}
+
+/// True for every vertex on a boundary loop.
+pub fn boundary_flags(model: &FacetModel) -> Vec<bool> {
+    let mut flags = vec![false; model.vertex_count()];
+    for &v in model.boundary_loops().iter().flatten() {
+        flags[v as usize] = true;
+    }
+    flags
+}
+
+/// Unblocked vertices whose energy is at least that of every neighbour (ties go to the lower
+/// index), highest energy first.
+fn local_maxima(adjacency: &Adjacency, energies: &[f64], blocked: &[bool]) -> Vec<u32> {
+    let mut maxima: Vec<u32> = (0..energies.len() as u32)
+        .filter(|&v| !blocked[v as usize])
+        .filter(|&v| {
+            adjacency.neighbours(v).iter().all(|&(w, _)| {
+                let (ev, ew) = (energies[v as usize], energies[w as usize]);
+                ev > ew || (ev >= ew && v < w)
+            })
+        })
+        .collect();
+    maxima.sort_by(|&a, &b| energies[b as usize].total_cmp(&energies[a as usize]));
+    maxima
+}
+
+/// The first `count` of `starts` (in their order) that lie at least [`START_SPACING`] times the
+/// part's size away from every start taken before, so candidates come from different regions.
+fn spread_out(model: &FacetModel, starts: &[u32], count: usize) -> Vec<u32> {
+    let spacing = START_SPACING * model.bounding_diagonal();
+    let positions = model.positions();
+    let mut taken: Vec<u32> = Vec::with_capacity(count);
+    for &start in starts {
+        if taken.len() == count {
+            break;
+        }
+        let position = positions[start as usize];
+        if taken
+            .iter()
+            .all(|&known| positions[known as usize].distance(position) >= spacing)
+        {
+            taken.push(start);
+        }
+    }
+    taken
+}
+
+/// The data one trace needs.
+struct Tracer<'a> {
+    descent: Descent,
+    model: &'a FacetModel,
+    adjacency: &'a Adjacency,
+    energies: &'a [f64],
+    blocked: &'a [bool],
+    on_boundary: &'a [bool],
+}
+
+impl Tracer<'_> {
+    /// The crest line through `start`: opening branch reversed (so the line starts on the
+    /// boundary), then the dart branch down to `floor`.
+    fn crest_line(&self, start: u32, floor: f64) -> Option<CrestLine> {
+        let mut visited = vec![false; self.model.vertex_count()];
+        visited[start as usize] = true;
+        let mut vertices = if self.on_boundary[start as usize] {
+            vec![start]
+        } else {
+            let mut opening = self.opening_branch(start, &mut visited)?;
+            opening.reverse();
+            opening
+        };
+        vertices.extend(self.dart_branch(start, floor, &mut visited));
+        if vertices.len() < 2 {
+            return None;
+        }
+        Some(CrestLine::along(self.model, self.energies, vertices))
+    }
+
+    /// From `start` (interior) down to the boundary: `start` first, a boundary vertex last.
+    fn opening_branch(&self, start: u32, visited: &mut [bool]) -> Option<Vec<u32>> {
+        let mut branch = vec![start];
+        let mut current = start;
+        while !self.on_boundary[current as usize] {
+            match self.descend(current, visited, true) {
+                Some(next) => {
+                    visited[next as usize] = true;
+                    branch.push(next);
+                    current = next;
+                }
+                None => {
+                    let rest = self.shortest_way_out(current, visited)?;
+                    for &v in &rest[1..] {
+                        visited[v as usize] = true;
+                    }
+                    branch.extend_from_slice(&rest[1..]);
+                    break;
+                }
+            }
+        }
+        Some(branch)
+    }
+
+    /// From `start` inward while the energy stays at or above `floor`, never onto the boundary;
+    /// `start` itself is not included.
+    fn dart_branch(&self, start: u32, floor: f64, visited: &mut [bool]) -> Vec<u32> {
+        let mut branch = Vec::new();
+        let mut current = start;
+        while let Some(next) = self.descend(current, visited, false) {
+            if self.energies[next as usize] < floor {
+                break;
+            }
+            visited[next as usize] = true;
+            branch.push(next);
+            current = next;
+        }
+        branch
+    }
+
+    /// The next vertex of a descent from `current`: among the unvisited, unblocked neighbours
+    /// whose energy is not above that of `current`, the one of highest energy ([`Descent::Slowest`])
+    /// or of steepest energy drop per unit length ([`Descent::Steepest`]). A neighbour of a visited
+    /// vertex other than `current` is skipped, so the line never touches itself; boundary
+    /// neighbours qualify only when `boundary_allowed`.
+    fn descend(&self, current: u32, visited: &[bool], boundary_allowed: bool) -> Option<u32> {
+        let here = self.energies[current as usize];
+        let positions = self.model.positions();
+        let key = |w: u32| match self.descent {
+            Descent::Slowest => self.energies[w as usize],
+            Descent::Steepest => {
+                let run = positions[current as usize].distance(positions[w as usize]);
+                (here - self.energies[w as usize]) / run
+            }
+        };
+        self.adjacency
+            .neighbours(current)
+            .iter()
+            .map(|&(w, _)| w)
+            .filter(|&w| {
+                !visited[w as usize]
+                    && !self.blocked[w as usize]
+                    && (boundary_allowed || !self.on_boundary[w as usize])
+                    && self.energies[w as usize] <= here
+                    && !self.touches_line(w, current, visited)
+            })
+            .max_by(|&a, &b| key(a).total_cmp(&key(b)).then_with(|| b.cmp(&a)))
+    }
+
+    /// True if `w` neighbours a visited vertex other than `current`.
+    fn touches_line(&self, w: u32, current: u32, visited: &[bool]) -> bool {
+        self.adjacency
+            .neighbours(w)
+            .iter()
+            .any(|&(x, _)| x != current && visited[x as usize])
+    }
+
+    /// The shortest edge path from `current` to the boundary through unvisited, unblocked
+    /// vertices (`current` first).
+    fn shortest_way_out(&self, current: u32, visited: &[bool]) -> Option<Vec<u32>> {
+        let passable = |v: u32| !visited[v as usize] && !self.blocked[v as usize];
+        let is_exit = |v: u32| self.on_boundary[v as usize];
+        let (paths, reached) = dijkstra(self.model, self.adjacency, &[current], passable, is_exit);
+        paths.path_to(reached?)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cut::paths::tests::grid;
+
+    #[test]
+    fn the_crest_runs_along_the_energy_ridge_to_the_boundary() {
+        let model = grid();
+        let adjacency = Adjacency::new(&model);
+        // Energy peaks at vertex 5 (interior) and falls along the column x = 1 towards y = 0.
+        let mut energies = vec![0.0; 16];
+        energies[5] = 10.0;
+        energies[1] = 8.0;
+        energies[9] = 2.0;
+        let blocked = vec![false; 16];
+        let settings = CrestSettings {
+            blocked: &blocked,
+            candidates: 1,
+            dart_floor: DEFAULT_DART_FLOOR,
+        };
+        let lines = crest_lines(&model, &adjacency, &energies, &settings);
+        // The dart branch goes on to 9, whose energy is above the mean (1.25).
+        assert_eq!(lines[0].vertices, vec![1, 5, 9]);
+        assert!((lines[0].score() - 10.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_dart_extends_while_the_energy_stays_high() {
+        let model = grid();
+        let adjacency = Adjacency::new(&model);
+        let mut energies = vec![0.0; 16];
+        energies[1] = 10.0;
+        energies[5] = 9.0;
+        energies[9] = 6.0;
+        energies[13] = 5.0;
+        let blocked = vec![false; 16];
+        let settings = CrestSettings {
+            blocked: &blocked,
+            candidates: 1,
+            dart_floor: DEFAULT_DART_FLOOR,
+        };
+        let lines = crest_lines(&model, &adjacency, &energies, &settings);
+        // From boundary vertex 1 inward; 13 is on the far boundary and is never reached.
+        assert_eq!(lines[0].vertices, vec![1, 5, 9]);
+    }
+
+    #[test]
+    fn blocked_vertices_are_never_on_a_line() {
+        let model = grid();
+        let adjacency = Adjacency::new(&model);
+        let mut energies = vec![0.0; 16];
+        energies[5] = 10.0;
+        energies[1] = 8.0;
+        let mut blocked = vec![false; 16];
+        blocked[1] = true;
+        let settings = CrestSettings {
+            blocked: &blocked,
+            candidates: 1,
+            dart_floor: DEFAULT_DART_FLOOR,
+        };
+        let lines = crest_lines(&model, &adjacency, &energies, &settings);
+        assert!(!lines[0].vertices.contains(&1));
+        assert!(lines[0].vertices.contains(&5));
+    }
+}

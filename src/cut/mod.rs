@@ -1,0 +1,551 @@
+//! Cutting (paper §6.3): seams that open closed and ring surfaces, then crest-line cuts of the
+//! energy map, each followed by a new flattening, until `E_S` and `E_C` are within tolerance or
+//! the cut budget is spent.
+//!
+//! [`cut_and_flatten`] is the one-shot entry point:
+//! 1. user seams ([`CutConstraints::seams`]) are laid on the mesh and cut;
+//! 2. automatic seams ([`seam`]) open the surface to a disk: one per ring loop, a tree through the
+//!    corners of a closed surface, a tree–cotree cut graph ([`cut_graph`]) first if it has handles;
+//! 3. the part is flattened; while it is over tolerance and cuts are left, every candidate line of
+//!    its energy map ([`crest`]) is cut and flattened, warm-started from the current pattern;
+//!    among those that lower the error (`max(E_S, E_C)`, an overlapping pattern counting as worse
+//!    than any other) the shortest that meets the tolerance is kept, or else the one of largest
+//!    measured gain `ΔE / L^LENGTH_EXPONENT`; a line from the inner end of an earlier cut extends
+//!    that cut;
+//! 4. the cut model, its pattern and every cut with its figures before and after come back.
+//!
+//! Cuts never run along or across a fold line (no vertex of a fold-line edge is crossed) nor
+//! through a no-cut region; a developable part within tolerance gets no cut.
+
+pub mod crest;
+pub mod cut_graph;
+pub mod energy_field;
+mod errors;
+pub mod paths;
+pub mod seam;
+pub mod split;
+
+use glam::{DVec2, DVec3};
+use serde::{Deserialize, Serialize};
+
+pub use errors::CutError;
+pub use seam::SeamKind;
+
+use crate::flatten::{
+    Accuracy, FastOptions, FlattenOptions, Flattened, SpringSystem, Stiffness, StopReason, flatten,
+    flatten_from,
+};
+use crate::mesh::{FacetModel, NONE};
+use crate::progress::{NoProgress, Progress};
+use crest::{CrestLine, CrestSettings, DEFAULT_CANDIDATES, DEFAULT_DART_FLOOR, crest_lines};
+use paths::{Adjacency, path_edges, path_length};
+use split::split_along_edges;
+
+/// Default largest number of crest-line cuts per part (seams not counted).
+pub const DEFAULT_MAX_CUTS: usize = 8;
+/// The cut loop keeps the candidate of largest `ΔE / L^LENGTH_EXPONENT` (measured energy drop
+/// `ΔE`, cut length `L`). With 1 (drop per unit length) the loop prefers ever shorter steps, since
+/// returns diminish along a cut, and spends its budget on millimetre extensions; with 1/2 a cut
+/// three times as long wins if it releases more than `√3 ≈ 1.7` times the energy.
+pub const LENGTH_EXPONENT: f64 = 0.5;
+/// Candidate cuts are flattened with the fast solver's convergence threshold raised to this (a
+/// fraction of the mean rest length; see [`FastOptions::step_tolerance`]): enough to rank them,
+/// at a fraction of the cost. The chosen cut is then flattened to the full threshold.
+pub const TRIAL_STEP_TOLERANCE: f64 = 1e-4;
+/// Extensions of a cut from its inner end allowed per cut, on average: the loop makes at most
+/// `max_cuts × (1 + EXTENSIONS_PER_CUT)` cut steps. An extension lengthens a cut and does not
+/// count as a new one.
+pub const EXTENSIONS_PER_CUT: usize = 3;
+
+/// Options of [`cut_and_flatten`]. `Default` is the only source of defaults. The tolerance is the
+/// flattening's ([`FlattenOptions::tolerance`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CutOptions {
+    /// Largest number of crest-line cuts; default [`DEFAULT_MAX_CUTS`]. 0 disables cutting
+    /// (seams are still made).
+    pub max_cuts: usize,
+    /// Crest lines traced before each cut, from the highest energy maxima; default
+    /// [`DEFAULT_CANDIDATES`].
+    pub candidates: usize,
+    /// A dart stops where the energy falls below this multiple of the mean vertex energy;
+    /// default [`DEFAULT_DART_FLOOR`].
+    pub dart_floor: f64,
+}
+
+/// What the user says about where a part is cut: read from the part's sidecar file (see
+/// [`crate::ingest::read_cut_sidecar`]), empty by default.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CutConstraints {
+    /// User seams: 3D polylines in model units, cut before anything else.
+    #[serde(default)]
+    pub seams: Vec<Vec<[f64; 3]>>,
+    /// Regions no cut or automatic seam may pass through.
+    #[serde(default)]
+    pub no_cut_regions: Vec<NoCutRegion>,
+}
+
+impl Default for CutOptions {
+    fn default() -> Self {
+        Self {
+            max_cuts: DEFAULT_MAX_CUTS,
+            candidates: DEFAULT_CANDIDATES,
+            dart_floor: DEFAULT_DART_FLOOR,
+        }
+    }
+}
+
+/// A ball of the part where nothing may be cut.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NoCutRegion {
+    /// Centre, model units.
+    pub center: [f64; 3],
+    /// Radius, model units.
+    pub radius: f64,
+}
+
+/// Energy and errors of a pattern, before or after a cut.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CutFigures {
+    /// Spring energy of the pattern.
+    pub energy: f64,
+    /// `E_S` (Eq. 4), a fraction.
+    pub area_error: f64,
+    /// `E_C` (Eq. 6), a fraction.
+    pub shape_error: f64,
+}
+
+impl CutFigures {
+    fn of(flattened: &Flattened) -> Self {
+        Self {
+            energy: flattened.stats.energy,
+            area_error: flattened.stats.accuracy.area_error,
+            shape_error: flattened.stats.accuracy.shape_error,
+        }
+    }
+}
+
+/// One crest-line cut.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cut {
+    /// The cut as a 3D polyline, model units.
+    pub points: Vec<DVec3>,
+    /// Its 3D length.
+    pub length: f64,
+    /// The pattern before the cut.
+    pub before: CutFigures,
+    /// The pattern after the cut.
+    pub after: CutFigures,
+}
+
+/// One seam.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Seam {
+    /// Why it was made.
+    pub kind: SeamKind,
+    /// The seam as a 3D polyline, model units.
+    pub points: Vec<DVec3>,
+    /// Its 3D length.
+    pub length: f64,
+}
+
+/// Why the cutting stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CutStop {
+    /// `E_S` and `E_C` are within tolerance (and the pattern does not overlap).
+    ToleranceMet,
+    /// [`CutOptions::max_cuts`] cuts were made.
+    CutBudget,
+    /// No candidate cut lowered the error.
+    NoBetterCut,
+}
+
+/// The cut part and its pattern.
+#[derive(Debug, Clone)]
+pub struct CutResult {
+    /// The facet model after every seam and cut.
+    pub model: FacetModel,
+    /// Its stiffness factors (carried over from the input's edges).
+    pub stiffness: Stiffness,
+    /// For each vertex of `model`, the input vertex it copies.
+    pub original_vertex: Vec<u32>,
+    /// The pattern of `model`.
+    pub flattened: Flattened,
+    /// Seams, in the order they were cut.
+    pub seams: Vec<Seam>,
+    /// Crest-line cuts, in the order they were made.
+    pub cuts: Vec<Cut>,
+    /// Why cutting stopped.
+    pub stop: CutStop,
+}
+
+impl CutResult {
+    /// Total 3D length of the crest-line cuts.
+    pub fn total_cut_length(&self) -> f64 {
+        self.cuts.iter().fold(0.0, |total, cut| total + cut.length)
+    }
+}
+
+/// Opens the part with seams, flattens it and cuts it along crest lines until it is within
+/// tolerance; see the module documentation.
+pub fn cut_and_flatten(
+    model: &FacetModel,
+    stiffness: &Stiffness,
+    constraints: &CutConstraints,
+    flatten_options: &FlattenOptions,
+    options: &CutOptions,
+    progress: &dyn Progress,
+) -> Result<CutResult, CutError> {
+    let mut state = CutState {
+        model: model.clone(),
+        stiffness: stiffness.clone(),
+        original_vertex: (0..model.vertex_count() as u32).collect(),
+    };
+    let mut seams = Vec::new();
+    lay_user_seams(&mut state, constraints, &mut seams)?;
+    open_to_disk(&mut state, constraints, &mut seams)?;
+    let mut flattened = flatten(&state.model, &state.stiffness, flatten_options, progress)?;
+    let mut cuts: Vec<Cut> = Vec::new();
+    let mut tips: Vec<u32> = Vec::new();
+    let step_budget = options.max_cuts * (1 + EXTENSIONS_PER_CUT);
+    let mut reporting = false;
+    let mut steps = 0;
+    let stop = loop {
+        if flattened.stats.accuracy.within(flatten_options.tolerance) {
+            break CutStop::ToleranceMet;
+        }
+        let new_cut_allowed = cuts.len() < options.max_cuts;
+        if steps >= step_budget || (!new_cut_allowed && tips.is_empty()) {
+            break CutStop::CutBudget;
+        }
+        let blocked = state.blocked(&constraints.no_cut_regions);
+        let starts = Starts {
+            tips: &tips,
+            new_cut_allowed,
+            blocked: &blocked,
+        };
+        if !reporting {
+            progress.start("cut", step_budget as u64);
+            reporting = true;
+        }
+        let Some(improvement) = best_cut(&state, &flattened, flatten_options, options, &starts)?
+        else {
+            break if new_cut_allowed {
+                CutStop::NoBetterCut
+            } else {
+                CutStop::CutBudget
+            };
+        };
+        steps += 1;
+        progress.advance(steps as u64);
+        let line = &improvement.line;
+        let points = polyline(&state.model, &line.vertices);
+        let tip = line.vertices[line.vertices.len() - 1];
+        let after = CutFigures::of(&improvement.flattened);
+        match tips.iter().position(|&known| known == line.vertices[0]) {
+            Some(extended) => {
+                let cut = &mut cuts[extended];
+                cut.points.extend_from_slice(&points[1..]);
+                cut.length += line.length;
+                cut.after = after;
+                tips[extended] = tip;
+            }
+            None => {
+                cuts.push(Cut {
+                    points,
+                    length: line.length,
+                    before: CutFigures::of(&flattened),
+                    after,
+                });
+                tips.push(tip);
+            }
+        }
+        state = improvement.state;
+        flattened = improvement.flattened;
+    };
+    if reporting {
+        progress.finish();
+    }
+    Ok(CutResult {
+        model: state.model,
+        stiffness: state.stiffness,
+        original_vertex: state.original_vertex,
+        flattened,
+        seams,
+        cuts,
+        stop,
+    })
+}
+
+/// The model being cut, with its stiffness and the way back to the input's vertices.
+#[derive(Debug, Clone)]
+struct CutState {
+    model: FacetModel,
+    stiffness: Stiffness,
+    original_vertex: Vec<u32>,
+}
+
+impl CutState {
+    /// The state after cutting along a vertex path, and for each of its vertices the vertex of
+    /// `self` it copies.
+    fn cut_along(&self, path: &[u32]) -> Result<(CutState, Vec<u32>), CutError> {
+        let edges = path_edges(&self.model, path).ok_or_else(|| {
+            CutError::InvalidResult("a cut path skips from a vertex to a non-neighbour".into())
+        })?;
+        self.cut_edges(&edges)
+    }
+
+    /// The state after cutting along a set of edges, and for each of its vertices the vertex of
+    /// `self` it copies.
+    fn cut_edges(&self, edges: &[usize]) -> Result<(CutState, Vec<u32>), CutError> {
+        let split = split_along_edges(&self.model, edges)?;
+        let factors = split
+            .original_edge
+            .iter()
+            .map(|&e| self.stiffness.factors()[e])
+            .collect();
+        let original_vertex = split
+            .original_vertex
+            .iter()
+            .map(|&v| self.original_vertex[v as usize])
+            .collect();
+        let state = CutState {
+            model: split.model,
+            stiffness: Stiffness::from_factors(factors),
+            original_vertex,
+        };
+        Ok((state, split.original_vertex))
+    }
+
+    /// Vertices no cut may pass: the ends of fold-line edges and those in no-cut regions.
+    fn blocked(&self, regions: &[NoCutRegion]) -> Vec<bool> {
+        let positions = self.model.positions();
+        let mut blocked: Vec<bool> = positions
+            .iter()
+            .map(|&p| {
+                regions
+                    .iter()
+                    .any(|region| p.distance(DVec3::from(region.center)) <= region.radius)
+            })
+            .collect();
+        for (&[a, b], &line) in self.model.edges().iter().zip(self.model.edge_fold_lines()) {
+            if line != NONE {
+                blocked[a as usize] = true;
+                blocked[b as usize] = true;
+            }
+        }
+        blocked
+    }
+}
+
+/// Cuts the user's seams, in order.
+fn lay_user_seams(
+    state: &mut CutState,
+    constraints: &CutConstraints,
+    seams: &mut Vec<Seam>,
+) -> Result<(), CutError> {
+    for (index, points) in constraints.seams.iter().enumerate() {
+        let points: Vec<DVec3> = points.iter().map(|&p| DVec3::from(p)).collect();
+        let adjacency = Adjacency::new(&state.model);
+        let blocked = state.blocked(&constraints.no_cut_regions);
+        let path = seam::lay_polyline(&state.model, &adjacency, &blocked, &points, index)?;
+        (*state, _) = state.cut_along(&path).map_err(|error| match error {
+            CutError::Disconnects => CutError::SeamNotLaid {
+                seam: index,
+                from: 0,
+                to: points.len() - 1,
+            },
+            other => other,
+        })?;
+        seams.push(make_seam(&state.model, SeamKind::User, &path));
+    }
+    Ok(())
+}
+
+/// Cuts automatic seams until the model is a disk.
+fn open_to_disk(
+    state: &mut CutState,
+    constraints: &CutConstraints,
+    seams: &mut Vec<Seam>,
+) -> Result<(), CutError> {
+    let was_closed = state.model.is_closed();
+    if was_closed && seam::genus(&state.model) > 0 {
+        let graph = cut_graph::tree_cotree_cut_graph(&state.model, &Adjacency::new(&state.model));
+        (*state, _) = state.cut_edges(&graph.edges)?;
+        for chain in &graph.chains {
+            seams.push(make_seam(&state.model, SeamKind::Handle, chain));
+        }
+    }
+    // Every seam removes a boundary loop, a handle or a corner, so this bounds the count.
+    for _ in 0..=state.model.vertex_count() {
+        let adjacency = Adjacency::new(&state.model);
+        let blocked = state.blocked(&constraints.no_cut_regions);
+        let Some((kind, path)) = seam::next_seam(&state.model, &adjacency, &blocked, was_closed)?
+        else {
+            return Ok(());
+        };
+        (*state, _) = state.cut_along(&path)?;
+        seams.push(make_seam(&state.model, kind, &path));
+    }
+    Err(CutError::NoSeam)
+}
+
+fn make_seam(model: &FacetModel, kind: SeamKind, path: &[u32]) -> Seam {
+    Seam {
+        kind,
+        points: polyline(model, path),
+        length: path_length(model, path),
+    }
+}
+
+/// 3D positions of a vertex path (copies keep their original's position, so the path's indices
+/// are valid in the cut model too).
+fn polyline(model: &FacetModel, path: &[u32]) -> Vec<DVec3> {
+    path.iter()
+        .map(|&v| model.positions()[v as usize])
+        .collect()
+}
+
+/// A cut that lowered the error.
+struct Improvement {
+    state: CutState,
+    flattened: Flattened,
+    line: CrestLine,
+}
+
+/// Where the next cut step may go: it may start at the inner end of an existing cut (an
+/// extension), elsewhere only while new cuts are allowed, and never pass a blocked vertex.
+struct Starts<'a> {
+    tips: &'a [u32],
+    new_cut_allowed: bool,
+    blocked: &'a [bool],
+}
+
+/// Cuts along each crest line of the current pattern in turn, flattens (warm-started from the
+/// current pattern), and among the cuts that lower the error returns the shortest that meets the
+/// tolerance, or else the one of largest gain `ΔE / L^LENGTH_EXPONENT`.
+fn best_cut(
+    state: &CutState,
+    flattened: &Flattened,
+    flatten_options: &FlattenOptions,
+    options: &CutOptions,
+    starts: &Starts<'_>,
+) -> Result<Option<Improvement>, CutError> {
+    let springs = SpringSystem::new(
+        &state.model,
+        state.stiffness.factors(),
+        flatten_options.spring_constant,
+    );
+    let energies = energy_field::vertex_energies(&springs, &flattened.positions);
+    let adjacency = Adjacency::new(&state.model);
+    let settings = CrestSettings {
+        blocked: starts.blocked,
+        candidates: options.candidates,
+        dart_floor: options.dart_floor,
+    };
+    let trial_options = FlattenOptions {
+        fast: FastOptions {
+            step_tolerance: flatten_options
+                .fast
+                .step_tolerance
+                .max(TRIAL_STEP_TOLERANCE),
+            ..flatten_options.fast
+        },
+        ..flatten_options.clone()
+    };
+    let mut best: Option<(f64, Improvement)> = None;
+    for line in crest_lines(&state.model, &adjacency, &energies, &settings) {
+        if !starts.new_cut_allowed && !starts.tips.contains(&line.vertices[0]) {
+            continue;
+        }
+        let (next, copied_vertex) = match state.cut_along(&line.vertices) {
+            Ok(cut) => cut,
+            Err(
+                CutError::Disconnects
+                | CutError::OpensNothing
+                | CutError::BoundaryEdge { .. }
+                | CutError::FoldLine { .. },
+            ) => {
+                continue;
+            }
+            Err(other) => return Err(other),
+        };
+        let candidate = reflatten(&next, &copied_vertex, flattened, &trial_options)?;
+        if !is_better(&candidate.stats.accuracy, &flattened.stats.accuracy) {
+            continue;
+        }
+        let gain = if candidate.stats.accuracy.within(flatten_options.tolerance) {
+            // Within tolerance: nothing beats it but a shorter cut that is too.
+            f64::MAX / line.length
+        } else {
+            (flattened.stats.energy - candidate.stats.energy) / line.length.powf(LENGTH_EXPONENT)
+        };
+        if best.as_ref().is_none_or(|(known, _)| gain > *known) {
+            let improvement = Improvement {
+                state: next,
+                flattened: candidate,
+                line,
+            };
+            best = Some((gain, improvement));
+        }
+    }
+    let Some((_, mut improvement)) = best else {
+        return Ok(None);
+    };
+    let refined = flatten_from(
+        &improvement.state.model,
+        &improvement.state.stiffness,
+        &improvement.flattened.positions,
+        flatten_options,
+    )?;
+    if is_better(
+        &refined.stats.accuracy,
+        &improvement.flattened.stats.accuracy,
+    ) || refined.stats.accuracy.within(flatten_options.tolerance)
+    {
+        improvement.flattened = refined;
+    }
+    Ok(Some(improvement))
+}
+
+/// The pattern of a cut model, warm-started from the pattern before the cut (each copy starts
+/// where its original was). When the warm start cannot move (the solver's orientation guard
+/// blocks it), a cold flattening is tried too and the better pattern kept.
+fn reflatten(
+    next: &CutState,
+    copied_vertex: &[u32],
+    before: &Flattened,
+    flatten_options: &FlattenOptions,
+) -> Result<Flattened, CutError> {
+    let start: Vec<DVec2> = copied_vertex
+        .iter()
+        .map(|&v| before.positions[v as usize])
+        .collect();
+    let warm = flatten_from(&next.model, &next.stiffness, &start, flatten_options)?;
+    if warm.stats.stop_reason != StopReason::OrientationBlocked {
+        return Ok(warm);
+    }
+    let cold = flatten(&next.model, &next.stiffness, flatten_options, &NoProgress)?;
+    Ok(if is_better(&cold.stats.accuracy, &warm.stats.accuracy) {
+        cold
+    } else {
+        warm
+    })
+}
+
+/// True if `candidate` is a better pattern than `current`: it does not overlap while `current`
+/// does, or both agree on overlapping and its larger error is lower.
+/// The larger of `E_S` and `E_C`.
+fn error(a: &Accuracy) -> f64 {
+    a.area_error.max(a.shape_error)
+}
+
+fn is_better(candidate: &Accuracy, current: &Accuracy) -> bool {
+    match (candidate.overlap, current.overlap) {
+        (false, true) => true,
+        (true, false) => false,
+        _ => error(candidate) < error(current),
+    }
+}

@@ -1,0 +1,214 @@
+//! Shortest edge paths on a facet model: vertex adjacency and a multi-source Dijkstra over 3D
+//! edge lengths, used by seams (between boundary loops, across closed surfaces, along user
+//! polylines) and by crest lines (to finish a line that can no longer descend).
+//!
+//! Input: a [`FacetModel`] (model units) and a predicate on vertices that may be crossed.
+//! Output: vertex paths, first vertex a source, last a target. Deterministic: ties are broken by
+//! vertex index, never by hash order.
+
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+use crate::mesh::FacetModel;
+
+/// The neighbours of every vertex, each with the edge that joins them, sorted by vertex index.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Adjacency {
+    neighbours: Vec<Vec<(u32, u32)>>,
+}
+
+impl Adjacency {
+    /// Builds the adjacency of the model's edges.
+    pub fn new(model: &FacetModel) -> Self {
+        let mut neighbours = vec![Vec::new(); model.vertex_count()];
+        for (edge, &[a, b]) in model.edges().iter().enumerate() {
+            neighbours[a as usize].push((b, edge as u32));
+            neighbours[b as usize].push((a, edge as u32));
+        }
+        for list in &mut neighbours {
+            list.sort_unstable();
+        }
+        Self { neighbours }
+    }
+
+    /// `(neighbour, edge)` pairs of vertex `v`, by ascending neighbour.
+    pub fn neighbours(&self, v: u32) -> &[(u32, u32)] {
+        &self.neighbours[v as usize]
+    }
+}
+
+/// A vertex in the Dijkstra queue, ordered so that the smallest distance (then the smallest
+/// index) pops first from the max-heap.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Queued {
+    distance: f64,
+    vertex: u32,
+}
+
+impl Eq for Queued {}
+
+impl Ord for Queued {
+    fn cmp(&self, other: &Self) -> Ordering {
+        other
+            .distance
+            .total_cmp(&self.distance)
+            .then_with(|| other.vertex.cmp(&self.vertex))
+    }
+}
+
+impl PartialOrd for Queued {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+/// Shortest-path distances and predecessors from a set of sources.
+#[derive(Debug, Clone)]
+pub struct ShortestPaths {
+    /// Distance of each vertex from the nearest source (infinite if unreached).
+    pub distances: Vec<f64>,
+    predecessors: Vec<u32>,
+}
+
+impl ShortestPaths {
+    /// The vertex before `v` on its shortest path, or `None` for a source or an unreached vertex.
+    pub fn predecessor(&self, v: u32) -> Option<u32> {
+        let parent = self.predecessors[v as usize];
+        (parent != u32::MAX).then_some(parent)
+    }
+
+    /// The path from the nearest source to `target` (source first), or `None` if unreached.
+    pub fn path_to(&self, target: u32) -> Option<Vec<u32>> {
+        if !self.distances[target as usize].is_finite() {
+            return None;
+        }
+        let mut path = vec![target];
+        let mut current = target;
+        while self.predecessors[current as usize] != u32::MAX {
+            current = self.predecessors[current as usize];
+            path.push(current);
+        }
+        path.reverse();
+        Some(path)
+    }
+}
+
+/// Dijkstra over 3D edge lengths from `sources`. A vertex is entered only if `passable(v)`;
+/// sources are always entered. The search stops early once `stop_at(v)` holds for a popped
+/// non-source vertex, which it returns.
+pub fn dijkstra(
+    model: &FacetModel,
+    adjacency: &Adjacency,
+    sources: &[u32],
+    passable: impl Fn(u32) -> bool,
+    stop_at: impl Fn(u32) -> bool,
+) -> (ShortestPaths, Option<u32>) {
+    let positions = model.positions();
+    let mut distances = vec![f64::INFINITY; model.vertex_count()];
+    let mut predecessors = vec![u32::MAX; model.vertex_count()];
+    let mut is_source = vec![false; model.vertex_count()];
+    let mut heap = BinaryHeap::new();
+    for &source in sources {
+        distances[source as usize] = 0.0;
+        is_source[source as usize] = true;
+        heap.push(Queued {
+            distance: 0.0,
+            vertex: source,
+        });
+    }
+    let mut reached = None;
+    while let Some(Queued { distance, vertex }) = heap.pop() {
+        if distance > distances[vertex as usize] {
+            continue;
+        }
+        if !is_source[vertex as usize] && stop_at(vertex) {
+            reached = Some(vertex);
+            break;
+        }
+        for &(next, _) in adjacency.neighbours(vertex) {
+            if is_source[next as usize] || !passable(next) {
+                continue;
+            }
+            let candidate =
+                distance + positions[vertex as usize].distance(positions[next as usize]);
+            if candidate < distances[next as usize] {
+                distances[next as usize] = candidate;
+                predecessors[next as usize] = vertex;
+                heap.push(Queued {
+                    distance: candidate,
+                    vertex: next,
+                });
+            }
+        }
+    }
+    (
+        ShortestPaths {
+            distances,
+            predecessors,
+        },
+        reached,
+    )
+}
+
+/// 3D length of a vertex path.
+pub fn path_length(model: &FacetModel, path: &[u32]) -> f64 {
+    let positions = model.positions();
+    path.windows(2)
+        .map(|pair| positions[pair[0] as usize].distance(positions[pair[1] as usize]))
+        .sum()
+}
+
+/// The model's edges along a vertex path, or `None` if two consecutive vertices share no edge.
+pub fn path_edges(model: &FacetModel, path: &[u32]) -> Option<Vec<usize>> {
+    path.windows(2)
+        .map(|pair| model.find_edge(pair[0], pair[1]))
+        .collect()
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use glam::DVec3;
+
+    use super::*;
+    use crate::mesh::{TriangleSoup, validate};
+
+    /// A 3 × 3 grid of unit squares, split into triangles.
+    pub(crate) fn grid() -> FacetModel {
+        let mut positions = Vec::new();
+        for y in 0..4 {
+            for x in 0..4 {
+                positions.push(DVec3::new(x as f64, y as f64, 0.0));
+            }
+        }
+        let mut triangles = Vec::new();
+        for y in 0..3u32 {
+            for x in 0..3u32 {
+                let v = y * 4 + x;
+                triangles.push([v, v + 1, v + 5]);
+                triangles.push([v, v + 5, v + 4]);
+            }
+        }
+        let soup = TriangleSoup::new(positions, triangles);
+        validate(&soup).expect("valid grid").components.remove(0)
+    }
+
+    #[test]
+    fn shortest_path_follows_the_diagonal() {
+        let model = grid();
+        let adjacency = Adjacency::new(&model);
+        let (paths, reached) = dijkstra(&model, &adjacency, &[0], |_| true, |v| v == 15);
+        assert_eq!(reached, Some(15));
+        assert_eq!(paths.path_to(15), Some(vec![0, 5, 10, 15]));
+        assert!((paths.distances[15] - 3.0 * 2f64.sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn blocked_vertices_are_avoided() {
+        let model = grid();
+        let adjacency = Adjacency::new(&model);
+        let (paths, _) = dijkstra(&model, &adjacency, &[0], |v| v != 5 && v != 10, |_| false);
+        let path = paths.path_to(15).expect("reachable around the block");
+        assert!(!path.contains(&5) && !path.contains(&10));
+        assert!(path_edges(&model, &path).is_some());
+    }
+}

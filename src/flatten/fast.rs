@@ -1,0 +1,537 @@
+//! The fast solver of phase two: minimises the paper's spring energy (Eq. 1 and 3)
+//! `E = Σ_edges ½ C_ij (|P_i P_j| − d_ij)²` over the flat positions, keeping every triangle
+//! positively oriented.
+//!
+//! Inputs: a facet model, its [`SpringSystem`] (rest lengths `d_ij` in model units, constants
+//! `C_ij > 0`) and an initial pattern (one 2D position per model vertex, model units), such as the
+//! one [`super::init_flatten`] builds. Output: the pattern, moved in place to a lower energy, and a
+//! [`FastOutcome`] (iterations, why it stopped, energy before and after). Preconditions: the model
+//! is connected (every [`FacetModel`] is); the constants are positive.
+//!
+//! Method: local-global iterations on the spring energy (the static case of "fast mass-spring",
+//! Liu, Bargteil, O'Brien and Kavan 2013). The local step gives each spring the rest vector
+//! `r_ij = d_ij (P_i − P_j) / |P_i − P_j|` (its current direction, its rest length); the global
+//! step minimises `Σ ½ C_ij |P_i − P_j − r_ij|²` over the positions, a linear system `L P = b`
+//! with the spring Laplacian `L` (weights `C_ij`), which is constant: it is factored once by
+//! faer's sparse Cholesky with one vertex held (the energy does not change under translation),
+//! and each iteration costs one forward and back substitution for the two coordinates. The local
+//! step can only lower the energy (it is the minimum over the directions) and so can the global
+//! step, so the plain iteration `G` never raises it. Anderson acceleration (type II, depth `m`,
+//! Walker and Ni 2011) extrapolates from the last `m` iterates, with the safeguard of Peng et al.
+//! (2018): an accelerated iterate is kept only if its energy is below the current one and it
+//! flips no triangle; otherwise the plain step is taken and the history is cleared.
+//!
+//! Orientation: a candidate pattern that makes a positively oriented triangle non-positive is
+//! never accepted. The plain step is then shortened (halved, toward the current pattern) until no
+//! triangle flips; the spring energy along that segment stays at or below the current energy (it is
+//! bounded by the global step's convex quadratic, which equals the energy at the current pattern),
+//! so the guard never raises the energy. Triangles already flipped in the initial pattern are
+//! allowed to unflip but are not forced to: a triangle, once positive, stays positive.
+//!
+//! Convergence: the plain step is a preconditioned gradient step (`G(P) − P = −L⁻¹ ∇E(P)`); the
+//! solver stops when its root-mean-square length over the vertices falls to
+//! [`FastOptions::step_tolerance`] times the mean rest length ([`StopReason::Converged`]), when the
+//! plain step no longer lowers the energy in floating point ([`StopReason::EnergyStalled`]), when
+//! the orientation guard blocks every step ([`StopReason::OrientationBlocked`]), or after
+//! [`FastOptions::max_iterations`] ([`StepBudget`](StopReason::StepBudget)). The energy returned is
+//! that of the pattern returned, never above the initial one.
+//!
+//! Cost: the factorisation is done once per [`FastSolver`]; an iteration is linear in the mesh size
+//! besides the substitutions (proportional to the factor's size), and runs its per-edge and
+//! per-vertex loops on rayon, summed in a fixed order so results do not depend on the threads.
+//! Memory: the factor, the spring vectors, and `2m + 4` position arrays.
+
+use faer::linalg::solvers::Solve;
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Mat, Side};
+use glam::DVec2;
+use rayon::prelude::*;
+
+use super::StopReason;
+use super::accuracy::signed_area;
+use super::springs::SpringSystem;
+use crate::mesh::FacetModel;
+
+/// Default iteration budget.
+pub const DEFAULT_MAX_ITERATIONS: usize = 400;
+/// Default stopping threshold on the plain step's root-mean-square length, as a fraction of the
+/// mean rest length.
+pub const DEFAULT_STEP_TOLERANCE: f64 = 1e-6;
+/// Default Anderson depth `m` (iterates remembered); 0 turns the acceleration off.
+pub const DEFAULT_ANDERSON_DEPTH: usize = 5;
+
+/// Halvings of a blocked plain step before the orientation guard is declared to block it.
+const MAX_STEP_HALVINGS: usize = 30;
+/// Relative Tikhonov term on the Anderson least-squares problem, against its own scale.
+const ANDERSON_REGULARISATION: f64 = 1e-10;
+/// Springs or vertices per rayon task; the partial sums are added in chunk order.
+const CHUNK: usize = 4096;
+
+/// Options of the fast solver. `Default` gives the documented defaults.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct FastOptions {
+    /// Largest number of iterations; default [`DEFAULT_MAX_ITERATIONS`].
+    pub max_iterations: usize,
+    /// Stop when the plain step's root-mean-square length is at most this fraction of the mean
+    /// rest length; default [`DEFAULT_STEP_TOLERANCE`].
+    pub step_tolerance: f64,
+    /// Anderson depth `m`; default [`DEFAULT_ANDERSON_DEPTH`].
+    pub anderson_depth: usize,
+}
+
+impl Default for FastOptions {
+    fn default() -> Self {
+        Self {
+            max_iterations: DEFAULT_MAX_ITERATIONS,
+            step_tolerance: DEFAULT_STEP_TOLERANCE,
+            anderson_depth: DEFAULT_ANDERSON_DEPTH,
+        }
+    }
+}
+
+/// What a run of the fast solver did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FastOutcome {
+    /// Iterations taken (global solves after the first).
+    pub iterations: usize,
+    /// Why it stopped.
+    pub stop_reason: StopReason,
+    /// Spring energy of the initial pattern.
+    pub initial_energy: f64,
+    /// Spring energy of the returned pattern (never above `initial_energy`).
+    pub energy: f64,
+}
+
+/// Errors of the fast solver's precomputation.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FastError {
+    /// The spring Laplacian could not be factored: a constant is not positive or not finite.
+    #[error(
+        "the spring system could not be factored ({reason}): every spring constant must be \
+         positive and finite"
+    )]
+    Factorisation {
+        /// What faer reported.
+        reason: String,
+    },
+}
+
+/// The precomputed fast solver of one spring system: reuse it to re-solve from new patterns.
+#[derive(Debug)]
+pub struct FastSolver<'a> {
+    model: &'a FacetModel,
+    springs: &'a SpringSystem,
+    options: FastOptions,
+    /// Cholesky factor of the spring Laplacian without the held vertex's row and column.
+    factor: faer::sparse::linalg::solvers::Llt<u32, f64>,
+    /// Per vertex, the range of its entries in `incident`.
+    incident_offsets: Vec<u32>,
+    /// Springs at each vertex: the spring index, with [`SECOND_END`] set when the vertex is the
+    /// spring's second end.
+    incident: Vec<u32>,
+    mean_rest_length: f64,
+}
+
+/// The vertex whose position the global step holds (the energy is translation invariant).
+const HELD_VERTEX: usize = 0;
+/// Flag in [`FastSolver::incident`] for the spring's second end.
+const SECOND_END: u32 = 1 << 31;
+
+impl<'a> FastSolver<'a> {
+    /// Precomputes the solver: the vertex-spring incidence and the factored spring Laplacian.
+    pub fn new(
+        model: &'a FacetModel,
+        springs: &'a SpringSystem,
+        options: FastOptions,
+    ) -> Result<Self, FastError> {
+        let (incident_offsets, incident) = vertex_springs(model.vertex_count(), springs);
+        let factor = factor_laplacian(model.vertex_count(), springs)?;
+        let total: f64 = springs.rest_lengths.iter().sum();
+        Ok(Self {
+            model,
+            springs,
+            options,
+            factor,
+            incident_offsets,
+            incident,
+            mean_rest_length: total / springs.len().max(1) as f64,
+        })
+    }
+
+    /// Minimises the spring energy from `positions` (one per model vertex), in place.
+    pub fn solve(&self, positions: &mut [DVec2]) -> FastOutcome {
+        assert_eq!(
+            positions.len(),
+            self.model.vertex_count(),
+            "one position per vertex"
+        );
+        let mut targets = vec![DVec2::ZERO; self.springs.len()];
+        let mut energy = self.local_step(positions, &mut targets);
+        let initial_energy = energy;
+        let mut positive = self.positive_triangles(positions);
+        let mut plain = self.global_step(&targets, positions[HELD_VERTEX]);
+        let mut anderson = Anderson::new(self.options.anderson_depth, positions.len());
+        anderson.push(positions, &plain);
+        let mut candidate = vec![DVec2::ZERO; positions.len()];
+        let mut candidate_targets = vec![DVec2::ZERO; self.springs.len()];
+        let threshold = self.options.step_tolerance * self.mean_rest_length;
+        for iteration in 0..self.options.max_iterations {
+            if rms_distance(positions, &plain) <= threshold {
+                return self.outcome(iteration, StopReason::Converged, initial_energy, energy);
+            }
+            let accelerated_energy = (anderson.extrapolate(&plain, &mut candidate)
+                && self.admissible(&candidate, &positive))
+            .then(|| self.local_step(&candidate, &mut candidate_targets));
+            let candidate_energy = match accelerated_energy {
+                Some(accelerated) if accelerated < energy => accelerated,
+                _ => {
+                    anderson.clear();
+                    if !self.shortened_plain_step(positions, &plain, &positive, &mut candidate) {
+                        return self.outcome(
+                            iteration,
+                            StopReason::OrientationBlocked,
+                            initial_energy,
+                            energy,
+                        );
+                    }
+                    let plain_energy = self.local_step(&candidate, &mut candidate_targets);
+                    if plain_energy >= energy {
+                        return self.outcome(
+                            iteration,
+                            StopReason::EnergyStalled,
+                            initial_energy,
+                            energy,
+                        );
+                    }
+                    plain_energy
+                }
+            };
+            positions.copy_from_slice(&candidate);
+            std::mem::swap(&mut targets, &mut candidate_targets);
+            energy = candidate_energy;
+            positive = self.positive_triangles(positions);
+            plain = self.global_step(&targets, positions[HELD_VERTEX]);
+            anderson.push(positions, &plain);
+        }
+        self.outcome(
+            self.options.max_iterations,
+            StopReason::StepBudget,
+            initial_energy,
+            energy,
+        )
+    }
+
+    fn outcome(
+        &self,
+        iterations: usize,
+        stop_reason: StopReason,
+        initial_energy: f64,
+        energy: f64,
+    ) -> FastOutcome {
+        FastOutcome {
+            iterations,
+            stop_reason,
+            initial_energy,
+            energy,
+        }
+    }
+
+    /// The local step: writes `C_ij r_ij` for every spring into `targets` and returns the spring
+    /// energy at `positions`.
+    fn local_step(&self, positions: &[DVec2], targets: &mut [DVec2]) -> f64 {
+        let springs = self.springs;
+        let partial: Vec<f64> = targets
+            .par_chunks_mut(CHUNK)
+            .enumerate()
+            .map(|(chunk, out)| {
+                let mut energy = 0.0;
+                for (k, target) in out.iter_mut().enumerate() {
+                    let e = chunk * CHUNK + k;
+                    let [a, b] = springs.edges[e];
+                    let delta = positions[a as usize] - positions[b as usize];
+                    let length = delta.length();
+                    let (rest, constant) = (springs.rest_lengths[e], springs.constants[e]);
+                    let direction = if length > 0.0 {
+                        delta / length
+                    } else {
+                        DVec2::X
+                    };
+                    *target = direction * (constant * rest);
+                    energy += 0.5 * constant * (length - rest) * (length - rest);
+                }
+                energy
+            })
+            .collect();
+        partial.iter().sum()
+    }
+
+    /// The global step: the positions minimising `Σ ½ C |P_i − P_j − r_ij|²` with the held vertex
+    /// at `held`.
+    fn global_step(&self, targets: &[DVec2], held: DVec2) -> Vec<DVec2> {
+        let mut right: Vec<DVec2> = vec![DVec2::ZERO; self.model.vertex_count()];
+        right.par_iter_mut().enumerate().for_each(|(v, sum)| {
+            let range = self.incident_offsets[v] as usize..self.incident_offsets[v + 1] as usize;
+            for &entry in &self.incident[range] {
+                let e = (entry & !SECOND_END) as usize;
+                let [a, b] = self.springs.edges[e];
+                let other = if entry & SECOND_END == 0 { b } else { a } as usize;
+                let sign = if entry & SECOND_END == 0 { 1.0 } else { -1.0 };
+                *sum += targets[e] * sign;
+                if other == HELD_VERTEX {
+                    *sum += held * self.springs.constants[e];
+                }
+            }
+        });
+        let unknowns = right.len() - 1;
+        let mut rhs = Mat::from_fn(unknowns, 2, |i, axis| right[unknown_vertex(i)][axis]);
+        self.factor.solve_in_place(rhs.as_mut());
+        let mut solved = vec![held; right.len()];
+        for (i, position) in solved.iter_mut().enumerate().skip(1) {
+            let row = i - 1;
+            *position = DVec2::new(rhs[(row, 0)], rhs[(row, 1)]);
+        }
+        solved
+    }
+
+    /// Whether each triangle is positively oriented at `positions`.
+    fn positive_triangles(&self, positions: &[DVec2]) -> Vec<bool> {
+        self.model
+            .triangles()
+            .par_iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|v| positions[v as usize]);
+                signed_area(a, b, c) > 0.0
+            })
+            .collect()
+    }
+
+    /// True if no triangle positive in `positive` is non-positive at `positions`.
+    fn admissible(&self, positions: &[DVec2], positive: &[bool]) -> bool {
+        !self
+            .model
+            .triangles()
+            .par_iter()
+            .zip(positive.par_iter())
+            .any(|(t, &was_positive)| {
+                let [a, b, c] = t.map(|v| positions[v as usize]);
+                was_positive && signed_area(a, b, c) <= 0.0
+            })
+    }
+
+    /// Writes into `candidate` the plain step from `positions` toward `plain`, halved until it is
+    /// admissible; false if it is still blocked after [`MAX_STEP_HALVINGS`].
+    fn shortened_plain_step(
+        &self,
+        positions: &[DVec2],
+        plain: &[DVec2],
+        positive: &[bool],
+        candidate: &mut [DVec2],
+    ) -> bool {
+        let mut fraction = 1.0;
+        for _ in 0..=MAX_STEP_HALVINGS {
+            candidate
+                .par_iter_mut()
+                .zip(positions.par_iter().zip(plain.par_iter()))
+                .for_each(|(c, (&p, &g))| *c = p + (g - p) * fraction);
+            if self.admissible(candidate, positive) {
+                return true;
+            }
+            fraction *= 0.5;
+        }
+        false
+    }
+}
+
+/// Minimises the spring energy from `positions` in place: [`FastSolver::new`] then
+/// [`FastSolver::solve`].
+pub fn fast_solve(
+    model: &FacetModel,
+    springs: &SpringSystem,
+    positions: &mut [DVec2],
+    options: FastOptions,
+) -> Result<FastOutcome, FastError> {
+    Ok(FastSolver::new(model, springs, options)?.solve(positions))
+}
+
+/// The model vertex of unknown `i` of the reduced system (every vertex but the held one).
+fn unknown_vertex(i: usize) -> usize {
+    i + 1
+}
+
+/// The springs at each vertex, in compressed rows: offsets and spring indices flagged with
+/// [`SECOND_END`] at their second end.
+fn vertex_springs(vertex_count: usize, springs: &SpringSystem) -> (Vec<u32>, Vec<u32>) {
+    let mut offsets = vec![0u32; vertex_count + 1];
+    for &[a, b] in &springs.edges {
+        offsets[a as usize + 1] += 1;
+        offsets[b as usize + 1] += 1;
+    }
+    for v in 0..vertex_count {
+        offsets[v + 1] += offsets[v];
+    }
+    let mut fill = offsets.clone();
+    let mut incident = vec![0u32; offsets[vertex_count] as usize];
+    for (e, &[a, b]) in springs.edges.iter().enumerate() {
+        for (v, flag) in [(a, 0), (b, SECOND_END)] {
+            incident[fill[v as usize] as usize] = e as u32 | flag;
+            fill[v as usize] += 1;
+        }
+    }
+    (offsets, incident)
+}
+
+/// Factors the spring Laplacian (weights `C_ij`) without the held vertex's row and column; the
+/// lower triangle is given.
+fn factor_laplacian(
+    vertex_count: usize,
+    springs: &SpringSystem,
+) -> Result<faer::sparse::linalg::solvers::Llt<u32, f64>, FastError> {
+    let unknown = |v: u32| (v as usize).checked_sub(1);
+    let mut entries = Vec::with_capacity(3 * springs.len());
+    for (&[a, b], &constant) in springs.edges.iter().zip(&springs.constants) {
+        let (ia, ib) = (unknown(a), unknown(b));
+        for i in [ia, ib].into_iter().flatten() {
+            entries.push(Triplet::new(i as u32, i as u32, constant));
+        }
+        if let (Some(i), Some(j)) = (ia, ib) {
+            entries.push(Triplet::new(i.max(j) as u32, i.min(j) as u32, -constant));
+        }
+    }
+    let unknowns = vertex_count - 1;
+    let failure = |reason: String| FastError::Factorisation { reason };
+    let matrix = SparseColMat::<u32, f64>::try_new_from_triplets(unknowns, unknowns, &entries)
+        .map_err(|error| failure(format!("{error:?}")))?;
+    matrix
+        .sp_cholesky(Side::Lower)
+        .map_err(|error| failure(format!("{error:?}")))
+}
+
+/// Root-mean-square distance between two patterns.
+fn rms_distance(first: &[DVec2], second: &[DVec2]) -> f64 {
+    let partial: Vec<f64> = first
+        .par_chunks(CHUNK)
+        .zip(second.par_chunks(CHUNK))
+        .map(|(p, q)| p.iter().zip(q).map(|(&p, &q)| p.distance_squared(q)).sum())
+        .collect();
+    (partial.iter().sum::<f64>() / first.len().max(1) as f64).sqrt()
+}
+
+/// Dot product of two position arrays seen as vectors, summed in chunk order.
+fn dot(first: &[DVec2], second: &[DVec2]) -> f64 {
+    let partial: Vec<f64> = first
+        .par_chunks(CHUNK)
+        .zip(second.par_chunks(CHUNK))
+        .map(|(p, q)| p.iter().zip(q).map(|(&p, &q)| p.dot(q)).sum())
+        .collect();
+    partial.iter().sum()
+}
+
+/// Anderson acceleration (type II) of the fixed-point map `G`: from the last iterates `x_k`
+/// and their images `g_k = G(x_k)`, the next iterate is `g_k − ΔG γ` with `γ` minimising
+/// `|f_k − ΔF γ|`, `f = g − x`, `ΔF` and `ΔG` the differences of successive `f` and `g`.
+struct Anderson {
+    depth: usize,
+    /// Differences of residuals and of images, oldest first.
+    residual_differences: Vec<Vec<DVec2>>,
+    image_differences: Vec<Vec<DVec2>>,
+    /// The last residual and image.
+    residual: Vec<DVec2>,
+    image: Vec<DVec2>,
+    has_last: bool,
+}
+
+impl Anderson {
+    fn new(depth: usize, size: usize) -> Self {
+        Self {
+            depth,
+            residual_differences: Vec::with_capacity(depth),
+            image_differences: Vec::with_capacity(depth),
+            residual: vec![DVec2::ZERO; size],
+            image: vec![DVec2::ZERO; size],
+            has_last: false,
+        }
+    }
+
+    /// Forgets the history (after a rejected accelerated step).
+    fn clear(&mut self) {
+        self.residual_differences.clear();
+        self.image_differences.clear();
+        self.has_last = false;
+    }
+
+    /// Records the iterate `x` and its image `g`.
+    fn push(&mut self, x: &[DVec2], g: &[DVec2]) {
+        if self.depth == 0 {
+            return;
+        }
+        if self.has_last {
+            let (mut residual_difference, mut image_difference) =
+                if self.residual_differences.len() == self.depth {
+                    (
+                        self.residual_differences.remove(0),
+                        self.image_differences.remove(0),
+                    )
+                } else {
+                    (vec![DVec2::ZERO; x.len()], vec![DVec2::ZERO; x.len()])
+                };
+            residual_difference
+                .par_iter_mut()
+                .zip(image_difference.par_iter_mut())
+                .enumerate()
+                .for_each(|(i, (df, dg))| {
+                    *df = (g[i] - x[i]) - self.residual[i];
+                    *dg = g[i] - self.image[i];
+                });
+            self.residual_differences.push(residual_difference);
+            self.image_differences.push(image_difference);
+        }
+        self.residual
+            .par_iter_mut()
+            .zip(self.image.par_iter_mut())
+            .enumerate()
+            .for_each(|(i, (f, image))| {
+                *f = g[i] - x[i];
+                *image = g[i];
+            });
+        self.has_last = true;
+    }
+
+    /// Writes the accelerated iterate into `out`; false when there is no history or the
+    /// least-squares problem is singular (then `out` is not meaningful).
+    fn extrapolate(&self, image: &[DVec2], out: &mut [DVec2]) -> bool {
+        let m = self.residual_differences.len();
+        if m == 0 {
+            return false;
+        }
+        let gram = Mat::from_fn(m, m, |i, j| {
+            dot(&self.residual_differences[i], &self.residual_differences[j])
+        });
+        let trace: f64 = (0..m).map(|i| gram[(i, i)]).sum();
+        let regularised = Mat::from_fn(m, m, |i, j| {
+            gram[(i, j)]
+                + if i == j {
+                    ANDERSON_REGULARISATION * trace
+                } else {
+                    0.0
+                }
+        });
+        let mut gamma = Mat::from_fn(m, 1, |i, _| {
+            dot(&self.residual_differences[i], &self.residual)
+        });
+        let Ok(factor) = regularised.llt(Side::Lower) else {
+            return false;
+        };
+        factor.solve_in_place(gamma.as_mut());
+        if !(0..m).all(|i| gamma[(i, 0)].is_finite()) {
+            return false;
+        }
+        out.par_iter_mut().enumerate().for_each(|(v, x)| {
+            let mut value = image[v];
+            for (k, difference) in self.image_differences.iter().enumerate() {
+                value -= difference[v] * gamma[(k, 0)];
+            }
+            *x = value;
+        });
+        true
+    }
+}

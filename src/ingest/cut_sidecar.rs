@@ -1,0 +1,86 @@
+//! The cut sidecar of a mesh file: user seams and no-cut regions for a part given as a plain
+//! mesh, which has no place for them. For `part.obj` (or `part.stl`) it is `part.cut.json` in the
+//! same folder, in the mesh's coordinates:
+//!
+//! ```json
+//! {
+//!   "seams": [[[0, -100, 0], [0, -75, 50], [0, -50, 100]]],
+//!   "no_cut_regions": [{"center": [0, 0, 100], "radius": 20}]
+//! }
+//! ```
+//!
+//! Both keys are optional; unknown keys are an error (a misspelt key would otherwise be ignored).
+//! A sidecar applies to a mesh file with a single part: with several, which part a seam belongs
+//! to would be a guess.
+
+use std::path::{Path, PathBuf};
+
+use super::IngestError;
+use crate::cut::CutConstraints;
+
+/// The sidecar's path for a mesh file: the extension replaced by `cut.json`.
+pub fn cut_sidecar_path(mesh: &Path) -> PathBuf {
+    mesh.with_extension("cut.json")
+}
+
+/// Reads the sidecar of `mesh` if there is one. `parts` is the number of parts the mesh holds.
+pub fn read_cut_sidecar(mesh: &Path, parts: usize) -> Result<Option<CutConstraints>, IngestError> {
+    let path = cut_sidecar_path(mesh);
+    let text = match std::fs::read_to_string(&path) {
+        Ok(text) => text,
+        Err(error) if error.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(source) => return Err(IngestError::Read { path, source }),
+    };
+    let constraints: CutConstraints =
+        serde_json::from_str(&text).map_err(|error| IngestError::Sidecar {
+            path: path.clone(),
+            message: error.to_string(),
+        })?;
+    if parts > 1 {
+        return Err(IngestError::Sidecar {
+            path,
+            message: format!(
+                "the mesh holds {parts} parts; seams and no-cut regions need a mesh file per part"
+            ),
+        });
+    }
+    Ok(Some(constraints))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_missing_sidecar_is_no_constraint() {
+        let mesh = Path::new("/nonexistent/folder/part.obj");
+        assert!(matches!(read_cut_sidecar(mesh, 1), Ok(None)));
+    }
+
+    #[test]
+    fn a_sidecar_is_read_and_checked() {
+        let folder = tempfile::tempdir().expect("temporary folder");
+        let mesh = folder.path().join("part.obj");
+        let sidecar = cut_sidecar_path(&mesh);
+        std::fs::write(
+            &sidecar,
+            r#"{"seams": [[[0, 0, 0], [1, 0, 0]]], "no_cut_regions": [{"center": [0, 0, 1], "radius": 2}]}"#,
+        )
+        .expect("write");
+        let constraints = read_cut_sidecar(&mesh, 1).expect("valid").expect("present");
+        assert_eq!(
+            constraints.seams,
+            vec![vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]]
+        );
+        assert_eq!(constraints.no_cut_regions[0].radius, 2.0);
+        assert!(matches!(
+            read_cut_sidecar(&mesh, 2),
+            Err(IngestError::Sidecar { .. })
+        ));
+        std::fs::write(&sidecar, r#"{"seems": []}"#).expect("write");
+        assert!(matches!(
+            read_cut_sidecar(&mesh, 1),
+            Err(IngestError::Sidecar { .. })
+        ));
+    }
+}

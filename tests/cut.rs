@@ -1,0 +1,361 @@
+//! Cutting (paper §6.3) end to end: developable parts get no cut, a ring gets one seam, a closed
+//! box opens along a cut graph to its exact net, a torus opens to a disk along its tree-cotree
+//! cut graph (and is refused with a hole in it), a dome gets crest-line cuts that lower its error,
+//! and the result is deterministic.
+
+use std::path::Path;
+
+use flatcut::cut::{
+    CutConstraints, CutError, CutOptions, CutResult, CutStop, NoCutRegion, SeamKind,
+    cut_and_flatten,
+};
+use flatcut::flatten::{Accuracy, FlattenOptions, Stiffness};
+use flatcut::ingest::read_mesh;
+use flatcut::mesh::{FacetModel, TriangleSoup, validate};
+use flatcut::progress::NoProgress;
+use flatcut::units::Units;
+use glam::DVec3;
+
+/// Errors of an exact development: round-off only.
+const ISOMETRIC: f64 = 1e-6;
+
+fn sample(name: &str) -> FacetModel {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("samples")
+        .join(name);
+    let input = read_mesh(&path, Units::default()).expect("sample reads");
+    validate(&input.soup)
+        .expect("sample is valid")
+        .components
+        .remove(0)
+}
+
+fn run(model: &FacetModel, options: &CutOptions) -> Result<CutResult, CutError> {
+    run_constrained(model, &CutConstraints::default(), options)
+}
+
+fn run_constrained(
+    model: &FacetModel,
+    constraints: &CutConstraints,
+    options: &CutOptions,
+) -> Result<CutResult, CutError> {
+    cut_and_flatten(
+        model,
+        &Stiffness::uniform(model),
+        constraints,
+        &FlattenOptions::default(),
+        options,
+        &NoProgress,
+    )
+}
+
+/// The larger of the two errors.
+fn error(accuracy: &Accuracy) -> f64 {
+    accuracy.area_error.max(accuracy.shape_error)
+}
+
+/// A closed box of `size`, each face split into `n × n` squares of two triangles, outward facing.
+fn closed_box(size: DVec3, n: u32) -> FacetModel {
+    let faces = [
+        (DVec3::ZERO, DVec3::Y * size.y, DVec3::X * size.x),
+        (DVec3::Z * size.z, DVec3::X * size.x, DVec3::Y * size.y),
+        (DVec3::ZERO, DVec3::X * size.x, DVec3::Z * size.z),
+        (DVec3::Y * size.y, DVec3::Z * size.z, DVec3::X * size.x),
+        (DVec3::ZERO, DVec3::Z * size.z, DVec3::Y * size.y),
+        (DVec3::X * size.x, DVec3::Y * size.y, DVec3::Z * size.z),
+    ];
+    let mut positions: Vec<DVec3> = Vec::new();
+    let index_of = |p: DVec3, positions: &mut Vec<DVec3>| -> u32 {
+        match positions.iter().position(|q| q.distance(p) < 1e-9) {
+            Some(i) => i as u32,
+            None => {
+                positions.push(p);
+                (positions.len() - 1) as u32
+            }
+        }
+    };
+    let mut triangles = Vec::new();
+    for (origin, u, v) in faces {
+        let at = |i: u32, j: u32| origin + u * (i as f64 / n as f64) + v * (j as f64 / n as f64);
+        for i in 0..n {
+            for j in 0..n {
+                let a = index_of(at(i, j), &mut positions);
+                let b = index_of(at(i + 1, j), &mut positions);
+                let c = index_of(at(i + 1, j + 1), &mut positions);
+                let d = index_of(at(i, j + 1), &mut positions);
+                triangles.push([a, b, c]);
+                triangles.push([a, c, d]);
+            }
+        }
+    }
+    let soup = TriangleSoup::new(positions, triangles);
+    validate(&soup).expect("valid box").components.remove(0)
+}
+
+/// A torus (genus 1) with `n × n` quads.
+fn torus(n: u32) -> FacetModel {
+    let (major, minor) = (50.0, 20.0);
+    let mut positions = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            let (u, v) = (
+                std::f64::consts::TAU * i as f64 / n as f64,
+                std::f64::consts::TAU * j as f64 / n as f64,
+            );
+            let radius = major + minor * v.cos();
+            positions.push(DVec3::new(
+                radius * u.cos(),
+                radius * u.sin(),
+                minor * v.sin(),
+            ));
+        }
+    }
+    let id = |i: u32, j: u32| (i % n) * n + (j % n);
+    let mut triangles = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    let soup = TriangleSoup::new(positions, triangles);
+    validate(&soup).expect("valid torus").components.remove(0)
+}
+
+#[test]
+fn developable_samples_get_no_cut() {
+    for name in ["cone_frustum.obj", "cylinder_segment.obj"] {
+        let model = sample(name);
+        let result = run(&model, &CutOptions::default()).expect("flattens");
+        assert!(result.cuts.is_empty(), "{name}: {} cuts", result.cuts.len());
+        assert!(result.seams.is_empty(), "{name}: seams");
+        assert_eq!(result.stop, CutStop::ToleranceMet);
+        assert!(
+            error(&result.flattened.stats.accuracy) < ISOMETRIC,
+            "{name}"
+        );
+        assert_eq!(result.model, model, "{name}: the model is unchanged");
+    }
+}
+
+#[test]
+fn a_ring_gets_exactly_one_seam_and_develops_exactly() {
+    let model = sample("cone_ring.obj");
+    assert_eq!(model.boundary_loops().len(), 2);
+    let result = run(&model, &CutOptions::default()).expect("flattens");
+    assert_eq!(result.seams.len(), 1);
+    assert_eq!(result.seams[0].kind, SeamKind::Ring);
+    assert!(result.cuts.is_empty());
+    assert_eq!(result.model.boundary_loops().len(), 1);
+    let accuracy = result.flattened.stats.accuracy;
+    assert!(error(&accuracy) < ISOMETRIC, "{accuracy:?}");
+    assert!(!accuracy.overlap);
+    // The seam runs from the small rim to the large one: at least the slant height.
+    let slant = (50.0f64.powi(2) + 100.0f64.powi(2)).sqrt();
+    assert!(result.seams[0].length >= slant - 1e-9);
+}
+
+#[test]
+fn a_closed_box_opens_along_its_corners_to_an_exact_net() {
+    let model = closed_box(DVec3::new(60.0, 40.0, 30.0), 3);
+    assert!(model.is_closed());
+    let result = run(&model, &CutOptions::default()).expect("flattens");
+    assert_eq!(result.seams[0].kind, SeamKind::Closed);
+    assert!(
+        result.seams[1..]
+            .iter()
+            .all(|seam| seam.kind == SeamKind::Corner)
+    );
+    assert_eq!(result.model.boundary_loops().len(), 1);
+    let accuracy = result.flattened.stats.accuracy;
+    assert_eq!(accuracy.flipped, 0);
+    assert!(!accuracy.overlap);
+    assert!(error(&accuracy) < ISOMETRIC, "{accuracy:?}");
+    assert!((result.model.area() - model.area()).abs() < 1e-9);
+}
+
+#[test]
+fn a_closed_torus_opens_along_its_cut_graph() {
+    let model = torus(16);
+    let options = CutOptions {
+        max_cuts: 0,
+        ..CutOptions::default()
+    };
+    let result = run(&model, &options).expect("flattens");
+    assert!(
+        result
+            .seams
+            .iter()
+            .all(|seam| seam.kind == SeamKind::Handle)
+    );
+    assert!(result.seams.len() >= 2, "two loops at least");
+    assert_eq!(result.model.boundary_loops().len(), 1);
+    let euler = result.model.vertex_count() as i64 - result.model.edges().len() as i64
+        + result.model.triangle_count() as i64;
+    assert_eq!(euler, 1, "a disk");
+    assert!(error(&result.flattened.stats.accuracy).is_finite());
+}
+
+#[test]
+fn handles_with_a_boundary_are_refused_with_their_genus() {
+    let closed = torus(12);
+    let mut triangles = closed.triangles().to_vec();
+    triangles.pop();
+    let soup = TriangleSoup::new(closed.positions().to_vec(), triangles);
+    let holed = validate(&soup).expect("valid").components.remove(0);
+    let error = run(&holed, &CutOptions::default()).expect_err("a torus has a handle");
+    assert_eq!(error, CutError::HigherGenus { genus: 1 });
+}
+
+#[test]
+fn a_hemisphere_is_cut_until_its_error_falls() {
+    let model = sample("hemisphere.obj");
+    let options = CutOptions {
+        max_cuts: 2,
+        ..CutOptions::default()
+    };
+    let result = run(&model, &options).expect("flattens");
+    assert!(!result.cuts.is_empty());
+    let first = result.cuts[0].before;
+    let accuracy = result.flattened.stats.accuracy;
+    assert!(
+        first.area_error.max(first.shape_error) > 0.1,
+        "uncut: {first:?}"
+    );
+    assert!(error(&accuracy) < 0.05, "cut: {accuracy:?}");
+    assert_eq!(accuracy.flipped, 0);
+    for cut in &result.cuts {
+        assert!(cut.after.energy < cut.before.energy);
+        let polyline: f64 = cut.points.windows(2).map(|p| p[0].distance(p[1])).sum();
+        assert!((polyline - cut.length).abs() < 1e-9 * cut.length);
+    }
+    // The cut model is the same surface: same area, every copy where its original is.
+    assert!((result.model.area() - model.area()).abs() < 1e-6 * model.area());
+    for (v, &original) in result.original_vertex.iter().enumerate() {
+        assert_eq!(
+            result.model.positions()[v],
+            model.positions()[original as usize]
+        );
+    }
+}
+
+#[test]
+fn cutting_is_deterministic() {
+    let model = sample("hemisphere.obj");
+    let options = CutOptions {
+        max_cuts: 1,
+        ..CutOptions::default()
+    };
+    let first = run(&model, &options).expect("flattens");
+    let second = run(&model, &options).expect("flattens");
+    assert_eq!(first.model, second.model);
+    assert_eq!(first.flattened.positions, second.flattened.positions);
+    assert_eq!(first.cuts, second.cuts);
+}
+
+#[test]
+fn cuts_avoid_no_cut_regions() {
+    let model = sample("hemisphere.obj");
+    let everywhere = NoCutRegion {
+        center: [0.0, 0.0, 0.0],
+        radius: 1e6,
+    };
+    let constraints = CutConstraints {
+        no_cut_regions: vec![everywhere],
+        ..CutConstraints::default()
+    };
+    let result = run_constrained(&model, &constraints, &CutOptions::default()).expect("flattens");
+    assert!(result.cuts.is_empty());
+    assert_eq!(result.stop, CutStop::NoBetterCut);
+}
+
+#[test]
+fn a_user_seam_opens_a_ring_where_the_user_says() {
+    let model = sample("cone_ring.obj");
+    // A straight line on the cone from the large rim (radius 100 at z = 0) to the small one
+    // (radius 50 at z = 100), at the angle of -90 degrees.
+    let seam: Vec<[f64; 3]> = (0..=4)
+        .map(|i| {
+            let t = i as f64 / 4.0;
+            [0.0, -(100.0 - 50.0 * t), 100.0 * t]
+        })
+        .collect();
+    let constraints = CutConstraints {
+        seams: vec![seam],
+        ..CutConstraints::default()
+    };
+    let result = run_constrained(&model, &constraints, &CutOptions::default()).expect("flattens");
+    assert_eq!(result.seams.len(), 1);
+    assert_eq!(result.seams[0].kind, SeamKind::User);
+    for point in &result.seams[0].points {
+        assert!(point.y < 0.0, "the seam stays on the user's side: {point}");
+    }
+    assert!(error(&result.flattened.stats.accuracy) < ISOMETRIC);
+}
+
+#[test]
+fn cuts_never_touch_a_fold_line() {
+    let plain = sample("hemisphere.obj");
+    // A fold line around the dome along the ring of vertices at z = 50: no cut may cross it.
+    let on_fold = |p: DVec3| (p.z - 50.0).abs() < 1e-6;
+    let fold_edges = plain
+        .edges()
+        .iter()
+        .filter(|&&[a, b]| {
+            on_fold(plain.positions()[a as usize]) && on_fold(plain.positions()[b as usize])
+        })
+        .map(|&vertices| flatcut::mesh::FoldEdge {
+            vertices,
+            fold_line: 0,
+        })
+        .collect::<Vec<_>>();
+    assert!(fold_edges.len() > 5, "the fold line has edges");
+    let soup = TriangleSoup {
+        fold_edges,
+        ..TriangleSoup::new(plain.positions().to_vec(), plain.triangles().to_vec())
+    };
+    let model = validate(&soup).expect("valid").components.remove(0);
+    let fold_points: Vec<DVec3> = model
+        .edges()
+        .iter()
+        .zip(model.edge_fold_lines())
+        .filter(|&(_, &line)| line != flatcut::mesh::NONE)
+        .flat_map(|(&[a, b], _)| [a, b])
+        .map(|v| model.positions()[v as usize])
+        .collect();
+    let options = CutOptions {
+        max_cuts: 3,
+        ..CutOptions::default()
+    };
+    let result = run(&model, &options).expect("flattens");
+    assert!(!result.cuts.is_empty());
+    for cut in &result.cuts {
+        for point in &cut.points {
+            assert!(
+                fold_points.iter().all(|fold| fold.distance(*point) > 1e-9),
+                "cut point {point} is on the fold line"
+            );
+        }
+    }
+    let folds_after = result
+        .model
+        .edge_fold_lines()
+        .iter()
+        .filter(|&&line| line != flatcut::mesh::NONE)
+        .count();
+    assert_eq!(folds_after, fold_points.len() / 2, "fold edges are kept");
+}
+
+#[test]
+fn a_closed_tetrahedron_opens_to_its_net() {
+    let positions = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+    let triangles = vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+    let soup = TriangleSoup::new(positions, triangles);
+    let model = validate(&soup).expect("valid").components.remove(0);
+    let result = run(&model, &CutOptions::default()).expect("flattens");
+    assert_eq!(result.model.boundary_loops().len(), 1);
+    assert_eq!(result.model.triangle_count(), 4);
+    let accuracy = result.flattened.stats.accuracy;
+    assert!(error(&accuracy) < ISOMETRIC, "{accuracy:?}");
+    assert!(!accuracy.overlap);
+}
