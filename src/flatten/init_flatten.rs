@@ -28,8 +28,11 @@ use crate::progress::Progress;
 
 /// The paper's step count for the release after each triangle ("N = 50").
 pub const PAPER_INIT_RELEASE_STEPS: usize = 50;
-/// Sweeps of the neighbourhood release after each triangle.
-pub const NEIGHBOURHOOD_SWEEPS: usize = 2;
+/// Sweeps of the neighbourhood release after each triangle. One: the fast solver's phase two
+/// removes what a second sweep would (measured on the 100k-triangle fender: 2 sweeps give an
+/// initial E_C of 0.69 % in 0.27 s, 1 sweep 0.75 % in 0.22 s, and phase two ends at the same
+/// energy within 0.01 % with 44 and 45 iterations).
+pub const NEIGHBOURHOOD_SWEEPS: usize = 1;
 
 /// How the strain is released while the pattern grows.
 #[derive(Debug, Clone, Copy, PartialEq)]
