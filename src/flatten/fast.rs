@@ -210,24 +210,18 @@ impl<'a> FastSolver<'a> {
                     if extrapolated {
                         anderson.clear();
                     }
-                    if !self.shortened_plain_step(positions, &plain, &positive, &mut candidate) {
-                        return self.outcome(
-                            iteration,
-                            StopReason::OrientationBlocked,
-                            initial_energy,
-                            energy,
-                        );
+                    let step = PlainStep {
+                        positions,
+                        plain: &plain,
+                        positive: &positive,
+                        energy,
+                    };
+                    match self.plain_step(step, &mut candidate, &mut candidate_targets) {
+                        Ok(plain_energy) => plain_energy,
+                        Err(stop_reason) => {
+                            return self.outcome(iteration, stop_reason, initial_energy, energy);
+                        }
                     }
-                    let plain_energy = self.local_step(&candidate, &mut candidate_targets);
-                    if plain_energy >= energy {
-                        return self.outcome(
-                            iteration,
-                            StopReason::EnergyStalled,
-                            initial_energy,
-                            energy,
-                        );
-                    }
-                    plain_energy
                 }
             };
             positions.copy_from_slice(&candidate);
@@ -343,6 +337,24 @@ impl<'a> FastSolver<'a> {
             })
     }
 
+    /// The safeguarded plain step: writes the (possibly shortened) step into `candidate` and its
+    /// spring vectors into `targets`, and returns its energy; or why no step lowers the energy.
+    fn plain_step(
+        &self,
+        step: PlainStep<'_>,
+        candidate: &mut [DVec2],
+        targets: &mut [DVec2],
+    ) -> Result<f64, StopReason> {
+        if !self.shortened_plain_step(step.positions, step.plain, step.positive, candidate) {
+            return Err(StopReason::OrientationBlocked);
+        }
+        let energy = self.local_step(candidate, targets);
+        if energy >= step.energy {
+            return Err(StopReason::EnergyStalled);
+        }
+        Ok(energy)
+    }
+
     /// Writes into `candidate` the plain step from `positions` toward `plain`, halved until it is
     /// admissible; false if it is still blocked after [`MAX_STEP_HALVINGS`].
     fn shortened_plain_step(
@@ -365,6 +377,18 @@ impl<'a> FastSolver<'a> {
         }
         false
     }
+}
+
+/// The current iterate, as the plain step sees it.
+struct PlainStep<'a> {
+    /// The current pattern.
+    positions: &'a [DVec2],
+    /// Its image under the plain iteration `G`.
+    plain: &'a [DVec2],
+    /// Which triangles are positively oriented in it.
+    positive: &'a [bool],
+    /// Its spring energy.
+    energy: f64,
 }
 
 /// Minimises the spring energy from `positions` in place: [`FastSolver::new`] then
