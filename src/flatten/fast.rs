@@ -480,7 +480,9 @@ fn factor_laplacian(
     )
     .map_err(|error| failure(format!("{error:?}")))?;
     let mut values = vec![0.0; symbolic.len_val()];
-    let parallelism = faer::get_global_parallelism();
+    // Sequential, as the substitutions: on 2 shared cores faer's rayon factorisation was slower
+    // (400k fender, whole flatten: 3.4-4.0 s sequential against 3.4-4.3 s with rayon).
+    let parallelism = Par::Seq;
     let scratch = symbolic.factorize_numeric_llt_scratch::<f64>(parallelism, Default::default());
     symbolic
         .factorize_numeric_llt(
