@@ -4,7 +4,8 @@
 # ../shared/bench/metrics.py, then the libigl peers on the same mesh (one at a time, never in
 # parallel with our runs). Prints Markdown rows; files go to OUT_DIR.
 #
-#   bench/run_table.sh OUT_DIR MESH.obj...          (PEERS=arap by default; PEERS= for none)
+#   bench/run_table.sh OUT_DIR MESH.obj...
+#   (PEERS=arap by default, PEERS= for none; REPEATS=3 peer runs, median; MAX_SECONDS=300 per run)
 #
 # Meshes: python3 ../shared/bench/gen_meshes.py /tmp/bench_meshes
 # Peers need: pip install -r ../shared/bench/requirements.txt
@@ -31,6 +32,7 @@ for mesh in "$@"; do
     if [ -n "$peers" ]; then
         /usr/bin/time -f "%M" -o "$out/$name.peers.rss" \
             python3 "$shared/peer_flatten.py" "$mesh" --out-dir "$out" --peers "$peers" \
+            --repeats "${REPEATS:-3}" --max-seconds "${MAX_SECONDS:-300}" \
             >"$out/$name.peers.jsonl" 2>>"$out/log.txt"
         python3 - "$out/$name.peers.jsonl" "$out/$name.peers.rss" <<'PY'
 import json, sys
