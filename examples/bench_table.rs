@@ -3,11 +3,12 @@
 //!
 //! One mesh and one solver per process, so the peak resident memory (`VmHWM` from
 //! `/proc/self/status`, Linux only) belongs to that run alone; `bench/run_table.sh` loops over
-//! meshes and solvers. Optionally writes the pattern as OBJ (same vertices and faces as the mesh)
-//! so `../shared/bench/metrics.py` can check the figures independently.
+//! meshes and solvers. Optionally writes `PREFIX.mesh.obj` and `PREFIX.pattern.obj` (the facet
+//! model flattened and its pattern, same vertices and faces) so `../shared/bench/metrics.py` can
+//! check the figures independently.
 //!
 //! ```text
-//! cargo run --release --example bench_table -- MESH.obj [fast|paper] [PATTERN_OUT.obj]
+//! cargo run --release --example bench_table -- MESH.obj [fast|paper] [PREFIX]
 //! cargo run --release --example bench_table -- --header
 //! ```
 
@@ -15,7 +16,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use anyhow::{Context, bail};
-use flatcut::export::obj::pattern_obj;
+use flatcut::export::obj::{mesh_obj, pattern_obj};
 use flatcut::flatten::{FlattenOptions, Solver};
 use flatcut::pipeline::{RunOptions, flatten_part, load_parts};
 use flatcut::progress::NoProgress;
@@ -30,7 +31,7 @@ fn main() -> anyhow::Result<()> {
         return Ok(());
     }
     let Some(mesh) = arguments.first() else {
-        bail!("usage: bench_table MESH.obj [fast|paper] [PATTERN_OUT.obj] | --header");
+        bail!("usage: bench_table MESH.obj [fast|paper] [PREFIX] | --header");
     };
     let solver = match arguments.get(1).map(String::as_str) {
         None | Some("fast") => Solver::Fast,
@@ -52,13 +53,23 @@ fn main() -> anyhow::Result<()> {
     let result = flatten_part(job, &options, &NoProgress)?;
     let seconds = started.elapsed().as_secs_f64();
     let stats = &result.flattened.stats;
-    if let Some(out) = arguments.get(2) {
-        let text = pattern_obj(
-            "flatcut bench_table",
-            &result.flattened.positions,
-            result.job.model.triangles(),
-        );
-        std::fs::write(out, text).with_context(|| format!("writing {out}"))?;
+    if let Some(prefix) = arguments.get(2) {
+        let model = &result.job.model;
+        let header = "flatcut bench_table";
+        let files = [
+            (
+                "mesh",
+                mesh_obj(header, model.positions(), model.triangles()),
+            ),
+            (
+                "pattern",
+                pattern_obj(header, &result.flattened.positions, model.triangles()),
+            ),
+        ];
+        for (kind, text) in files {
+            let out = format!("{prefix}.{kind}.obj");
+            std::fs::write(&out, text).with_context(|| format!("writing {out}"))?;
+        }
     }
     println!(
         "| {} | {} | {:?} | {:.3} | {:.0} | {:.3} | {:.3} | {} | {} | {:?} |",

@@ -28,8 +28,11 @@ use crate::progress::Progress;
 
 /// The paper's step count for the release after each triangle ("N = 50").
 pub const PAPER_INIT_RELEASE_STEPS: usize = 50;
-/// Sweeps of the neighbourhood release after each triangle.
-pub const NEIGHBOURHOOD_SWEEPS: usize = 2;
+/// Sweeps of the neighbourhood release after each triangle. One: the fast solver's phase two
+/// removes what a second sweep would (measured on the 100k-triangle fender: 2 sweeps give an
+/// initial E_C of 0.69 % in 0.27 s, 1 sweep 0.75 % in 0.22 s, and phase two ends at the same
+/// energy within 0.01 % with 44 and 45 iterations).
+pub const NEIGHBOURHOOD_SWEEPS: usize = 1;
 
 /// How the strain is released while the pattern grows.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -160,6 +163,8 @@ struct Placer<'a> {
     placed_triangle: Vec<bool>,
     vertex_edge_offsets: Vec<u32>,
     vertex_edges: Vec<u32>,
+    /// Scratch list of the vertices the neighbourhood release moves, kept between triangles.
+    neighbourhood: Vec<u32>,
 }
 
 impl<'a> Placer<'a> {
@@ -189,6 +194,7 @@ impl<'a> Placer<'a> {
             placed_triangle: vec![false; model.triangle_count()],
             vertex_edge_offsets: offsets,
             vertex_edges,
+            neighbourhood: Vec::new(),
         }
     }
 
@@ -255,9 +261,11 @@ impl<'a> Placer<'a> {
     /// Moves the vertices of `f` and their placed neighbours, one after the other, to the
     /// minimiser of their springs' energy with directions held: `p_i = Σ C (p_j + d u_ij) / Σ C`.
     fn relax_neighbourhood(&mut self, f: u32, sweeps: usize) {
-        let mut vertices: Vec<u32> = self.model.triangles()[f as usize].to_vec();
+        let mut vertices = std::mem::take(&mut self.neighbourhood);
+        vertices.clear();
         for &v in &self.model.triangles()[f as usize] {
-            vertices.extend(self.placed_neighbours(v));
+            vertices.push(v);
+            vertices.extend(self.active_springs(v).map(|(_, other)| other));
         }
         vertices.sort_unstable();
         vertices.dedup();
@@ -266,10 +274,7 @@ impl<'a> Placer<'a> {
                 self.relax_vertex(v);
             }
         }
-    }
-
-    fn placed_neighbours(&self, v: u32) -> Vec<u32> {
-        self.active_springs(v).map(|(_, other)| other).collect()
+        self.neighbourhood = vertices;
     }
 
     /// Springs of `v` that belong to a placed triangle, with the vertex at their other end.

@@ -6,7 +6,9 @@
 //!   growing system after each triangle (N = 50), then EnergyRelease by explicit integration
 //!   (Eq. 10-15) with the paper's stopping rule. For reproduction, on small meshes.
 //! - [`Solver::Fast`] (the default) builds the initial pattern with a neighbourhood release (near
-//!   linear) and minimises the energy with a faster method.
+//!   linear) and minimises the energy with [`FastSolver`]: local-global iterations on the
+//!   prefactored spring Laplacian with Anderson acceleration and an orientation guard (see
+//!   [`fast`] and `docs/solver.md`).
 
 pub mod accuracy;
 pub mod energy_release;
