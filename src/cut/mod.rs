@@ -188,6 +188,25 @@ impl CutResult {
     }
 }
 
+/// The fast solver's energy criterion inside the cut loop. The loop ranks candidate cuts by the
+/// patterns they give, so each pattern is converged further than a single flattening needs: with
+/// the solver's default (1e-4 over its window) the hemisphere sample ended its 8 cuts at
+/// 1.46 % / 1.00 %, with 1e-6 at 0.99 % / 0.62 %.
+pub const CUT_LOOP_ENERGY_TOLERANCE: f64 = 1e-6;
+
+/// The flatten options of the cut loop: the caller's, converged to at least
+/// [`CUT_LOOP_ENERGY_TOLERANCE`].
+fn converged_options(options: &FlattenOptions) -> FlattenOptions {
+    let energy_tolerance = options.fast.energy_tolerance.min(CUT_LOOP_ENERGY_TOLERANCE);
+    FlattenOptions {
+        fast: FastOptions {
+            energy_tolerance,
+            ..options.fast
+        },
+        ..options.clone()
+    }
+}
+
 /// Opens the part with seams, flattens it and cuts it along crest lines until it is within
 /// tolerance; see the module documentation.
 pub fn cut_and_flatten(
@@ -207,6 +226,12 @@ pub fn cut_and_flatten(
     lay_user_seams(&mut state, constraints, &mut seams)?;
     open_to_disk(&mut state, constraints, &mut seams)?;
     let mut flattened = flatten(&state.model, &state.stiffness, flatten_options, progress)?;
+    let loop_options = converged_options(flatten_options);
+    if !flattened.stats.accuracy.within(flatten_options.tolerance) && options.max_cuts > 0 {
+        let start = flattened.positions.clone();
+        flattened = flatten_from(&state.model, &state.stiffness, &start, &loop_options)?;
+    }
+    let flatten_options = &loop_options;
     let mut cuts: Vec<Cut> = Vec::new();
     let mut tips: Vec<u32> = Vec::new();
     let step_budget = options.max_cuts * (1 + EXTENSIONS_PER_CUT);
