@@ -6,4 +6,5 @@
 //! energy model) → `cut` → `nest` → `export` (the only module that writes files).
 
 pub mod mesh;
+pub mod nest;
 pub mod progress;

@@ -5,6 +5,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+mod nest;
 mod progress_bar;
 
 /// Exit code when every part finished within tolerance.
@@ -23,7 +24,10 @@ struct Cli {
 }
 
 #[derive(Debug, Subcommand)]
-enum Command {}
+enum Command {
+    /// Nest parts or a benchmark instance (ESICUP JSON) on sheets or a roll; writes OUT/nest.json.
+    Nest(nest::NestArgs),
+}
 
 /// How a successful command ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -38,7 +42,9 @@ pub enum Outcome {
 /// through clap.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
-    let result: anyhow::Result<Outcome> = match cli.command {};
+    let result: anyhow::Result<Outcome> = match cli.command {
+        Command::Nest(args) => nest::run(args, &progress_bar::TerminalProgress::new()),
+    };
     match result {
         Ok(Outcome::Success) => ExitCode::from(EXIT_SUCCESS),
         Ok(Outcome::OverTolerance) => ExitCode::from(EXIT_OVER_TOLERANCE),
