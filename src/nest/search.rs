@@ -33,20 +33,39 @@ use crate::progress::Progress;
 
 /// Collision queries per second of budget: the rate of the release build on a 2-core machine,
 /// so that `--time 60` takes about a minute there.
-pub const NOMINAL_QUERIES_PER_SECOND: f64 = 250_000.0;
+pub const NOMINAL_QUERIES_PER_SECOND: f64 = 2_000_000.0;
 /// Neighbours evaluated (in parallel) per round of the local search. Fixed, so the result does not
 /// depend on the number of threads.
 pub const NEIGHBOURS_PER_ROUND: usize = 4;
-/// Scan step along x, as a fraction of the copy's smaller side.
-const SCAN_STEP_FRACTION: f64 = 0.25;
-/// Spacing of the heights tried, as a fraction of the copy's smaller side.
-const LEVEL_STEP_FRACTION: f64 = 0.25;
+/// Threshold accepting: at the start a neighbour up to this fraction longer than the current
+/// solution is accepted; the threshold falls linearly to zero as the work budget is spent.
+const ACCEPTANCE_THRESHOLD: f64 = 0.01;
+
+/// What one placement pass works with.
+#[derive(Debug, Clone, Copy)]
+struct Pass {
+    /// Length of the roll (ignored for sheets).
+    roll_length: f64,
+    /// Whether a copy that finds no room is left out (strip shrinking) rather than failing.
+    allow_unplaced: bool,
+}
+
+/// Strip shrinking: each time every copy fits, the roll is cut this fraction shorter.
+const SHRINK_FRACTION: f64 = 0.005;
+/// Scan step along x, as a fraction of the copy's extent along x.
+const SCAN_STEP_FRACTION: f64 = 0.1;
+/// Most scan steps per height: small copies on a long front step further.
+const MAX_SCAN_STEPS: f64 = 128.0;
+/// Spacing of the heights tried, as a fraction of the copy's extent along y.
+const LEVEL_STEP_FRACTION: f64 = 0.05;
 /// Most heights tried per orientation.
-const MAX_LEVELS: usize = 48;
+const MAX_LEVELS: usize = 96;
 /// Bisection steps when a found position is pushed left or down.
 const REFINE_STEPS: u32 = 6;
-/// Rounds of push-left then push-down after a position is found.
-const COMPACTION_ROUNDS: u32 = 2;
+/// Rounds of slide-left then slide-down after a position is found.
+const COMPACTION_ROUNDS: u32 = 4;
+/// Most steps of one slide.
+const MAX_SLIDE_STEPS: u32 = 16;
 /// Two lengths closer than this (relative to the stock scale) are equal.
 const LENGTH_TOLERANCE_RELATIVE: f64 = 1e-9;
 /// Roll length of the first attempt, as a multiple of (net area / roll width) plus the largest part.
@@ -84,13 +103,16 @@ struct Placed {
 #[derive(Clone)]
 struct Solution<E> {
     order: Vec<usize>,
-    placed: Vec<Placed>,
+    /// Parallel to the first positions of `order`; `None` for a copy left out (strip shrinking).
+    placed: Vec<Option<Placed>>,
     bins: Vec<E>,
 }
 
-/// The objective, compared lexicographically: sheets used, then the length used on the last.
+/// The objective, compared lexicographically: net area of the copies left out (strip shrinking
+/// only), sheets used, then the length used on the last.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Cost {
+    unplaced: f64,
     bins: usize,
     length: f64,
 }
@@ -225,20 +247,22 @@ impl<'a> Problem<'a> {
         let started = Instant::now();
         let budget = (self.options.time_limit.as_secs_f64() * NOMINAL_QUERIES_PER_SECOND) as u64;
         progress.start("nest", budget);
-        let mut roll_length = self.initial_roll_length();
-        let (mut current, mut work) = loop {
-            let empty = Solution {
-                order: (0..self.copies.len()).collect(),
-                placed: Vec::new(),
-                bins: Vec::new(),
-            };
-            let (solution, work) = self.extend(empty, roll_length);
+        let shrinking = self.sheet_width.is_none();
+        let mut pass = Pass {
+            roll_length: self.initial_roll_length(),
+            allow_unplaced: false,
+        };
+        let (mut best, mut work) = loop {
+            let (solution, work) = self.extend(self.empty((0..self.copies.len()).collect()), pass);
             match solution {
                 Some(solution) => break (solution, work),
-                None => roll_length *= 2.0,
+                None => pass.roll_length *= 2.0,
             }
         };
-        let mut best = current.clone();
+        let mut current = best.clone();
+        if shrinking {
+            (current, pass) = self.shrink(&mut best, &mut work);
+        }
         let mut evaluations = 1;
         let mut random = SplitMix64(self.options.seed);
         let stop_reason = loop {
@@ -254,9 +278,7 @@ impl<'a> Problem<'a> {
             };
             let results: Vec<(Option<Solution<JaguaEngine>>, u64)> = moves
                 .into_par_iter()
-                .map(|(order, first_changed)| {
-                    self.evaluate(&current, order, first_changed, roll_length)
-                })
+                .map(|(order, first_changed)| self.evaluate(&current, order, first_changed, pass))
                 .collect();
             evaluations += results.len() as u64;
             let mut chosen: Option<Solution<JaguaEngine>> = None;
@@ -270,17 +292,63 @@ impl<'a> Problem<'a> {
                     chosen = Some(solution);
                 }
             }
-            if let Some(chosen) = chosen
-                && !self.better(self.cost(&current), self.cost(&chosen))
-            {
-                current = chosen;
-                if self.better(self.cost(&current), self.cost(&best)) {
-                    best = current.clone();
+            let Some(chosen) = chosen else { continue };
+            let (chosen_cost, current_cost) = (self.cost(&chosen), self.cost(&current));
+            if shrinking && chosen_cost.unplaced <= 0.0 {
+                best = chosen;
+                (current, pass) = self.shrink(&mut best, &mut work);
+            } else if shrinking {
+                if chosen_cost.unplaced <= current_cost.unplaced {
+                    current = chosen;
+                }
+            } else {
+                let remaining = (1.0 - work as f64 / budget.max(1) as f64).max(0.0);
+                let threshold = ACCEPTANCE_THRESHOLD * remaining * current_cost.length;
+                if self.acceptable(chosen_cost, current_cost, threshold) {
+                    current = chosen;
+                    if self.better(self.cost(&current), self.cost(&best)) {
+                        best = current.clone();
+                    }
                 }
             }
         };
         progress.finish();
         Ok(self.layout(&best, work, evaluations, stop_reason))
+    }
+
+    /// A solution with nothing placed yet.
+    fn empty(&self, order: Vec<usize>) -> Solution<JaguaEngine> {
+        Solution {
+            order,
+            placed: Vec::new(),
+            bins: Vec::new(),
+        }
+    }
+
+    /// Strip shrinking (roll only): cuts the roll [`SHRINK_FRACTION`] shorter than `best` and places
+    /// its sequence on it, leaving out what does not fit. While everything fits, that layout becomes the
+    /// new `best` and the roll is cut again. Returns the first incomplete layout and its pass.
+    fn shrink(
+        &self,
+        best: &mut Solution<JaguaEngine>,
+        work: &mut u64,
+    ) -> (Solution<JaguaEngine>, Pass) {
+        let order = best.order.clone();
+        loop {
+            let pass = Pass {
+                roll_length: self.cost(best).length * (1.0 - SHRINK_FRACTION),
+                allow_unplaced: true,
+            };
+            let (solution, spent) = self.extend(self.empty(order.clone()), pass);
+            *work += spent;
+            let Some(solution) = solution else {
+                return (best.clone(), pass);
+            };
+            if self.cost(&solution).unplaced > 0.0 {
+                return (solution, pass);
+            }
+            *best = solution;
+        }
     }
 
     /// Roll length of the first attempt (grown if a copy finds no room).
@@ -343,33 +411,36 @@ impl<'a> Problem<'a> {
         base: &Solution<JaguaEngine>,
         order: Vec<usize>,
         first_changed: usize,
-        roll_length: f64,
+        pass: Pass,
     ) -> (Option<Solution<JaguaEngine>>, u64) {
         let mut prefix = base.clone();
         for (position, placed) in base.placed.iter().enumerate().skip(first_changed) {
-            prefix.bins[placed.bin].remove(base.order[position] as u32);
+            if let Some(placed) = placed {
+                prefix.bins[placed.bin].remove(base.order[position] as u32);
+            }
         }
         prefix.placed.truncate(first_changed);
         let used_bins = prefix
             .placed
             .iter()
+            .flatten()
             .map(|placed| placed.bin + 1)
             .max()
             .unwrap_or(0);
         prefix.bins.truncate(used_bins.max(1));
         prefix.order = order;
-        self.extend(prefix, roll_length)
+        self.extend(prefix, pass)
     }
 
     /// Places the copies of `solution.order` that are not placed yet, in order.
     fn extend(
         &self,
         mut solution: Solution<JaguaEngine>,
-        roll_length: f64,
+        pass: Pass,
     ) -> (Option<Solution<JaguaEngine>>, u64) {
         let queries_before: u64 = solution.bins.iter().map(CollisionEngine::queries).sum();
         let mut fronts = vec![f64::NEG_INFINITY; solution.bins.len()];
-        for placed in &solution.placed {
+        for placed in solution.placed.iter().flatten() {
             fronts[placed.bin] = fronts[placed.bin].max(placed.right);
         }
         let spent = |bins: &[JaguaEngine]| {
@@ -384,14 +455,14 @@ impl<'a> Problem<'a> {
                     if self.sheet_width.is_none() && bin > 0 {
                         break;
                     }
-                    let Some(engine) = self.new_bin(roll_length) else {
+                    let Some(engine) = self.new_bin(pass.roll_length) else {
                         break;
                     };
                     solution.bins.push(engine);
                     fronts.push(f64::NEG_INFINITY);
                 }
                 if let Some((shape, translation, right)) =
-                    self.best_position(&mut solution.bins[bin], item, fronts[bin], roll_length)
+                    self.best_position(&mut solution.bins[bin], item, fronts[bin], pass)
                 {
                     found = Some(Placed {
                         bin,
@@ -403,12 +474,16 @@ impl<'a> Problem<'a> {
                 }
             }
             let Some(placed) = found else {
+                if pass.allow_unplaced {
+                    solution.placed.push(None);
+                    continue;
+                }
                 let work = spent(&solution.bins);
                 return (None, work);
             };
             solution.bins[placed.bin].insert(copy as u32, placed.shape, placed.translation);
             fronts[placed.bin] = fronts[placed.bin].max(placed.right);
-            solution.placed.push(placed);
+            solution.placed.push(Some(placed));
         }
         let work = spent(&solution.bins);
         (Some(solution), work)
@@ -431,8 +506,9 @@ impl<'a> Problem<'a> {
         engine: &mut JaguaEngine,
         item: usize,
         front: f64,
-        length: f64,
+        pass: Pass,
     ) -> Option<(ShapeId, DVec2, f64)> {
+        let length = pass.roll_length;
         let inset = self.library.inflation() + LENGTH_TOLERANCE_RELATIVE * self.scale;
         let tolerance = LENGTH_TOLERANCE_RELATIVE * self.scale;
         let mut best: Option<(ShapeId, DVec2, f64, f64)> = None;
@@ -444,11 +520,10 @@ impl<'a> Problem<'a> {
             if u_high < u_low || v_high < v_low {
                 continue;
             }
-            let step = size.min_element() * SCAN_STEP_FRACTION;
-            let levels = (((v_high - v_low) / (size.min_element() * LEVEL_STEP_FRACTION)).ceil()
-                as usize
-                + 1)
-            .clamp(2, MAX_LEVELS);
+            let scan_span = front.max(u_low) - u_low;
+            let step = (size.x * SCAN_STEP_FRACTION).max(scan_span / MAX_SCAN_STEPS);
+            let levels = (((v_high - v_low) / (size.y * LEVEL_STEP_FRACTION)).ceil() as usize + 1)
+                .clamp(2, MAX_LEVELS);
             let level_spacing = (v_high - v_low) / (levels - 1) as f64;
             let to_translation = |u: f64, v: f64| DVec2::new(u, v) - orientation.min;
             for level in 0..levels {
@@ -479,7 +554,7 @@ impl<'a> Problem<'a> {
                     shape,
                     (u, v),
                     (u_low, v_low),
-                    DVec2::new(step, level_spacing),
+                    DVec2::new(step, level_spacing.max(step.min(size.y))),
                     to_translation,
                 );
                 let right = u + size.x;
@@ -496,23 +571,40 @@ impl<'a> Problem<'a> {
     }
 
     fn cost(&self, solution: &Solution<JaguaEngine>) -> Cost {
-        let bins = solution
-            .placed
-            .iter()
+        let placed = solution.placed.iter().flatten();
+        let bins = placed
+            .clone()
             .map(|placed| placed.bin + 1)
             .max()
             .unwrap_or(0);
-        let length = solution
-            .placed
-            .iter()
+        let length = placed
             .filter(|placed| placed.bin + 1 == bins)
             .map(|placed| placed.right)
             .fold(0.0, f64::max);
-        Cost { bins, length }
+        let unplaced = (solution.placed.iter().zip(&solution.order))
+            .filter(|(placed, _)| placed.is_none())
+            .map(|(_, &copy)| self.items[self.copies[copy].item].area())
+            .sum();
+        Cost {
+            unplaced,
+            bins,
+            length,
+        }
+    }
+
+    /// Threshold accepting: whether a neighbour costing `candidate` replaces the current solution
+    /// costing `current`: it must use no more sheets and be at most `threshold` longer.
+    fn acceptable(&self, candidate: Cost, current: Cost, threshold: f64) -> bool {
+        candidate.bins < current.bins
+            || (candidate.bins == current.bins && candidate.length <= current.length + threshold)
     }
 
     /// Whether `a` is strictly better than `b`.
     fn better(&self, a: Cost, b: Cost) -> bool {
+        let area_tolerance = LENGTH_TOLERANCE_RELATIVE * self.scale * self.scale;
+        if (a.unplaced - b.unplaced).abs() > area_tolerance {
+            return a.unplaced < b.unplaced;
+        }
         a.bins < b.bins
             || (a.bins == b.bins && a.length < b.length - LENGTH_TOLERANCE_RELATIVE * self.scale)
     }
@@ -528,6 +620,7 @@ impl<'a> Problem<'a> {
         let bin_count = solution
             .placed
             .iter()
+            .flatten()
             .map(|placed| placed.bin + 1)
             .max()
             .unwrap_or(0);
@@ -540,6 +633,7 @@ impl<'a> Problem<'a> {
                 .placed
                 .iter()
                 .enumerate()
+                .filter_map(|(position, placed)| placed.map(|placed| (position, placed)))
                 .filter(|(_, placed)| placed.bin == bin)
             {
                 let copy = self.copies[solution.order[position]];
@@ -591,41 +685,55 @@ impl<'a> Problem<'a> {
     }
 }
 
-/// Pushes a feasible position left, then down, by bisection, [`COMPACTION_ROUNDS`] times.
-/// `spans` are the distances over which to search left (the scan step) and down.
+/// Slides a feasible position left, then down, until it touches something, up to
+/// [`COMPACTION_ROUNDS`] times or until it no longer moves. `steps` are the slide steps along x
+/// (the scan step) and y (the level spacing).
 fn compact(
     engine: &mut JaguaEngine,
     shape: ShapeId,
     (mut u, mut v): (f64, f64),
     (u_low, v_low): (f64, f64),
-    spans: DVec2,
+    steps: DVec2,
     to_translation: impl Fn(f64, f64) -> DVec2,
 ) -> (f64, f64) {
     for _ in 0..COMPACTION_ROUNDS {
-        u = push(u, (u - spans.x).max(u_low), |candidate| {
+        let (previous_u, previous_v) = (u, v);
+        u = slide(u, u_low, steps.x, |candidate| {
             engine.fits(shape, to_translation(candidate, v))
         });
-        v = push(v, (v - spans.y).max(v_low), |candidate| {
+        v = slide(v, v_low, steps.y, |candidate| {
             engine.fits(shape, to_translation(u, candidate))
         });
+        if (previous_u - u).abs() + (previous_v - v).abs() <= steps.min_element() / 64.0 {
+            break;
+        }
     }
     (u, v)
 }
 
-/// From a feasible `from`, the feasible value closest to `towards` found by trying `towards` and
-/// then bisecting [`REFINE_STEPS`] times.
-fn push(from: f64, towards: f64, mut fits: impl FnMut(f64) -> bool) -> f64 {
-    if fits(towards) {
-        return towards;
-    }
-    let (mut infeasible, mut feasible) = (towards, from);
-    for _ in 0..REFINE_STEPS {
-        let middle = (infeasible + feasible) / 2.0;
-        if fits(middle) {
-            feasible = middle;
-        } else {
-            infeasible = middle;
+/// From a feasible `from`, moves towards `limit` (below `from`) in steps of `step` while the
+/// position fits (at most [`MAX_SLIDE_STEPS`] steps), then bisects [`REFINE_STEPS`] times between
+/// the last position that fits and the first that does not.
+fn slide(from: f64, limit: f64, step: f64, mut fits: impl FnMut(f64) -> bool) -> f64 {
+    let mut feasible = from;
+    for _ in 0..MAX_SLIDE_STEPS {
+        if feasible <= limit {
+            return limit;
         }
+        let next = (feasible - step).max(limit);
+        if !fits(next) {
+            let mut infeasible = next;
+            for _ in 0..REFINE_STEPS {
+                let middle = (infeasible + feasible) / 2.0;
+                if fits(middle) {
+                    feasible = middle;
+                } else {
+                    infeasible = middle;
+                }
+            }
+            return feasible;
+        }
+        feasible = next;
     }
     feasible
 }
