@@ -33,7 +33,7 @@ use crate::progress::Progress;
 
 /// Collision queries per second of budget: the rate of the release build on a 2-core machine,
 /// so that `--time 60` takes about a minute there.
-pub const NOMINAL_QUERIES_PER_SECOND: f64 = 2_000_000.0;
+pub const NOMINAL_QUERIES_PER_SECOND: f64 = 1_000_000.0;
 /// Neighbours evaluated (in parallel) per round of the local search. Fixed, so the result does not
 /// depend on the number of threads.
 pub const NEIGHBOURS_PER_ROUND: usize = 4;
@@ -52,14 +52,12 @@ struct Pass {
 
 /// Strip shrinking: each time every copy fits, the roll is cut this fraction shorter.
 const SHRINK_FRACTION: f64 = 0.005;
-/// Scan step along x, as a fraction of the copy's extent along x.
-const SCAN_STEP_FRACTION: f64 = 0.1;
-/// Most scan steps per height: small copies on a long front step further.
-const MAX_SCAN_STEPS: f64 = 128.0;
-/// Spacing of the heights tried, as a fraction of the copy's extent along y.
-const LEVEL_STEP_FRACTION: f64 = 0.05;
-/// Most heights tried per orientation.
-const MAX_LEVELS: usize = 96;
+/// Random positions tried per orientation of a copy.
+const SAMPLES_PER_ORIENTATION: usize = 200;
+/// How many of the fitting samples (those with the lowest right edge) are compacted.
+const COMPACTED_CANDIDATES: usize = 4;
+/// Slide step of the compaction, as a fraction of the copy's extent along each axis.
+const COMPACTION_STEP_FRACTION: f64 = 0.25;
 /// Bisection steps when a found position is pushed left or down.
 const REFINE_STEPS: u32 = 6;
 /// Rounds of slide-left then slide-down after a position is found.
@@ -141,6 +139,11 @@ impl SplitMix64 {
         mixed = (mixed ^ (mixed >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
         mixed = (mixed ^ (mixed >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
         mixed ^ (mixed >> 31)
+    }
+
+    /// Uniform in [0, 1).
+    fn unit(&mut self) -> f64 {
+        (self.next() >> 11) as f64 / (1u64 << 53) as f64
     }
 
     /// Uniform in `0..bound` (`bound` > 0), by rejection-free multiply-shift.
@@ -248,12 +251,13 @@ impl<'a> Problem<'a> {
         let budget = (self.options.time_limit.as_secs_f64() * NOMINAL_QUERIES_PER_SECOND) as u64;
         progress.start("nest", budget);
         let shrinking = self.sheet_width.is_none();
+        let mut random = SplitMix64(self.options.seed);
         let mut pass = Pass {
             roll_length: self.initial_roll_length(),
             allow_unplaced: false,
         };
         let (mut best, mut work) = loop {
-            let (solution, work) = self.extend(self.empty((0..self.copies.len()).collect()), pass);
+            let (solution, work) = self.extend(self.empty((0..self.copies.len()).collect()), pass, &mut random);
             match solution {
                 Some(solution) => break (solution, work),
                 None => pass.roll_length *= 2.0,
@@ -261,10 +265,9 @@ impl<'a> Problem<'a> {
         };
         let mut current = best.clone();
         if shrinking {
-            (current, pass) = self.shrink(&mut best, &mut work);
+            (current, pass) = self.shrink(&mut best, &mut work, &mut random);
         }
         let mut evaluations = 1;
-        let mut random = SplitMix64(self.options.seed);
         let stop_reason = loop {
             progress.advance(work.min(budget));
             if work >= budget {
@@ -278,7 +281,9 @@ impl<'a> Problem<'a> {
             };
             let results: Vec<(Option<Solution<JaguaEngine>>, u64)> = moves
                 .into_par_iter()
-                .map(|(order, first_changed)| self.evaluate(&current, order, first_changed, pass))
+                .map(|(order, first_changed, seed)| {
+                    self.evaluate(&current, order, first_changed, pass, &mut SplitMix64(seed))
+                })
                 .collect();
             evaluations += results.len() as u64;
             let mut chosen: Option<Solution<JaguaEngine>> = None;
@@ -296,7 +301,7 @@ impl<'a> Problem<'a> {
             let (chosen_cost, current_cost) = (self.cost(&chosen), self.cost(&current));
             if shrinking && chosen_cost.unplaced <= 0.0 {
                 best = chosen;
-                (current, pass) = self.shrink(&mut best, &mut work);
+                (current, pass) = self.shrink(&mut best, &mut work, &mut random);
             } else if shrinking {
                 if chosen_cost.unplaced <= current_cost.unplaced {
                     current = chosen;
@@ -332,6 +337,7 @@ impl<'a> Problem<'a> {
         &self,
         best: &mut Solution<JaguaEngine>,
         work: &mut u64,
+        random: &mut SplitMix64,
     ) -> (Solution<JaguaEngine>, Pass) {
         let order = best.order.clone();
         loop {
@@ -339,7 +345,7 @@ impl<'a> Problem<'a> {
                 roll_length: self.cost(best).length * (1.0 - SHRINK_FRACTION),
                 allow_unplaced: true,
             };
-            let (solution, spent) = self.extend(self.empty(order.clone()), pass);
+            let (solution, spent) = self.extend(self.empty(order.clone()), pass, random);
             *work += spent;
             let Some(solution) = solution else {
                 return (best.clone(), pass);
@@ -375,7 +381,7 @@ impl<'a> Problem<'a> {
         &self,
         order: &[usize],
         random: &mut SplitMix64,
-    ) -> Option<Vec<(Vec<usize>, usize)>> {
+    ) -> Option<Vec<(Vec<usize>, usize, u64)>> {
         let first_item = self.copies[order[0]].item;
         if order
             .iter()
@@ -399,7 +405,7 @@ impl<'a> Problem<'a> {
                 let moved = changed.remove(second);
                 changed.insert(first, moved);
             }
-            moves.push((changed, first));
+            moves.push((changed, first, random.next()));
         }
         Some(moves)
     }
@@ -412,6 +418,7 @@ impl<'a> Problem<'a> {
         order: Vec<usize>,
         first_changed: usize,
         pass: Pass,
+        random: &mut SplitMix64,
     ) -> (Option<Solution<JaguaEngine>>, u64) {
         let mut prefix = base.clone();
         for (position, placed) in base.placed.iter().enumerate().skip(first_changed) {
@@ -429,7 +436,7 @@ impl<'a> Problem<'a> {
             .unwrap_or(0);
         prefix.bins.truncate(used_bins.max(1));
         prefix.order = order;
-        self.extend(prefix, pass)
+        self.extend(prefix, pass, random)
     }
 
     /// Places the copies of `solution.order` that are not placed yet, in order.
@@ -437,6 +444,7 @@ impl<'a> Problem<'a> {
         &self,
         mut solution: Solution<JaguaEngine>,
         pass: Pass,
+        random: &mut SplitMix64,
     ) -> (Option<Solution<JaguaEngine>>, u64) {
         let queries_before: u64 = solution.bins.iter().map(CollisionEngine::queries).sum();
         let mut fronts = vec![f64::NEG_INFINITY; solution.bins.len()];
@@ -462,7 +470,7 @@ impl<'a> Problem<'a> {
                     fronts.push(f64::NEG_INFINITY);
                 }
                 if let Some((shape, translation, right)) =
-                    self.best_position(&mut solution.bins[bin], item, fronts[bin], pass)
+                    self.best_position(&mut solution.bins[bin], item, fronts[bin], pass, random)
                 {
                     found = Some(Placed {
                         bin,
@@ -500,15 +508,19 @@ impl<'a> Problem<'a> {
         .ok()
     }
 
-    /// Lowest-right-edge position of a copy of `item` in one bin: (shape, translation, right edge).
+    /// Lowest-right-edge position found for a copy of `item` in one bin: (shape, translation,
+    /// right edge). Per orientation: [`SAMPLES_PER_ORIENTATION`] uniform samples left of the front
+    /// (beyond it everything fits, so the front itself is the fallback), the
+    /// [`COMPACTED_CANDIDATES`] lowest right edges among those that fit are slid left and down
+    /// until they touch, and the best is kept (lowest right edge, then lowest bottom).
     fn best_position(
         &self,
         engine: &mut JaguaEngine,
         item: usize,
         front: f64,
         pass: Pass,
+        random: &mut SplitMix64,
     ) -> Option<(ShapeId, DVec2, f64)> {
-        let length = pass.roll_length;
         let inset = self.library.inflation() + LENGTH_TOLERANCE_RELATIVE * self.scale;
         let tolerance = LENGTH_TOLERANCE_RELATIVE * self.scale;
         let mut best: Option<(ShapeId, DVec2, f64, f64)> = None;
@@ -516,51 +528,43 @@ impl<'a> Problem<'a> {
             let orientation = &self.orientations[shape];
             let size = orientation.max - orientation.min;
             let (u_low, v_low) = (inset, inset);
-            let (u_high, v_high) = (length - inset - size.x, self.height - inset - size.y);
+            let (u_high, v_high) = (pass.roll_length - inset - size.x, self.height - inset - size.y);
             if u_high < u_low || v_high < v_low {
                 continue;
             }
-            let scan_span = front.max(u_low) - u_low;
-            let step = (size.x * SCAN_STEP_FRACTION).max(scan_span / MAX_SCAN_STEPS);
-            let levels = (((v_high - v_low) / (size.y * LEVEL_STEP_FRACTION)).ceil() as usize + 1)
-                .clamp(2, MAX_LEVELS);
-            let level_spacing = (v_high - v_low) / (levels - 1) as f64;
             let to_translation = |u: f64, v: f64| DVec2::new(u, v) - orientation.min;
-            for level in 0..levels {
-                let v = v_low + level_spacing * level as f64;
+            let reach = front.max(u_low).min(u_high);
+            let mut candidates: Vec<(f64, f64)> = Vec::with_capacity(COMPACTED_CANDIDATES + 1);
+            if engine.fits(shape, to_translation(reach, v_low)) {
+                candidates.push((reach, v_low));
+            }
+            for _ in 0..SAMPLES_PER_ORIENTATION {
+                let u = u_low + random.unit() * (reach - u_low);
+                let v = v_low + random.unit() * (v_high - v_low);
+                let worst_kept = if candidates.len() < COMPACTED_CANDIDATES {
+                    f64::INFINITY
+                } else {
+                    candidates.iter().map(|candidate| candidate.0).fold(f64::NEG_INFINITY, f64::max)
+                };
                 let best_right = best.map_or(f64::INFINITY, |(_, _, right, _)| right);
-                let limit = (best_right - size.x).min(front.max(u_low)).min(u_high);
-                let mut u = u_low;
-                let mut hit = None;
-                while u <= limit + tolerance {
-                    if engine.fits(shape, to_translation(u, v)) {
-                        hit = Some(u);
-                        break;
-                    }
-                    u += step;
+                if u >= worst_kept || u + size.x >= best_right - tolerance {
+                    continue;
                 }
-                if hit.is_none()
-                    && front.max(u_low) <= u_high
-                    && front.max(u_low) + size.x < best_right - tolerance
-                {
-                    let at_front = front.max(u_low);
-                    if engine.fits(shape, to_translation(at_front, v)) {
-                        hit = Some(at_front);
+                if engine.fits(shape, to_translation(u, v)) {
+                    if candidates.len() == COMPACTED_CANDIDATES
+                        && let Some(worst) = candidates.iter().position(|candidate| candidate.0 >= worst_kept)
+                    {
+                        candidates.swap_remove(worst);
                     }
+                    candidates.push((u, v));
                 }
-                let Some(u) = hit else { continue };
-                let (u, v) = compact(
-                    engine,
-                    shape,
-                    (u, v),
-                    (u_low, v_low),
-                    DVec2::new(step, level_spacing.max(step.min(size.y))),
-                    to_translation,
-                );
+            }
+            let steps = size * COMPACTION_STEP_FRACTION;
+            for candidate in candidates {
+                let (u, v) = compact(engine, shape, candidate, (u_low, v_low), steps, to_translation);
                 let right = u + size.x;
                 let better = best.is_none_or(|(_, _, best_right, best_v)| {
-                    right < best_right - tolerance
-                        || (right <= best_right + tolerance && v < best_v - tolerance)
+                    right < best_right - tolerance || (right <= best_right + tolerance && v < best_v - tolerance)
                 });
                 if better {
                     best = Some((shape, to_translation(u, v), right, v));
