@@ -40,6 +40,10 @@ pub struct NestArgs {
     /// Search budget in seconds (a deterministic work budget, capped by the wall clock).
     #[arg(long, value_name = "S", default_value_t = nest::DEFAULT_TIME_LIMIT.as_secs_f64())]
     time: f64,
+    /// Work budget in collision queries instead of --time × the nominal rate: the same result on
+    /// any machine (--time still caps the wall clock).
+    #[arg(long, value_name = "QUERIES")]
+    work: Option<u64>,
     /// Seed of the search.
     #[arg(long, value_name = "N", default_value_t = nest::DEFAULT_SEED)]
     seed: u64,
@@ -75,6 +79,7 @@ struct ReportOptions<'a> {
     gap: f64,
     time_limit_seconds: f64,
     seed: u64,
+    work_limit: Option<u64>,
     rotations: Option<&'a Rotations>,
     mirror: bool,
 }
@@ -129,6 +134,7 @@ pub fn run(args: NestArgs, progress: &dyn Progress) -> anyhow::Result<Outcome> {
         gap: args.gap,
         time_limit: Duration::from_secs_f64(args.time),
         seed: args.seed,
+        work_limit: args.work,
     };
     let layout = nest::nest(&items, &options, progress)?;
     let violations = verify(&items, &layout);
@@ -149,6 +155,7 @@ pub fn run(args: NestArgs, progress: &dyn Progress) -> anyhow::Result<Outcome> {
             gap: options.gap,
             time_limit_seconds: args.time,
             seed: options.seed,
+            work_limit: options.work_limit,
             rotations: args.rotations.as_ref(),
             mirror: args.mirror,
         },

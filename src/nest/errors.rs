@@ -70,6 +70,12 @@ pub enum NestError {
         /// The engine's message.
         reason: String,
     },
+    /// The search found no position for a part that fits the stock on its own. Not expected:
+    /// it points to a degenerate outline or a defect in the search.
+    #[error(
+        "the search found no position for a part that fits the stock: check for degenerate outlines and report the input"
+    )]
+    NoPosition,
     /// An instance file could not be read or parsed.
     #[error("{path}: {reason}")]
     Instance {

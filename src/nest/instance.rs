@@ -114,3 +114,40 @@ fn ring_points(ring: &[[f64; 2]]) -> Vec<DVec2> {
     }
     points
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_items_demands_and_orientations() {
+        let text = r#"{"name": "tiny", "strip_height": 10.0, "items": [
+            {"id": 0, "demand": 2, "allowed_orientations": [0.0, 180.0],
+             "shape": {"type": "simple_polygon", "data": [[0,0],[4,0],[4,3],[0,3],[0,0]]}},
+            {"id": 1, "demand": 1,
+             "shape": {"type": "polygon", "data": {"outer": [[0,0],[6,0],[6,6],[0,6]],
+                                                   "inner": [[[2,2],[4,2],[4,4],[2,4]]]}}}]}"#;
+        let instance = parse_instance(text).expect("valid instance");
+        assert_eq!(instance.strip_height, 10.0);
+        assert_eq!(instance.items.len(), 2);
+        assert_eq!(instance.items[0].outer.len(), 4, "closing point dropped");
+        assert_eq!(
+            instance.items[0].rotations,
+            Rotations::Fixed(vec![0.0, 180.0])
+        );
+        assert_eq!(instance.items[1].rotations, Rotations::Free);
+        assert!((instance.items[1].area() - 32.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bad_input_names_the_problem() {
+        let missing = parse_instance(r#"{"name": "x", "items": []}"#).expect_err("no strip_height");
+        assert!(missing.contains("strip_height"), "{missing}");
+        let negative = parse_instance(r#"{"name": "x", "items": [], "strip_height": -1}"#)
+            .expect_err("negative");
+        assert!(negative.contains("strip_height"), "{negative}");
+        let error =
+            read_instance(Path::new("/nonexistent/instance.json")).expect_err("missing file");
+        assert!(error.to_string().contains("/nonexistent/instance.json"));
+    }
+}

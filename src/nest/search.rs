@@ -56,6 +56,14 @@ const SHRINK_FRACTION: f64 = 0.005;
 const SAMPLES_PER_ORIENTATION: usize = 200;
 /// How many of the fitting samples (those with the lowest right edge) are compacted.
 const COMPACTED_CANDIDATES: usize = 4;
+/// Samples are drawn over the height range widened by this fraction on each side and clamped, so
+/// that about that fraction of them lie exactly on the bottom or the top edge.
+const EDGE_SAMPLE_FRACTION: f64 = 0.1;
+/// Clearance (relative to the stock scale) kept from the stock edge and from the front, above the
+/// shapes' inflation, so that a candidate is not rejected for touching after f32 rounding.
+const CLEARANCE_RELATIVE: f64 = 1e-6;
+/// How many times the roll length of the construction may double before the search gives up.
+const MAX_ROLL_DOUBLINGS: u32 = 8;
 /// Slide step of the compaction, as a fraction of the copy's extent along each axis.
 const COMPACTION_STEP_FRACTION: f64 = 0.25;
 /// Bisection steps when a found position is pushed left or down.
@@ -207,7 +215,11 @@ impl<'a> Problem<'a> {
             }
             item_shapes.push(shapes);
         }
-        let scale = sheet_width.unwrap_or(0.0).max(height);
+        let net_area: f64 = items
+            .iter()
+            .map(|item| item.area().max(0.0) * f64::from(item.quantity))
+            .sum();
+        let scale = sheet_width.unwrap_or(net_area / height).max(height);
         let library = ShapeLibrary::new(&rings, options.gap, scale).map_err(|rejected| {
             NestError::CollisionShape {
                 item: items[orientations[rejected.index].item].name.clone(),
@@ -216,6 +228,17 @@ impl<'a> Problem<'a> {
         })?;
         for (shape, orientation) in orientations.iter_mut().enumerate() {
             (orientation.min, orientation.max) = library.inflated_bounds(shape);
+        }
+        let margin = 2.0 * (library.inflation() + CLEARANCE_RELATIVE * scale);
+        for (item, shapes) in items.iter().zip(&mut item_shapes) {
+            shapes.retain(|&shape| {
+                let size = orientations[shape].max - orientations[shape].min + DVec2::splat(margin);
+                size.y <= height && sheet_width.is_none_or(|width| size.x <= width)
+            });
+            if shapes.is_empty() && item.quantity > 0 {
+                let angles = item.rotations.angles().unwrap_or_default();
+                return Err(too_large(item, &angles, options));
+            }
         }
         let mut copies: Vec<Copy> = items
             .iter()
@@ -248,7 +271,10 @@ impl<'a> Problem<'a> {
     /// Runs the construction and the local search, and returns the best layout.
     pub(crate) fn solve(&self, progress: &dyn Progress) -> Result<NestLayout, NestError> {
         let started = Instant::now();
-        let budget = (self.options.time_limit.as_secs_f64() * NOMINAL_QUERIES_PER_SECOND) as u64;
+        let budget = self
+            .options
+            .work_limit
+            .unwrap_or((self.options.time_limit.as_secs_f64() * NOMINAL_QUERIES_PER_SECOND) as u64);
         progress.start("nest", budget);
         let shrinking = self.sheet_width.is_none();
         let mut random = SplitMix64(self.options.seed);
@@ -256,12 +282,19 @@ impl<'a> Problem<'a> {
             roll_length: self.initial_roll_length(),
             allow_unplaced: false,
         };
+        let mut attempts = 0;
         let (mut best, mut work) = loop {
-            let (solution, work) = self.extend(self.empty((0..self.copies.len()).collect()), pass, &mut random);
+            let (solution, work) = self.extend(
+                self.empty((0..self.copies.len()).collect()),
+                pass,
+                &mut random,
+            );
             match solution {
                 Some(solution) => break (solution, work),
-                None => pass.roll_length *= 2.0,
+                None if shrinking && attempts < MAX_ROLL_DOUBLINGS => pass.roll_length *= 2.0,
+                None => return Err(NestError::NoPosition),
             }
+            attempts += 1;
         };
         let mut current = best.clone();
         if shrinking {
@@ -521,30 +554,42 @@ impl<'a> Problem<'a> {
         pass: Pass,
         random: &mut SplitMix64,
     ) -> Option<(ShapeId, DVec2, f64)> {
-        let inset = self.library.inflation() + LENGTH_TOLERANCE_RELATIVE * self.scale;
+        let clearance = CLEARANCE_RELATIVE * self.scale;
+        let inset = self.library.inflation() + clearance;
         let tolerance = LENGTH_TOLERANCE_RELATIVE * self.scale;
         let mut best: Option<(ShapeId, DVec2, f64, f64)> = None;
         for &shape in &self.item_shapes[item] {
             let orientation = &self.orientations[shape];
             let size = orientation.max - orientation.min;
             let (u_low, v_low) = (inset, inset);
-            let (u_high, v_high) = (pass.roll_length - inset - size.x, self.height - inset - size.y);
+            let (u_high, v_high) = (
+                pass.roll_length - inset - size.x,
+                self.height - inset - size.y,
+            );
             if u_high < u_low || v_high < v_low {
                 continue;
             }
             let to_translation = |u: f64, v: f64| DVec2::new(u, v) - orientation.min;
-            let reach = front.max(u_low).min(u_high);
-            let mut candidates: Vec<(f64, f64)> = Vec::with_capacity(COMPACTED_CANDIDATES + 1);
-            if engine.fits(shape, to_translation(reach, v_low)) {
-                candidates.push((reach, v_low));
+            let reach = (front + clearance).max(u_low).min(u_high);
+            let mut candidates: Vec<(f64, f64)> = Vec::with_capacity(COMPACTED_CANDIDATES + 2);
+            for corner in [(reach, v_low), (reach, v_high)] {
+                if engine.fits(shape, to_translation(corner.0, corner.1)) {
+                    candidates.push(corner);
+                }
             }
+            let span = v_high - v_low;
             for _ in 0..SAMPLES_PER_ORIENTATION {
                 let u = u_low + random.unit() * (reach - u_low);
-                let v = v_low + random.unit() * (v_high - v_low);
+                let widened = v_low - EDGE_SAMPLE_FRACTION * span
+                    + random.unit() * (1.0 + 2.0 * EDGE_SAMPLE_FRACTION) * span;
+                let v = widened.clamp(v_low, v_high);
                 let worst_kept = if candidates.len() < COMPACTED_CANDIDATES {
                     f64::INFINITY
                 } else {
-                    candidates.iter().map(|candidate| candidate.0).fold(f64::NEG_INFINITY, f64::max)
+                    candidates
+                        .iter()
+                        .map(|candidate| candidate.0)
+                        .fold(f64::NEG_INFINITY, f64::max)
                 };
                 let best_right = best.map_or(f64::INFINITY, |(_, _, right, _)| right);
                 if u >= worst_kept || u + size.x >= best_right - tolerance {
@@ -552,7 +597,9 @@ impl<'a> Problem<'a> {
                 }
                 if engine.fits(shape, to_translation(u, v)) {
                     if candidates.len() == COMPACTED_CANDIDATES
-                        && let Some(worst) = candidates.iter().position(|candidate| candidate.0 >= worst_kept)
+                        && let Some(worst) = candidates
+                            .iter()
+                            .position(|candidate| candidate.0 >= worst_kept)
                     {
                         candidates.swap_remove(worst);
                     }
@@ -561,10 +608,18 @@ impl<'a> Problem<'a> {
             }
             let steps = size * COMPACTION_STEP_FRACTION;
             for candidate in candidates {
-                let (u, v) = compact(engine, shape, candidate, (u_low, v_low), steps, to_translation);
+                let (u, v) = compact(
+                    engine,
+                    shape,
+                    candidate,
+                    (u_low, v_low),
+                    steps,
+                    to_translation,
+                );
                 let right = u + size.x;
                 let better = best.is_none_or(|(_, _, best_right, best_v)| {
-                    right < best_right - tolerance || (right <= best_right + tolerance && v < best_v - tolerance)
+                    right < best_right - tolerance
+                        || (right <= best_right + tolerance && v < best_v - tolerance)
                 });
                 if better {
                     best = Some((shape, to_translation(u, v), right, v));

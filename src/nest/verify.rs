@@ -393,3 +393,136 @@ fn ring_distance(first: &[DVec2], second: &[DVec2]) -> f64 {
     }
     smallest
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::nest::{Rotations, SheetLayout, Stock, StopReason};
+
+    fn square(name: &str, side: f64, quantity: u32) -> NestItem {
+        NestItem {
+            name: name.to_string(),
+            outer: vec![
+                DVec2::ZERO,
+                DVec2::new(side, 0.0),
+                DVec2::new(side, side),
+                DVec2::new(0.0, side),
+            ],
+            holes: Vec::new(),
+            quantity,
+            rotations: Rotations::Fixed(vec![0.0]),
+            mirror_allowed: false,
+        }
+    }
+
+    fn at(item: usize, copy: u32, x: f64, y: f64) -> Placement {
+        Placement {
+            item,
+            copy,
+            rotation_degrees: 0.0,
+            mirrored: false,
+            translation: DVec2::new(x, y),
+        }
+    }
+
+    fn layout(gap: f64, placements: Vec<Placement>) -> NestLayout {
+        NestLayout {
+            stock: Stock::Sheets {
+                width: 100.0,
+                height: 50.0,
+            },
+            gap,
+            sheets: vec![SheetLayout {
+                width: 100.0,
+                height: 50.0,
+                used_length: 100.0,
+                placements,
+                utilisation: 0.0,
+            }],
+            utilisation: 0.0,
+            used_length: 100.0,
+            work: 0,
+            evaluations: 0,
+            stop_reason: StopReason::WorkBudget,
+        }
+    }
+
+    #[test]
+    fn valid_layout_with_touching_parts_passes() {
+        let items = [square("a", 10.0, 2)];
+        let placed = layout(0.0, vec![at(0, 0, 0.0, 0.0), at(0, 1, 10.0, 0.0)]);
+        assert_eq!(verify(&items, &placed), Vec::new());
+    }
+
+    #[test]
+    fn planted_overlap_is_caught() {
+        let items = [square("a", 10.0, 2)];
+        let placed = layout(0.0, vec![at(0, 0, 0.0, 0.0), at(0, 1, 9.0, 3.0)]);
+        let violations = verify(&items, &placed);
+        assert!(
+            matches!(violations.as_slice(), [Violation::Overlap { .. }]),
+            "{violations:?}"
+        );
+    }
+
+    #[test]
+    fn coincident_and_collinear_overlaps_are_caught() {
+        let items = [square("a", 10.0, 2)];
+        for offset in [0.0, 5.0] {
+            let placed = layout(0.0, vec![at(0, 0, 0.0, 0.0), at(0, 1, offset, 0.0)]);
+            let violations = verify(&items, &placed);
+            assert!(
+                matches!(violations.as_slice(), [Violation::Overlap { .. }]),
+                "{violations:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn part_outside_the_sheet_is_caught() {
+        let items = [square("a", 10.0, 1)];
+        let placed = layout(0.0, vec![at(0, 0, 95.0, 0.0)]);
+        let violations = verify(&items, &placed);
+        assert!(
+            matches!(violations.as_slice(), [Violation::OutsideSheet { overshoot, .. }] if (overshoot - 5.0).abs() < 1e-9),
+            "{violations:?}"
+        );
+    }
+
+    #[test]
+    fn too_small_gap_is_caught_with_the_distance() {
+        let items = [square("a", 10.0, 2)];
+        let placed = layout(2.0, vec![at(0, 0, 2.0, 2.0), at(0, 1, 13.0, 2.0)]);
+        let violations = verify(&items, &placed);
+        assert!(
+            matches!(violations.as_slice(), [Violation::GapTooSmall { distance, .. }] if (distance - 1.0).abs() < 1e-9),
+            "{violations:?}"
+        );
+        let edge = layout(2.0, vec![at(0, 0, 1.0, 2.0), at(0, 1, 20.0, 2.0)]);
+        assert!(matches!(
+            verify(&items, &edge).as_slice(),
+            [Violation::OutsideSheet { .. }]
+        ));
+    }
+
+    #[test]
+    fn missing_duplicate_and_disallowed_copies_are_caught() {
+        let items = [square("a", 10.0, 2)];
+        let mut rotated = at(0, 0, 20.0, 0.0);
+        rotated.rotation_degrees = 90.0;
+        rotated.translation.x += 10.0;
+        let placed = layout(0.0, vec![rotated, at(0, 0, 40.0, 0.0)]);
+        let violations = verify(&items, &placed);
+        assert!(
+            violations
+                .iter()
+                .any(|violation| matches!(violation, Violation::OrientationNotAllowed { .. }))
+        );
+        assert!(
+            violations
+                .iter()
+                .any(|violation| matches!(violation, Violation::DuplicateCopy { .. }))
+        );
+        assert!(violations.contains(&Violation::MissingCopy { item: 0, copy: 1 }));
+    }
+}
