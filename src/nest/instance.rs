@@ -106,10 +106,19 @@ pub fn parse_instance(text: &str) -> Result<Instance, String> {
     })
 }
 
-/// The ring as points, without a closing point equal to the first.
+/// A last point closer than this to the first (relative to the ring's extent) closes the ring.
+const CLOSING_TOLERANCE_RELATIVE: f64 = 1e-12;
+
+/// The ring as points, without a closing point that repeats the first.
 fn ring_points(ring: &[[f64; 2]]) -> Vec<DVec2> {
     let mut points: Vec<DVec2> = ring.iter().map(|&point| DVec2::from(point)).collect();
-    if points.len() > 1 && points.first() == points.last() {
+    let extent = points.iter().fold(0.0_f64, |extent, point| {
+        extent.max(point.abs().max_element())
+    });
+    if let (Some(first), Some(last)) = (points.first(), points.last())
+        && points.len() > 1
+        && first.distance(*last) <= CLOSING_TOLERANCE_RELATIVE * extent
+    {
         points.pop();
     }
     points

@@ -2,21 +2,28 @@
 //!
 //! 1. **Constructive bottom-left placement.** Copies are taken in a sequence (initially by
 //!    decreasing area). Each copy goes to the first sheet where it fits (always the one roll), at
-//!    the position that minimises its right edge, then its bottom edge: for every allowed
-//!    orientation, at evenly spaced heights, the copy is slid from the left edge towards the right
-//!    in steps of a quarter of its smaller side until it fits, then pushed left and down by
-//!    bisection. Nothing right of the current front needs a query: beyond it everything fits.
+//!    the position that minimises its right edge, then its bottom edge. Per allowed orientation:
+//!    [`SAMPLES_PER_ORIENTATION`] seeded uniform samples left of the current front (right of the
+//!    front everything fits, so the front itself, at the bottom and at the top, is the fallback);
+//!    the [`COMPACTED_CANDIDATES`] fitting samples with the lowest right edge are slid left and down
+//!    (steps, then bisection) until they touch.
 //! 2. **Local search over the sequence.** Each round draws [`NEIGHBOURS_PER_ROUND`] moves (swap two
 //!    copies of different items, or move one copy earlier) from a seeded splitmix64 generator,
-//!    re-places every copy from the first changed position (the prefix is kept), evaluates the
-//!    neighbours in parallel, and moves to the best one if it is no worse (sheets used, then length
-//!    used on the last sheet). The best layout seen is returned.
+//!    re-places every copy from the first changed position (the prefix is kept), and evaluates the
+//!    neighbours in parallel (rayon), each with its own seed.
+//!    * On a **roll**, the search works by *strip shrinking*: whenever a layout holds every copy,
+//!      it becomes the best and the roll is cut [`SHRINK_FRACTION`] shorter than it; copies that
+//!      no longer fit are left out, and the search minimises the area left out (ties accepted)
+//!      until a sequence fits everything again.
+//!    * On **sheets**, the search minimises (sheets used, length used on the last sheet) with
+//!      threshold accepting: a neighbour up to [`ACCEPTANCE_THRESHOLD`] longer is accepted at the
+//!      start, falling linearly to zero.
 //!
 //! Determinism: the work is counted in collision queries and the search stops after
-//! `time_limit × NOMINAL_QUERIES_PER_SECOND` of them, so the result depends only on the items, the
-//! options and the seed, not on the machine or the thread count. The wall-clock `time_limit` is
-//! also enforced between rounds; when it stops the search first (a slow or busy machine) the layout
-//! says so with [`StopReason::TimeLimit`] and may differ from run to run.
+//! `work_limit` of them (default `time_limit × NOMINAL_QUERIES_PER_SECOND`), so the result depends
+//! only on the items, the options and the seed, not on the machine or the thread count. The
+//! wall-clock `time_limit` is also enforced between rounds; when it stops the search first (a slow
+//! or busy machine) the layout says so with [`StopReason::TimeLimit`] and may differ between runs.
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -31,8 +38,9 @@ use super::{
 };
 use crate::progress::Progress;
 
-/// Collision queries per second of budget: the rate of the release build on a 2-core machine,
-/// so that `--time 60` takes about a minute there.
+/// Collision queries per second of budget: somewhat below the rate of the release build on a
+/// shared 2-core machine (1.2-1.5 million per second), so that the deterministic work budget, not
+/// the wall clock, normally ends a `--time 60` run, in about 40-55 s.
 pub const NOMINAL_QUERIES_PER_SECOND: f64 = 1_000_000.0;
 /// Neighbours evaluated (in parallel) per round of the local search. Fixed, so the result does not
 /// depend on the number of threads.
@@ -90,7 +98,7 @@ struct Orientation {
 
 /// One copy to place.
 #[derive(Debug, Clone, Copy)]
-struct Copy {
+struct PartCopy {
     item: usize,
     copy: u32,
 }
@@ -129,7 +137,7 @@ pub(crate) struct Problem<'a> {
     options: &'a NestOptions,
     orientations: Vec<Orientation>,
     item_shapes: Vec<Vec<ShapeId>>,
-    copies: Vec<Copy>,
+    copies: Vec<PartCopy>,
     library: Arc<ShapeLibrary>,
     /// Stock extent along y (sheet height or roll width) and, for sheets, along x.
     height: f64,
@@ -240,10 +248,10 @@ impl<'a> Problem<'a> {
                 return Err(too_large(item, &angles, options));
             }
         }
-        let mut copies: Vec<Copy> = items
+        let mut copies: Vec<PartCopy> = items
             .iter()
             .enumerate()
-            .flat_map(|(item, entry)| (0..entry.quantity).map(move |copy| Copy { item, copy }))
+            .flat_map(|(item, entry)| (0..entry.quantity).map(move |copy| PartCopy { item, copy }))
             .collect();
         let areas: Vec<f64> = items
             .iter()
