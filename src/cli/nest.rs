@@ -99,15 +99,14 @@ pub fn run(args: NestArgs, progress: &dyn Progress) -> anyhow::Result<Outcome> {
     let mut strip_height: Option<f64> = None;
     for path in &args.inputs {
         let instance = read_instance(path)?;
-        if strip_height.is_some_and(|height| {
+        let differs = strip_height.is_some_and(|height| {
             (height - instance.strip_height).abs() > f64::EPSILON * height.abs()
-        }) {
-            if args.roll.is_none() && args.sheet.is_none() {
-                bail!(
-                    "{}: strip_height differs from the first instance's: give --roll W or --sheet WxH",
-                    path.display()
-                );
-            }
+        });
+        if differs && args.roll.is_none() && args.sheet.is_none() {
+            bail!(
+                "{}: strip_height differs from the first instance's: give --roll W or --sheet WxH",
+                path.display()
+            );
         }
         strip_height.get_or_insert(instance.strip_height);
         names.push(instance.name);

@@ -47,7 +47,7 @@ pub const NOMINAL_QUERIES_PER_SECOND: f64 = 1_000_000.0;
 pub const NEIGHBOURS_PER_ROUND: usize = 4;
 /// Threshold accepting: at the start a neighbour up to this fraction longer than the current
 /// solution is accepted; the threshold falls linearly to zero as the work budget is spent.
-const ACCEPTANCE_THRESHOLD: f64 = 0.01;
+pub const ACCEPTANCE_THRESHOLD: f64 = 0.01;
 
 /// What one placement pass works with.
 #[derive(Debug, Clone, Copy)]
@@ -59,11 +59,11 @@ struct Pass {
 }
 
 /// Strip shrinking: each time every copy fits, the roll is cut this fraction shorter.
-const SHRINK_FRACTION: f64 = 0.005;
+pub const SHRINK_FRACTION: f64 = 0.005;
 /// Random positions tried per orientation of a copy.
-const SAMPLES_PER_ORIENTATION: usize = 200;
+pub const SAMPLES_PER_ORIENTATION: usize = 200;
 /// How many of the fitting samples (those with the lowest right edge) are compacted.
-const COMPACTED_CANDIDATES: usize = 4;
+pub const COMPACTED_CANDIDATES: usize = 4;
 /// Samples are drawn over the height range widened by this fraction on each side and clamped, so
 /// that about that fraction of them lie exactly on the bottom or the top edge.
 const EDGE_SAMPLE_FRACTION: f64 = 0.1;
