@@ -59,7 +59,7 @@ struct Pass {
 }
 
 /// Strip shrinking: each time every copy fits, the roll is cut this fraction shorter.
-pub const SHRINK_FRACTION: f64 = 0.005;
+pub const SHRINK_FRACTION: f64 = 0.01;
 /// Random positions tried per orientation of a copy.
 pub const SAMPLES_PER_ORIENTATION: usize = 200;
 /// How many of the fitting samples (those with the lowest right edge) are compacted.
