@@ -16,10 +16,7 @@ pub struct TerminalProgress {
 impl TerminalProgress {
     /// A reporter that draws only if stderr is a terminal.
     pub fn new() -> Self {
-        Self {
-            bar: Mutex::new(None),
-            enabled: std::io::stderr().is_terminal(),
-        }
+        Self { bar: Mutex::new(None), enabled: std::io::stderr().is_terminal() }
     }
 }
 
@@ -28,41 +25,24 @@ impl Progress for TerminalProgress {
         if !self.enabled {
             return;
         }
-        let bar = if total > 0 {
-            ProgressBar::new(total)
-        } else {
-            ProgressBar::new_spinner()
-        };
+        let bar = if total > 0 { ProgressBar::new(total) } else { ProgressBar::new_spinner() };
         let template = "{msg:>12} [{bar:40}] {pos}/{len} {elapsed_precise}";
         if let Ok(style) = ProgressStyle::with_template(template) {
             bar.set_style(style.progress_chars("=> "));
         }
         bar.set_message(stage.to_string());
-        let mut slot = self
-            .bar
-            .lock()
-            .unwrap_or_else(|poisoned| poisoned.into_inner());
+        let mut slot = self.bar.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
         *slot = Some(bar);
     }
 
     fn advance(&self, done: u64) {
-        if let Some(bar) = self
-            .bar
-            .lock()
-            .unwrap_or_else(|poisoned| poisoned.into_inner())
-            .as_ref()
-        {
+        if let Some(bar) = self.bar.lock().unwrap_or_else(|poisoned| poisoned.into_inner()).as_ref() {
             bar.set_position(done);
         }
     }
 
     fn finish(&self) {
-        if let Some(bar) = self
-            .bar
-            .lock()
-            .unwrap_or_else(|poisoned| poisoned.into_inner())
-            .take()
-        {
+        if let Some(bar) = self.bar.lock().unwrap_or_else(|poisoned| poisoned.into_inner()).take() {
             bar.finish_and_clear();
         }
     }

@@ -50,10 +50,8 @@ impl FacetModel {
                 edge_fold_lines[e] = line;
             }
         }
-        let rest_lengths = edges
-            .iter()
-            .map(|&[a, b]| positions[a as usize].distance(positions[b as usize]))
-            .collect();
+        let rest_lengths =
+            edges.iter().map(|&[a, b]| positions[a as usize].distance(positions[b as usize])).collect();
         let (vertex_face_offsets, vertex_faces) = build_vertex_faces(positions.len(), &triangles);
         let boundary_loops = trace_boundary_loops(&triangles, &edge_faces, &face_edges, &edges);
         Self {
@@ -124,11 +122,7 @@ impl FacetModel {
     /// Replaces the rest lengths (bend allowance, for instance). Panics if the length differs
     /// from the edge count, which is a programming error.
     pub fn set_rest_lengths(&mut self, rest_lengths: Vec<f64>) {
-        assert_eq!(
-            rest_lengths.len(),
-            self.edges.len(),
-            "one rest length per edge"
-        );
+        assert_eq!(rest_lengths.len(), self.edges.len(), "one rest length per edge");
         self.rest_lengths = rest_lengths;
     }
 
@@ -168,9 +162,7 @@ impl FacetModel {
 
     /// Total surface area.
     pub fn area(&self) -> f64 {
-        (0..self.triangles.len())
-            .map(|f| self.triangle_area(f))
-            .sum()
+        (0..self.triangles.len()).map(|f| self.triangle_area(f)).sum()
     }
 
     /// The diagonal of the axis-aligned bounding box: the part's size.
@@ -246,10 +238,7 @@ fn trace_boundary_loops(
             continue;
         }
         let f = faces[0] as usize;
-        let k = face_edges[f]
-            .iter()
-            .position(|&x| x as usize == e)
-            .expect("face owns its edge");
+        let k = face_edges[f].iter().position(|&x| x as usize == e).expect("face owns its edge");
         next.push((triangles[f][k], triangles[f][(k + 1) % 3]));
         debug_assert!(edges[e].contains(&triangles[f][k]));
     }

@@ -36,12 +36,7 @@ impl TriangleSoup {
     /// A soup from positions and triangles, every face tagged [`NO_SOURCE_FACE`].
     pub fn new(positions: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> Self {
         let face_sources = vec![NO_SOURCE_FACE; triangles.len()];
-        Self {
-            positions,
-            triangles,
-            face_sources,
-            fold_edges: Vec::new(),
-        }
+        Self { positions, triangles, face_sources, fold_edges: Vec::new() }
     }
 
     /// Number of triangles.
@@ -51,10 +46,7 @@ impl TriangleSoup {
 
     /// The same soup moved by a rigid motion (or any affine map given as a closure).
     pub fn transformed(&self, map: impl Fn(DVec3) -> DVec3) -> Self {
-        Self {
-            positions: self.positions.iter().map(|&p| map(p)).collect(),
-            ..self.clone()
-        }
+        Self { positions: self.positions.iter().map(|&p| map(p)).collect(), ..self.clone() }
     }
 
     /// The soup scaled by `factor` (a unit conversion).

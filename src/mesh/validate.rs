@@ -88,9 +88,7 @@ impl Defect {
     pub fn is_repaired(&self) -> bool {
         matches!(
             self,
-            Defect::RepeatedVertex { .. }
-                | Defect::Reoriented { .. }
-                | Defect::UnreferencedVertices { .. }
+            Defect::RepeatedVertex { .. } | Defect::Reoriented { .. } | Defect::UnreferencedVertices { .. }
         )
     }
 }
@@ -102,29 +100,19 @@ impl fmt::Display for Defect {
             Defect::NonFiniteVertex { vertex } => {
                 write!(f, "vertex {vertex} has a NaN or infinite coordinate")
             }
-            Defect::IndexOutOfRange {
-                triangle,
-                index,
-                vertex_count,
-            } => write!(
+            Defect::IndexOutOfRange { triangle, index, vertex_count } => write!(
                 f,
                 "triangle {triangle} references vertex {index}, but there are only {vertex_count} vertices"
             ),
             Defect::RepeatedVertex { triangle } => {
-                write!(
-                    f,
-                    "triangle {triangle} uses the same vertex twice (dropped)"
-                )
+                write!(f, "triangle {triangle} uses the same vertex twice (dropped)")
             }
             Defect::ZeroArea { triangle, area } => write!(
                 f,
                 "triangle {triangle} has zero area ({area:.3e}): its vertices are collinear; \
                  remove it or collapse its shortest edge"
             ),
-            Defect::NonManifoldEdge {
-                vertices: [a, b],
-                faces,
-            } => write!(
+            Defect::NonManifoldEdge { vertices: [a, b], faces } => write!(
                 f,
                 "edge {a}-{b} is shared by {faces} triangles (non-manifold; at most 2 allowed)"
             ),
@@ -137,16 +125,10 @@ impl fmt::Display for Defect {
                 "the surface is not orientable (orientations conflict at edge {a}-{b})"
             ),
             Defect::Reoriented { count } => {
-                write!(
-                    f,
-                    "{count} triangles had the opposite orientation and were flipped"
-                )
+                write!(f, "{count} triangles had the opposite orientation and were flipped")
             }
             Defect::UnreferencedVertices { count, first } => {
-                write!(
-                    f,
-                    "{count} vertices are used by no triangle (first: {first}); dropped"
-                )
+                write!(f, "{count} vertices are used by no triangle (first: {first}); dropped")
             }
         }
     }
@@ -208,10 +190,7 @@ pub fn validate(soup: &TriangleSoup) -> Result<ValidatedMesh, MeshDefects> {
         return Err(MeshDefects(errors));
     }
     let components = split_components(soup, &kept, &triangles, &component_of, &mut warnings);
-    Ok(ValidatedMesh {
-        components,
-        warnings,
-    })
+    Ok(ValidatedMesh { components, warnings })
 }
 
 fn check_coordinates_and_indices(soup: &TriangleSoup, errors: &mut Vec<Defect>) {
@@ -224,11 +203,7 @@ fn check_coordinates_and_indices(soup: &TriangleSoup, errors: &mut Vec<Defect>) 
     for (triangle, t) in soup.triangles.iter().enumerate() {
         for &index in t {
             if index as usize >= vertex_count {
-                errors.push(Defect::IndexOutOfRange {
-                    triangle,
-                    index,
-                    vertex_count,
-                });
+                errors.push(Defect::IndexOutOfRange { triangle, index, vertex_count });
             }
         }
     }
@@ -251,10 +226,7 @@ fn check_areas(soup: &TriangleSoup, kept: &[usize], errors: &mut Vec<Defect>) {
     for &triangle in kept {
         let [a, b, c] = soup.triangles[triangle].map(|v| soup.positions[v as usize]);
         let area = 0.5 * (b - a).cross(c - a).length();
-        let longest = (b - a)
-            .length_squared()
-            .max((c - b).length_squared())
-            .max((a - c).length_squared());
+        let longest = (b - a).length_squared().max((c - b).length_squared()).max((a - c).length_squared());
         if area <= DEGENERATE_AREA_RATIO * longest {
             errors.push(Defect::ZeroArea { triangle, area });
         }
@@ -276,19 +248,14 @@ fn sorted_half_edges(triangles: &[[u32; 3]]) -> Vec<(u32, u32, u32, bool)> {
 }
 
 /// Groups of half-edges that share an undirected edge.
-fn edge_groups(
-    half_edges: &[(u32, u32, u32, bool)],
-) -> impl Iterator<Item = &[(u32, u32, u32, bool)]> {
+fn edge_groups(half_edges: &[(u32, u32, u32, bool)]) -> impl Iterator<Item = &[(u32, u32, u32, bool)]> {
     half_edges.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1))
 }
 
 fn check_edge_valence(half_edges: &[(u32, u32, u32, bool)], errors: &mut Vec<Defect>) {
     for group in edge_groups(half_edges) {
         if group.len() > 2 {
-            errors.push(Defect::NonManifoldEdge {
-                vertices: [group[0].0, group[0].1],
-                faces: group.len(),
-            });
+            errors.push(Defect::NonManifoldEdge { vertices: [group[0].0, group[0].1], faces: group.len() });
         }
     }
 }
@@ -362,20 +329,14 @@ fn check_vertex_fans(vertex_count: usize, triangles: &[[u32; 3]], errors: &mut V
     }
     // Corner of vertex v in face f.
     let corner = |f: u32, v: u32| -> u32 {
-        let k = triangles[f as usize]
-            .iter()
-            .position(|&x| x == v)
-            .expect("vertex of face");
+        let k = triangles[f as usize].iter().position(|&x| x == v).expect("vertex of face");
         f * 3 + k as u32
     };
     let half_edges = sorted_half_edges(triangles);
     for group in edge_groups(&half_edges) {
         if let [x, y] = group {
             for v in [x.0, x.1] {
-                let (ra, rb) = (
-                    root(&mut parent, corner(x.2, v)),
-                    root(&mut parent, corner(y.2, v)),
-                );
+                let (ra, rb) = (root(&mut parent, corner(x.2, v)), root(&mut parent, corner(y.2, v)));
                 parent[ra as usize] = rb;
             }
         }
@@ -391,10 +352,7 @@ fn check_vertex_fans(vertex_count: usize, triangles: &[[u32; 3]], errors: &mut V
         roots.sort_unstable();
         roots.dedup();
         if roots.len() > 1 {
-            errors.push(Defect::NonManifoldVertex {
-                vertex,
-                fans: roots.len(),
-            });
+            errors.push(Defect::NonManifoldVertex { vertex, fans: roots.len() });
         }
     }
 }
@@ -411,9 +369,7 @@ fn split_components(
     let mut referenced = vec![false; soup.positions.len()];
     let mut models = Vec::with_capacity(component_count);
     for label in 0..component_count as u32 {
-        let faces: Vec<usize> = (0..triangles.len())
-            .filter(|&f| component_of[f] == label)
-            .collect();
+        let faces: Vec<usize> = (0..triangles.len()).filter(|&f| component_of[f] == label).collect();
         let mut vertices: Vec<u32> = faces.iter().flat_map(|&f| triangles[f]).collect();
         vertices.sort_unstable();
         vertices.dedup();
@@ -422,25 +378,14 @@ fn split_components(
             new_index[v as usize] = i as u32;
             referenced[v as usize] = true;
         }
-        let positions: Vec<DVec3> = vertices
-            .iter()
-            .map(|&v| soup.positions[v as usize])
-            .collect();
-        let local: Vec<[u32; 3]> = faces
-            .iter()
-            .map(|&f| triangles[f].map(|v| new_index[v as usize]))
-            .collect();
-        let sources = faces
-            .iter()
-            .map(|&f| soup.face_sources.get(kept[f]).copied().unwrap_or(0))
-            .collect();
+        let positions: Vec<DVec3> = vertices.iter().map(|&v| soup.positions[v as usize]).collect();
+        let local: Vec<[u32; 3]> = faces.iter().map(|&f| triangles[f].map(|v| new_index[v as usize])).collect();
+        let sources = faces.iter().map(|&f| soup.face_sources.get(kept[f]).copied().unwrap_or(0)).collect();
         let folds: Vec<(u32, u32, u32)> = soup
             .fold_edges
             .iter()
             .filter_map(|e| {
-                let [a, b] = e
-                    .vertices
-                    .map(|v| new_index.get(v as usize).copied().unwrap_or(NONE));
+                let [a, b] = e.vertices.map(|v| new_index.get(v as usize).copied().unwrap_or(NONE));
                 (a != NONE && b != NONE).then_some((a, b, e.fold_line))
             })
             .collect();
@@ -448,10 +393,7 @@ fn split_components(
     }
     let unreferenced: Vec<usize> = (0..referenced.len()).filter(|&v| !referenced[v]).collect();
     if let Some(&first) = unreferenced.first() {
-        warnings.push(Defect::UnreferencedVertices {
-            count: unreferenced.len(),
-            first,
-        });
+        warnings.push(Defect::UnreferencedVertices { count: unreferenced.len(), first });
     }
     models
 }
