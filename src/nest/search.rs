@@ -38,9 +38,9 @@ use super::{
 };
 use crate::progress::Progress;
 
-/// Collision queries per second of budget: somewhat below the rate of the release build on a
-/// shared 2-core machine (1.2-1.5 million per second), so that the deterministic work budget, not
-/// the wall clock, normally ends a `--time 60` run, in about 40-55 s.
+/// Collision queries per second of budget: below the rate of the release build on a shared
+/// 2-core machine (1.3 to 2.6 million per second measured), so that the deterministic work budget,
+/// not the wall clock, normally ends a `--time 60` run (in about 25-45 s there).
 pub const NOMINAL_QUERIES_PER_SECOND: f64 = 1_000_000.0;
 /// Neighbours evaluated (in parallel) per round of the local search. Fixed, so the result does not
 /// depend on the number of threads.
