@@ -13,6 +13,7 @@ pub mod export;
 pub mod flatten;
 pub mod ingest;
 pub mod mesh;
+pub mod nest;
 pub mod pipeline;
 pub mod progress;
 pub mod units;

@@ -6,6 +6,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 mod flatten;
+mod nest;
 mod progress_bar;
 
 /// Exit code when every part finished within tolerance.
@@ -29,6 +30,8 @@ enum Command {
     Run(flatten::FlattenArgs),
     /// Flatten parts and write their patterns, no nesting.
     Flatten(flatten::FlattenArgs),
+    /// Nest parts or a benchmark instance (ESICUP JSON) on sheets or a roll; writes OUT/nest.json.
+    Nest(nest::NestArgs),
 }
 
 /// How a successful command ended.
@@ -47,6 +50,7 @@ pub fn main() -> ExitCode {
     let progress = progress_bar::TerminalProgress::new();
     let result: anyhow::Result<Outcome> = match cli.command {
         Command::Run(args) | Command::Flatten(args) => flatten::run(args, &progress),
+        Command::Nest(args) => nest::run(args, &progress),
     };
     match result {
         Ok(Outcome::Success) => ExitCode::from(EXIT_SUCCESS),
