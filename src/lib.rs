@@ -12,6 +12,7 @@ pub mod ingest;
 pub mod mesh;
 pub mod pipeline;
 pub mod progress;
+pub mod tessellate;
 pub mod units;
 
 pub use error::Error;
