@@ -19,7 +19,7 @@ use super::Outcome;
 /// Arguments shared by `flatten` and `run`.
 #[derive(Debug, Args)]
 pub struct FlattenArgs {
-    /// Input parts: triangle meshes (.obj, .stl).
+    /// Input parts: part files (.toml), STEP files (.step, .stp), triangle meshes (.obj, .stl).
     #[arg(required = true)]
     inputs: Vec<PathBuf>,
     /// Output directory (created if missing).
@@ -37,6 +37,8 @@ pub struct FlattenArgs {
     /// Units of mesh coordinates.
     #[arg(long, value_enum, default_value_t = Units::default())]
     units: Units,
+    #[command(flatten)]
+    sizes: super::tessellate::MeshSizeArgs,
     /// Print the report to stdout as JSON.
     #[arg(long)]
     json: bool,
@@ -62,6 +64,7 @@ impl FlattenArgs {
         Ok(RunOptions {
             units: self.units,
             flatten,
+            tessellate: self.sizes.options()?,
         })
     }
 }

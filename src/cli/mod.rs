@@ -7,6 +7,7 @@ use clap::{Parser, Subcommand};
 
 mod flatten;
 mod progress_bar;
+mod tessellate;
 
 /// Exit code when every part finished within tolerance.
 const EXIT_SUCCESS: u8 = 0;
@@ -29,6 +30,8 @@ enum Command {
     Run(flatten::FlattenArgs),
     /// Flatten parts and write their patterns, no nesting.
     Flatten(flatten::FlattenArgs),
+    /// Write the facet model of a part file or STEP file as OBJ.
+    Tessellate(tessellate::TessellateArgs),
 }
 
 /// How a successful command ended.
@@ -47,6 +50,7 @@ pub fn main() -> ExitCode {
     let progress = progress_bar::TerminalProgress::new();
     let result: anyhow::Result<Outcome> = match cli.command {
         Command::Run(args) | Command::Flatten(args) => flatten::run(args, &progress),
+        Command::Tessellate(args) => tessellate::run(args),
     };
     match result {
         Ok(Outcome::Success) => ExitCode::from(EXIT_SUCCESS),

@@ -10,6 +10,7 @@
 
 pub mod accuracy;
 pub mod energy_release;
+pub mod fold_lines;
 pub mod init_flatten;
 pub mod springs;
 pub mod stiffness;

@@ -3,6 +3,8 @@
 
 mod errors;
 mod obj;
+pub mod part;
+pub mod step;
 mod stl;
 
 use std::path::Path;
@@ -21,6 +23,10 @@ pub enum InputKind {
     Obj,
     /// STL mesh, ASCII or binary.
     Stl,
+    /// A part file (TOML) describing CAD surfaces.
+    Part,
+    /// A STEP file (AP203/AP214).
+    Step,
 }
 
 impl InputKind {
@@ -33,6 +39,10 @@ impl InputKind {
         match extension.as_deref() {
             Some("obj") => Ok(Self::Obj),
             Some("stl") => Ok(Self::Stl),
+            Some("toml") => Ok(Self::Part),
+            Some("step" | "stp") => Ok(Self::Step),
+            _ if bytes.starts_with(b"ISO-10303-21") => Ok(Self::Step),
+            _ if part::looks_like_part(bytes) => Ok(Self::Part),
             _ if stl::looks_like_stl(bytes) => Ok(Self::Stl),
             _ if obj::looks_like_obj(bytes) => Ok(Self::Obj),
             _ => Err(IngestError::UnknownKind {
@@ -59,9 +69,24 @@ pub fn read_mesh(path: &Path, units: Units) -> Result<MeshInput, IngestError> {
         path: path.to_path_buf(),
         source,
     })?;
-    let soup = match InputKind::detect(path, &bytes)? {
-        InputKind::Obj => parse_obj(&bytes),
-        InputKind::Stl => parse_stl(&bytes),
+    let kind = InputKind::detect(path, &bytes)?;
+    mesh_from_bytes(path, kind, &bytes, units)
+}
+
+fn mesh_from_bytes(
+    path: &Path,
+    kind: InputKind,
+    bytes: &[u8],
+    units: Units,
+) -> Result<MeshInput, IngestError> {
+    let soup = match kind {
+        InputKind::Obj => parse_obj(bytes),
+        InputKind::Stl => parse_stl(bytes),
+        InputKind::Part | InputKind::Step => {
+            return Err(IngestError::NotAMesh {
+                path: path.to_path_buf(),
+            });
+        }
     }
     .map_err(|defect| defect.in_file(path))?;
     let name = path
@@ -70,4 +95,33 @@ pub fn read_mesh(path: &Path, units: Units) -> Result<MeshInput, IngestError> {
         .unwrap_or("part")
         .to_string();
     Ok(MeshInput { name, units, soup })
+}
+
+/// Any input file, read according to its kind.
+#[derive(Debug, Clone)]
+pub enum Input {
+    /// A triangle mesh.
+    Mesh(MeshInput),
+    /// A part file's surfaces.
+    Part(Box<part::PartInput>),
+    /// A STEP file's faces, tessellated.
+    Step(step::StepInput),
+}
+
+/// Reads any input: meshes in `units`; part and STEP files carry their own units.
+/// `step_options` sizes the tessellation of STEP faces.
+pub fn read_input(
+    path: &Path,
+    units: Units,
+    step_options: &step::StepOptions,
+) -> Result<Input, IngestError> {
+    let bytes = std::fs::read(path).map_err(|source| IngestError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    match InputKind::detect(path, &bytes)? {
+        InputKind::Part => Ok(Input::Part(Box::new(part::read_part_text(path, &bytes)?))),
+        InputKind::Step => Ok(Input::Step(step::read_step(path, &bytes, step_options)?)),
+        kind => mesh_from_bytes(path, kind, &bytes, units).map(Input::Mesh),
+    }
 }

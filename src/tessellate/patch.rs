@@ -23,6 +23,7 @@ use spade::{
 use super::TessellateError;
 use super::strip::FaceMesh;
 use super::surface::{PatchSurface, pieces_for_length};
+use crate::ingest::part::build::inside;
 
 /// The smallest triangle angle refinement aims for, degrees.
 pub const MINIMUM_ANGLE_DEGREES: f64 = 25.0;
@@ -76,25 +77,68 @@ pub fn mesh_patch(
     let expected_triangles =
         4.0 * patch_area_estimate(&cdt) / (3f64.sqrt() * mesh_size * mesh_size);
     let budget = (VERTEX_BUDGET_FACTOR * expected_triangles.max(1.0)) as usize;
-    let mut excluded = refine(&mut cdt, mesh_size, budget);
+    // Spade tells inner from outer faces by the parity of constraint edges crossed, which an
+    // interior fold polyline would flip: with fold lines the whole hull is refined and faces
+    // are kept by a point-in-domain test of their centroids.
+    let domain = ScaledDomain::new(patch, scale);
+    let exclude_outer = fold_lines.is_empty();
+    refine(&mut cdt, mesh_size, budget, exclude_outer);
     for _ in 0..CHORD_ROUNDS {
-        let steiner = chord_violations(&cdt, &excluded, patch, scale, chord);
+        let steiner = chord_violations(&cdt, &domain, patch, scale, chord);
         if steiner.is_empty() {
             break;
         }
         for point in steiner {
             insert_point(&mut cdt, point)?;
         }
-        excluded = refine(&mut cdt, mesh_size, budget);
+        refine(&mut cdt, mesh_size, budget, exclude_outer);
     }
     Ok(extract_mesh(
         &cdt,
-        &excluded,
+        &domain,
         patch,
         scale,
         &fold_polylines,
         mesh_size,
     ))
+}
+
+/// The trimmed domain in scaled coordinates, for telling inner triangles from outer ones.
+struct ScaledDomain {
+    outer: Vec<DVec2>,
+    holes: Vec<Vec<DVec2>>,
+}
+
+impl ScaledDomain {
+    fn new(patch: &PatchSurface, scale: DomainScale) -> Self {
+        let scaled = |points: &Vec<DVec2>| points.iter().map(|&p| scale.scaled(p)).collect();
+        Self {
+            outer: scaled(&patch.outer),
+            holes: patch.holes.iter().map(scaled).collect(),
+        }
+    }
+
+    /// True when the face with these corners lies in the domain (its centroid does).
+    fn contains_face(&self, corners: [DVec2; 3]) -> bool {
+        let centroid = (corners[0] + corners[1] + corners[2]) / 3.0;
+        inside(centroid, &self.outer) && !self.holes.iter().any(|h| inside(centroid, h))
+    }
+}
+
+type FaceHandle<'a> = spade::handles::FaceHandle<
+    'a,
+    spade::handles::InnerTag,
+    Point2<f64>,
+    (),
+    spade::CdtEdge<()>,
+    (),
+>;
+
+fn face_corners(face: FaceHandle<'_>) -> [DVec2; 3] {
+    face.vertices().map(|v| {
+        let p = v.position();
+        DVec2::new(p.x, p.y)
+    })
 }
 
 /// Mean speeds `|∂S/∂u|`, `|∂S/∂v|` over the outer loop's bounding box.
@@ -174,35 +218,29 @@ fn patch_area_estimate(cdt: &Cdt) -> f64 {
     cdt.inner_faces().map(|face| face.area()).sum()
 }
 
-/// Refines; returns the faces outside the trim loops, sorted.
-fn refine(cdt: &mut Cdt, mesh_size: f64, budget: usize) -> Vec<usize> {
+/// Refines to the angle limit and the area of an equilateral triangle of side `mesh_size`.
+fn refine(cdt: &mut Cdt, mesh_size: f64, budget: usize, exclude_outer: bool) {
     let max_area = 3f64.sqrt() / 4.0 * mesh_size * mesh_size;
     let parameters = RefinementParameters::<f64>::new()
-        .exclude_outer_faces(true)
+        .exclude_outer_faces(exclude_outer)
         .with_angle_limit(AngleLimit::from_deg(MINIMUM_ANGLE_DEGREES))
         .with_max_allowed_area(max_area)
         .with_max_additional_vertices(budget);
-    let result = cdt.refine(parameters);
-    let mut excluded: Vec<usize> = result.excluded_faces.iter().map(|f| f.index()).collect();
-    excluded.sort_unstable();
-    excluded
+    cdt.refine(parameters);
 }
 
 /// Centroids (scaled domain) of inner triangles farther than `chord` from the surface.
 fn chord_violations(
     cdt: &Cdt,
-    excluded: &[usize],
+    domain: &ScaledDomain,
     patch: &PatchSurface,
     scale: DomainScale,
     chord: f64,
 ) -> Vec<DVec2> {
     cdt.inner_faces()
-        .filter(|face| excluded.binary_search(&face.fix().index()).is_err())
-        .filter_map(|face| {
-            let corners = face.vertices().map(|v| {
-                let p = v.position();
-                DVec2::new(p.x, p.y)
-            });
+        .map(face_corners)
+        .filter(|&corners| domain.contains_face(corners))
+        .filter_map(|corners| {
             let centroid = (corners[0] + corners[1] + corners[2]) / 3.0;
             let flat = corners
                 .iter()
@@ -217,7 +255,7 @@ fn chord_violations(
 
 fn extract_mesh(
     cdt: &Cdt,
-    excluded: &[usize],
+    domain: &ScaledDomain,
     patch: &PatchSurface,
     scale: DomainScale,
     fold_polylines: &[(u32, Vec<DVec2>)],
@@ -232,7 +270,7 @@ fn extract_mesh(
     }
     mesh.triangles = cdt
         .inner_faces()
-        .filter(|face| excluded.binary_search(&face.fix().index()).is_err())
+        .filter(|&face| domain.contains_face(face_corners(face)))
         .map(|face| face.vertices().map(|v| v.fix().index() as u32))
         .collect();
     let tolerance = ON_POLYLINE_RATIO * mesh_size.max(1.0);

@@ -23,6 +23,9 @@ use super::surface::{Frame, RuledSurface, Section, pieces_for_arc, pieces_for_le
 /// Two edge directions closer than this (radians) are parallel: both sections advance together.
 pub const PARALLEL_ANGLE_TOLERANCE: f64 = 1e-9;
 
+/// A circle section of a loft has at least this many corners.
+pub const MINIMUM_CIRCLE_PIECES: usize = 8;
+
 /// The rulings of a surface: section points (in part coordinates) and which pairs they join.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Rulings {
@@ -88,10 +91,12 @@ struct SampledSection {
     directions: Vec<f64>,
 }
 
-fn sample_section(section: &Section, seam: f64, mesh_size: f64, chord: f64) -> SampledSection {
+/// Samples a section; circles get `circle_pieces` corners (the same for both sections of a loft,
+/// so that two circles pair corner for corner).
+fn sample_section(section: &Section, seam: f64, circle_pieces: usize) -> SampledSection {
     match section {
         Section::Circle { center, radius, .. } => {
-            let pieces = pieces_for_arc(*radius, TAU, mesh_size, chord).max(3);
+            let pieces = circle_pieces;
             // Corner k has tangent direction seam + 2πk/n: corner 0 is the support point of the
             // seam direction; edge k turns halfway between its corners.
             let corners = (0..pieces)
@@ -134,8 +139,16 @@ fn loft_rulings(
     mesh_size: f64,
     chord: f64,
 ) -> Rulings {
-    let lower = sample_section(bottom, seam, mesh_size, chord);
-    let upper = sample_section(top, seam, mesh_size, chord);
+    let radius = [bottom, top]
+        .iter()
+        .filter_map(|section| match section {
+            Section::Circle { radius, .. } => Some(*radius),
+            Section::Polygon { .. } => None,
+        })
+        .fold(0.0, f64::max);
+    let circle_pieces = pieces_for_arc(radius, TAU, mesh_size, chord).max(MINIMUM_CIRCLE_PIECES);
+    let lower = sample_section(bottom, seam, circle_pieces);
+    let upper = sample_section(top, seam, circle_pieces);
     let to_part = |corners: &[DVec2], z: f64| -> Vec<DVec3> {
         corners
             .iter()
