@@ -48,6 +48,7 @@ const SUPPORTED_GEOMETRY: &[&str] = &[
     "PCURVE",
     "SURFACE_CURVE",
     "SEAM_CURVE",
+    "EDGE_CURVE",
     "PLANE",
     "SPHERICAL_SURFACE",
     "CYLINDRICAL_SURFACE",
@@ -259,37 +260,35 @@ pub fn length_unit_millimetres(text: &str) -> Result<f64, String> {
         .filter(|c| !c.is_whitespace())
         .collect::<String>()
         .to_ascii_uppercase();
-    for statement in compact.split(';') {
-        if !statement.contains("LENGTH_UNIT") {
-            continue;
-        }
-        if let Some(start) = statement.find("CONVERSION_BASED_UNIT('") {
-            let rest = &statement[start + "CONVERSION_BASED_UNIT('".len()..];
-            let name = rest.split('\'').next().unwrap_or_default();
-            return match name {
-                "INCH" | "IN" => Ok(25.4),
-                "FOOT" | "FT" => Ok(304.8),
-                "MILLIMETRE" | "MM" => Ok(1.0),
-                other => Err(format!(
-                    "the length unit '{other}' is not supported; export in millimetres, metres, inches or feet"
-                )),
-            };
-        }
-        if statement.contains("SI_UNIT(") && statement.contains(".METRE.") {
-            return Ok(if statement.contains(".MILLI.") {
-                1.0
-            } else if statement.contains(".CENTI.") {
-                10.0
-            } else if statement.contains(".MICRO.") {
-                1e-3
-            } else if statement.contains(".KILO.") {
-                1e6
-            } else {
-                1000.0
-            });
-        }
+    let length_units: Vec<&str> = compact
+        .split(';')
+        .filter(|statement| statement.contains("LENGTH_UNIT("))
+        .collect();
+    // A conversion-based unit refers to an SI unit of its own: it is the file's unit.
+    let marker = "CONVERSION_BASED_UNIT('";
+    if let Some(statement) = length_units.iter().find(|s| s.contains(marker)) {
+        let start = statement.find(marker).map_or(0, |i| i + marker.len());
+        let name = statement[start..].split('\'').next().unwrap_or_default();
+        return match name {
+            "INCH" | "IN" => Ok(25.4),
+            "FOOT" | "FT" => Ok(304.8),
+            "MILLIMETRE" | "MM" => Ok(1.0),
+            other => Err(format!(
+                "the length unit '{other}' is not supported; export in millimetres, metres, inches or feet"
+            )),
+        };
     }
-    Ok(1.0)
+    let si = length_units
+        .iter()
+        .find(|s| s.contains("SI_UNIT(") && s.contains(".METRE."));
+    Ok(match si {
+        Some(statement) if statement.contains(".MILLI.") => 1.0,
+        Some(statement) if statement.contains(".CENTI.") => 10.0,
+        Some(statement) if statement.contains(".MICRO.") => 1e-3,
+        Some(statement) if statement.contains(".KILO.") => 1e6,
+        Some(_) => 1000.0,
+        None => 1.0,
+    })
 }
 
 #[cfg(test)]
@@ -300,7 +299,7 @@ mod tests {
     fn units_are_read_from_the_length_unit() {
         let millimetres = "#1=(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.));";
         let metres = "#1=( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT($,.METRE.) );";
-        let inches = "#2=(CONVERSION_BASED_UNIT('INCH',#3)LENGTH_UNIT()NAMED_UNIT(#4));";
+        let inches = "#3=(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.));\n#2=(CONVERSION_BASED_UNIT('INCH',#3)LENGTH_UNIT()NAMED_UNIT(#4));";
         let feet = "#2=(CONVERSION_BASED_UNIT('FOOT',#3)LENGTH_UNIT()NAMED_UNIT(#4));";
         assert_eq!(length_unit_millimetres(millimetres), Ok(1.0));
         assert_eq!(length_unit_millimetres(metres), Ok(1000.0));

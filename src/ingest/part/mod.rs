@@ -180,14 +180,40 @@ fn key_on_line(text: &str, offset: usize) -> Option<String> {
 }
 
 fn syntax_error(path: &Path, text: &str, error: &toml::de::Error) -> PartError {
-    let offset = error.span().map(|s| s.start);
+    let message = error.message().trim().to_string();
+    let start = error.span().map_or(0, |s| s.start.min(text.len()));
+    // Errors inside a surface table (buffered to read its `kind`) carry the table's span, not
+    // the field's: the first name the message quotes locates the field within the table.
+    let quoted = message.split('`').nth(1).unwrap_or_default();
+    let (line, field) = if let Some(found) = (!quoted.is_empty())
+        .then(|| find_key(&text[start..], quoted))
+        .flatten()
+    {
+        (line_of(text, start + found), quoted.to_string())
+    } else if let Some(found) = (!quoted.is_empty())
+        .then(|| text[start..].find(&format!("\"{quoted}\"")))
+        .flatten()
+    {
+        let offset = start + found;
+        (
+            line_of(text, offset),
+            key_on_line(text, offset).unwrap_or_default(),
+        )
+    } else {
+        let field = key_on_line(text, start).unwrap_or_else(|| {
+            if message.starts_with("missing field") {
+                quoted.to_string()
+            } else {
+                String::new()
+            }
+        });
+        (line_of(text, start), field)
+    };
     PartError {
         path: path.to_path_buf(),
-        line: offset.map(|o| line_of(text, o)),
-        field: offset
-            .and_then(|o| key_on_line(text, o))
-            .unwrap_or_default(),
-        message: error.message().trim().to_string(),
+        line: error.span().map(|_| line),
+        field,
+        message,
     }
 }
 
@@ -199,13 +225,27 @@ fn field_line(text: &str, span: Range<usize>, field: &str) -> usize {
         .map(|part| part.split('[').next().unwrap_or(part))
         .filter(|name| !name.is_empty())
         .collect();
-    let table = &text[span.start.min(text.len())..span.end.min(text.len())];
+    let start = span.start.min(text.len());
+    let table = &text[start..table_end(text, start).max(span.end.min(text.len()))];
     for name in names.iter().rev().chain(names.first()) {
         if let Some(position) = find_key(table, name) {
-            return line_of(text, span.start + position);
+            return line_of(text, start + position);
         }
     }
-    line_of(text, span.start)
+    line_of(text, start)
+}
+
+/// The end of the table whose header or body starts at `start`: the next line that opens a
+/// table (`[`), or the end of the text.
+fn table_end(text: &str, start: usize) -> usize {
+    let mut offset = start;
+    for (index, line) in text[start..].split_inclusive('\n').enumerate() {
+        if index > 0 && line.trim_start().starts_with('[') {
+            return offset;
+        }
+        offset += line.len();
+    }
+    text.len()
 }
 
 /// Byte position of `name` used as a key (`name =`) in `table`.
