@@ -123,6 +123,69 @@ impl ScaledDomain {
         let centroid = (corners[0] + corners[1] + corners[2]) / 3.0;
         inside(centroid, &self.outer) && !self.holes.iter().any(|h| inside(centroid, h))
     }
+
+    /// For each inner face (by index), whether it lies in the domain. Faces are grouped into
+    /// regions that constraint edges bound, and each region is judged by its largest face, so a
+    /// sliver along a trim loop goes with its neighbours whatever its rounded centroid says.
+    fn classify(&self, cdt: &Cdt) -> Vec<bool> {
+        let size = cdt
+            .inner_faces()
+            .map(|f| f.fix().index() + 1)
+            .max()
+            .unwrap_or(0);
+        let mut region = vec![usize::MAX; size];
+        let mut region_inside = Vec::new();
+        for seed in cdt.inner_faces() {
+            if region[seed.fix().index()] != usize::MAX {
+                continue;
+            }
+            let label = region_inside.len();
+            region[seed.fix().index()] = label;
+            let mut stack = vec![seed];
+            let mut largest = (seed.area(), face_corners(seed));
+            while let Some(face) = stack.pop() {
+                if face.area() > largest.0 {
+                    largest = (face.area(), face_corners(face));
+                }
+                for edge in face.adjacent_edges() {
+                    if cdt.is_constraint_edge(edge.as_undirected().fix()) {
+                        continue;
+                    }
+                    if let Some(next) = edge.rev().face().as_inner()
+                        && region[next.fix().index()] == usize::MAX
+                    {
+                        region[next.fix().index()] = label;
+                        stack.push(next);
+                    }
+                }
+            }
+            region_inside.push(self.contains_face(largest.1));
+        }
+        region
+            .iter()
+            .map(|&label| label != usize::MAX && region_inside[label])
+            .collect()
+    }
+}
+
+/// A triangle whose area is below this fraction of its longest edge squared, with two edges on
+/// constraint edges, is a rounding sliver along a trim loop and is dropped (the loop then runs
+/// along its third edge; the surface stays manifold).
+const SLIVER_AREA_RATIO: f64 = 1e-10;
+
+fn is_degenerate_ear(cdt: &Cdt, face: FaceHandle<'_>, positions: &[DVec3]) -> bool {
+    let [a, b, c] = face.vertices().map(|v| positions[v.fix().index()]);
+    let longest = a
+        .distance_squared(b)
+        .max(b.distance_squared(c))
+        .max(c.distance_squared(a));
+    let area = 0.5 * (b - a).cross(c - a).length();
+    let constrained = face
+        .adjacent_edges()
+        .iter()
+        .filter(|edge| cdt.is_constraint_edge(edge.as_undirected().fix()))
+        .count();
+    area < SLIVER_AREA_RATIO * longest && constrained >= 2
 }
 
 type FaceHandle<'a> = spade::handles::FaceHandle<
@@ -222,6 +285,7 @@ fn patch_area_estimate(cdt: &Cdt) -> f64 {
 fn refine(cdt: &mut Cdt, mesh_size: f64, budget: usize, exclude_outer: bool) {
     let max_area = 3f64.sqrt() / 4.0 * mesh_size * mesh_size;
     let parameters = RefinementParameters::<f64>::new()
+        .keep_constraint_edges()
         .exclude_outer_faces(exclude_outer)
         .with_angle_limit(AngleLimit::from_deg(MINIMUM_ANGLE_DEGREES))
         .with_max_allowed_area(max_area)
@@ -237,9 +301,10 @@ fn chord_violations(
     scale: DomainScale,
     chord: f64,
 ) -> Vec<DVec2> {
+    let inside = domain.classify(cdt);
     cdt.inner_faces()
+        .filter(|face| inside[face.fix().index()])
         .map(face_corners)
-        .filter(|&corners| domain.contains_face(corners))
         .filter_map(|corners| {
             let centroid = (corners[0] + corners[1] + corners[2]) / 3.0;
             let flat = corners
@@ -268,9 +333,12 @@ fn extract_mesh(
         mesh.positions.push(patch.geometry.point(parameters));
         mesh.parameters.push(parameters);
     }
+    let inside = domain.classify(cdt);
     mesh.triangles = cdt
         .inner_faces()
-        .filter(|&face| domain.contains_face(face_corners(face)))
+        .filter(|face| {
+            inside[face.fix().index()] && !is_degenerate_ear(cdt, *face, &mesh.positions)
+        })
         .map(|face| face.vertices().map(|v| v.fix().index() as u32))
         .collect();
     let tolerance = ON_POLYLINE_RATIO * mesh_size.max(1.0);

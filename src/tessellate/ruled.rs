@@ -149,34 +149,56 @@ fn loft_rulings(
     let circle_pieces = pieces_for_arc(radius, TAU, mesh_size, chord).max(MINIMUM_CIRCLE_PIECES);
     let lower = sample_section(bottom, seam, circle_pieces);
     let upper = sample_section(top, seam, circle_pieces);
-    let to_part = |corners: &[DVec2], z: f64| -> Vec<DVec3> {
-        corners
-            .iter()
-            .chain(corners.first())
-            .map(|c| frame.point(c.extend(z)))
-            .collect()
+    let lower_point =
+        |k: usize| frame.point(lower.corners[k % lower.corners.len()].extend(bottom.z()));
+    let upper_point =
+        |k: usize| frame.point(upper.corners[k % upper.corners.len()].extend(top.z()));
+    let mut rulings = Rulings {
+        bottom: vec![lower_point(0)],
+        top: vec![upper_point(0)],
+        pairs: vec![[0, 0]],
     };
     let (mut i, mut j) = (0, 0);
     let (lower_count, upper_count) = (lower.directions.len(), upper.directions.len());
-    let mut pairs = vec![[0, 0]];
     while i < lower_count || j < upper_count {
         let lower_next = lower.directions.get(i).copied().unwrap_or(f64::INFINITY);
         let upper_next = upper.directions.get(j).copied().unwrap_or(f64::INFINITY);
-        if (lower_next - upper_next).abs() <= PARALLEL_ANGLE_TOLERANCE {
-            i += 1;
-            j += 1;
-        } else if lower_next < upper_next {
-            i += 1;
-        } else {
-            j += 1;
+        let both = (lower_next - upper_next).abs() <= PARALLEL_ANGLE_TOLERANCE;
+        let advance_lower = both || lower_next < upper_next;
+        let advance_upper = both || !advance_lower;
+        let lower_edge = [lower_point(i), lower_point(i + 1)];
+        let upper_edge = [upper_point(j), upper_point(j + 1)];
+        // A long side is split into pieces of at most the mesh size; two parallel sides are
+        // split alike so that every ruling stays in their common plane.
+        let mut pieces = 1;
+        if advance_lower {
+            pieces = pieces.max(pieces_for_length(
+                lower_edge[0].distance(lower_edge[1]),
+                mesh_size,
+            ));
         }
-        pairs.push([i, j]);
+        if advance_upper {
+            pieces = pieces.max(pieces_for_length(
+                upper_edge[0].distance(upper_edge[1]),
+                mesh_size,
+            ));
+        }
+        for k in 1..=pieces {
+            let t = k as f64 / pieces as f64;
+            if advance_lower {
+                rulings.bottom.push(lower_edge[0].lerp(lower_edge[1], t));
+            }
+            if advance_upper {
+                rulings.top.push(upper_edge[0].lerp(upper_edge[1], t));
+            }
+            rulings
+                .pairs
+                .push([rulings.bottom.len() - 1, rulings.top.len() - 1]);
+        }
+        i += usize::from(advance_lower);
+        j += usize::from(advance_upper);
     }
-    Rulings {
-        bottom: to_part(&lower.corners, bottom.z()),
-        top: to_part(&upper.corners, top.z()),
-        pairs,
-    }
+    rulings
 }
 
 /// Meshes rulings: each ruling split into pieces of at most `mesh_size`, consecutive rulings
