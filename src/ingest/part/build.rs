@@ -683,7 +683,8 @@ fn check_not_degenerate(
         .filter(|&&p| {
             let (du, dv) = geometry.derivatives(p);
             let scale = (high - low).x * (high - low).y;
-            !(du.cross(dv).length() * scale > GEOMETRY_TOLERANCE * size * size)
+            let area_density = du.cross(dv).length() * scale;
+            !area_density.is_finite() || area_density <= GEOMETRY_TOLERANCE * size * size
         })
         .count();
     check(

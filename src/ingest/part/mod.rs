@@ -133,7 +133,7 @@ fn check_header(path: &Path, text: &str, spec: &PartSpec) -> Result<(), PartErro
         }
     }
     if let Some(grain) = spec.grain
-        && !(DVec3::from_array(grain).length() > 0.0)
+        && (DVec3::from_array(grain).length().is_nan() || DVec3::from_array(grain).length() <= 0.0)
     {
         return Err(error("grain", "must be a non-zero direction".into(), None));
     }
