@@ -2,12 +2,14 @@
 //!
 //! Input: a [`RevolutionSurface`], a target edge length and a chord tolerance (part units).
 //! Output: a [`FaceMesh`]. The profile is sampled (lines split to the mesh size, arcs also to the
-//! chord tolerance); each profile point becomes a parallel split into as many pieces as its own
-//! radius needs, so triangles keep their shape from the rim to a pole; a profile point on the axis
-//! becomes a single pole vertex. Consecutive parallels are stitched. A full turn is opened along
+//! chord tolerance); each profile point becomes a parallel whose piece count follows its radius by
+//! doubling or halving the previous parallel's count (so triangles keep their shape from the rim
+//! to a pole, and the stitch between two parallels is regular); a profile point on the axis
+//! becomes a single pole vertex. Parallels of equal counts share meridians, so a profile of lines
+//! (a cone) gives an exactly developable mesh. Consecutive parallels are stitched. A full turn is opened along
 //! the parallel's start angle: seam vertices are duplicated, not shared.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use super::strip::{FaceMesh, stitch_rows};
 use super::surface::{RevolutionSurface, pieces_for_arc};
@@ -21,12 +23,16 @@ pub fn mesh_revolution(surface: &RevolutionSurface, mesh_size: f64, chord: f64) 
     let range = end - start;
     let mut mesh = FaceMesh::default();
     let mut previous: Option<Vec<u32>> = None;
-    for point in surface.profile.sample(mesh_size, chord) {
+    let mut previous_pieces: Option<usize> = None;
+    let samples = surface.profile.sample(mesh_size, chord);
+    for (index, &point) in samples.iter().enumerate() {
         let (radius, height) = (point.x, point.y);
         let row: Vec<u32> = if radius <= POLE_TOLERANCE_RATIO * mesh_size {
             vec![mesh.add_vertex(surface.frame.point(DVec3::new(0.0, 0.0, height)))]
         } else {
-            let pieces = pieces_for_arc(radius, range, mesh_size, chord);
+            let needed = parallel_pieces(&samples, index, range, mesh_size, chord);
+            let pieces = previous_pieces.map_or(needed, |p| doubled_or_halved(p, needed));
+            previous_pieces = Some(pieces);
             (0..=pieces)
                 .map(|k| {
                     let angle = start + range * k as f64 / pieces as f64;
@@ -46,11 +52,44 @@ pub fn mesh_revolution(surface: &RevolutionSurface, mesh_size: f64, chord: f64) 
     mesh
 }
 
+/// Pieces parallel `index` needs: at most `mesh_size` long, and within `chord` of the surface.
+/// A chord of a parallel of radius r leaves the surface by its sagitta times the radial part of
+/// the surface normal, which is the profile tangent's axial part |t_z|: for the angular step the
+/// parallel counts as a circle of radius r |t_z| (a flat disk not at all, a cylinder fully).
+fn parallel_pieces(
+    samples: &[DVec2],
+    index: usize,
+    range: f64,
+    mesh_size: f64,
+    chord: f64,
+) -> usize {
+    let radius = samples[index].x;
+    let before = samples[index.saturating_sub(1)];
+    let after = samples[(index + 1).min(samples.len() - 1)];
+    let axial = (after - before).normalize_or_zero().y.abs();
+    let by_length = pieces_for_arc(radius, range, mesh_size, f64::INFINITY);
+    if axial <= 0.0 {
+        return by_length;
+    }
+    by_length.max(pieces_for_arc(radius * axial, range, f64::INFINITY, chord))
+}
+
+/// The count reached from `previous` by doubling until it is at least `needed`, or by halving
+/// while the half still is.
+fn doubled_or_halved(previous: usize, needed: usize) -> usize {
+    let mut pieces = previous.max(1);
+    while pieces < needed {
+        pieces *= 2;
+    }
+    while pieces % 2 == 0 && pieces / 2 >= needed {
+        pieces /= 2;
+    }
+    pieces
+}
+
 #[cfg(test)]
 mod tests {
     use std::f64::consts::{PI, TAU};
-
-    use glam::DVec2;
 
     use super::*;
     use crate::tessellate::surface::{Frame, Profile, ProfileSegment};

@@ -281,13 +281,26 @@ mod tests {
             seam: 0.0,
         };
         let rulings = rulings(&surface, 10.0, 0.1);
-        assert_eq!(rulings.bottom.len(), 5);
-        let corner_changes = rulings
+        // Each side of 200 is split into 20 pieces of 10; the last point closes the loop.
+        assert_eq!(rulings.bottom.len(), 81);
+        assert!(rulings.bottom[80].distance(rulings.bottom[0]) < 1e-12);
+        // Rulings advance one or both ends by one point at a time, and some stay on a square
+        // corner while the circle turns: the cone fans.
+        assert!(rulings.pairs.windows(2).all(|w| {
+            let step = [w[1][0] - w[0][0], w[1][1] - w[0][1]];
+            step[0] <= 1 && step[1] <= 1 && step[0] + step[1] >= 1
+        }));
+        let fan_steps = rulings
             .pairs
             .windows(2)
-            .filter(|w| w[0][0] != w[1][0])
+            .filter(|w| w[0][0] == w[1][0])
             .count();
-        assert_eq!(corner_changes, 4);
-        assert_eq!(rulings.pairs.last(), Some(&[4, rulings.top.len() - 1]));
+        assert!(fan_steps >= 4);
+        // Top points lie on the circle or on a chord of it split to match a parallel side.
+        assert!(rulings.top.iter().all(|p| {
+            let radius = p.truncate().length();
+            radius <= 60.0 + 1e-9 && radius >= 59.0
+        }));
+        assert_eq!(rulings.pairs.last(), Some(&[80, rulings.top.len() - 1]));
     }
 }
