@@ -302,3 +302,16 @@ fn regenerate_step_samples() {
     .to_string();
     std::fs::write(sample("bspline_patch.step"), text).expect("writes");
 }
+
+#[test]
+fn a_loose_step_surface_in_metres_is_meshed_in_millimetres() {
+    let jobs =
+        load_parts(&sample("loose_hypar_metres.step"), &RunOptions::default()).expect("loads");
+    let largest = jobs[0]
+        .model
+        .positions()
+        .iter()
+        .map(|p| p.x)
+        .fold(0.0, f64::max);
+    assert!((largest - 200.0).abs() < 1e-6, "{largest}");
+}

@@ -9,18 +9,24 @@
 //! file that makes truck panic gives an error naming the shell entity and the geometric entities
 //! of the file truck cannot read, never a crash. Vertices of one shell's faces are welded
 //! (truck-meshalgo meshes each face on its own), so a closed face's seam is welded shut too.
+//! A file with no shell (a surface-only export) has its loose B-spline and NURBS surfaces meshed
+//! over their whole parameter domains by flatcut's own patch mesher (the mesh size applies).
 
 use std::collections::BTreeSet;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::Path;
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use truck_meshalgo::prelude::*;
+use truck_modeling::{BSplineSurface, NurbsSurface, Vector4};
 use truck_stepio::r#in::Table;
+use truck_stepio::r#in::ruststep::tables::IntoOwned;
 
 use super::IngestError;
 use crate::mesh::TriangleSoup;
-use crate::tessellate::{DEFAULT_CHORD_RATIO, TessellateOptions};
+use crate::tessellate::patch::mesh_patch;
+use crate::tessellate::surface::{PatchGeometry, PatchSurface, Surface};
+use crate::tessellate::{CadPart, DEFAULT_CHORD_RATIO, TessellateOptions, resolve_sizes};
 
 /// Options of STEP ingest: the tessellation options (chord tolerance).
 pub type StepOptions = TessellateOptions;
@@ -110,13 +116,18 @@ pub fn read_step(
         .ok_or_else(|| error("not a valid STEP exchange structure (ISO 10303-21); export it again from the CAD system".into()))?;
     let mut shell_ids: Vec<u64> = table.shell.keys().copied().collect();
     shell_ids.sort_unstable();
-    if shell_ids.is_empty() {
-        return Err(error(format!(
-            "the file holds no shell or face to read{}",
-            unsupported_note()
-        )));
-    }
     let mut soup = TriangleSoup::default();
+    if shell_ids.is_empty() {
+        let surfaces = loose_surfaces(&table)
+            .map_err(|message| error(format!("{message}{}", unsupported_note())))?;
+        if surfaces.is_empty() {
+            return Err(error(format!(
+                "the file holds no shell, face or B-spline surface to read{}",
+                unsupported_note()
+            )));
+        }
+        append_loose_surfaces(&mut soup, &surfaces, options, unit_millimetres).map_err(error)?;
+    }
     for id in shell_ids {
         let shell = &table.shell[&id];
         let converted = catch_unwind(AssertUnwindSafe(|| table.to_compressed_shell(shell)))
@@ -167,6 +178,106 @@ pub fn read_step(
         soup,
         unit_millimetres,
     })
+}
+
+/// The B-spline and NURBS surfaces of a file with no shell (a surface-only export), each with
+/// its entity id, as truck-geometry NURBS patches.
+fn loose_surfaces(table: &Table) -> Result<Vec<(u64, PatchGeometry)>, String> {
+    let mut surfaces = Vec::new();
+    let mut ids: Vec<u64> = table.b_spline_surface_with_knots.keys().copied().collect();
+    ids.sort_unstable();
+    for id in ids {
+        let holder = table.b_spline_surface_with_knots[&id].clone();
+        let converted = catch_unwind(AssertUnwindSafe(|| {
+            let owned = holder.into_owned(table).map_err(|e| e.to_string())?;
+            BSplineSurface::<Point3>::try_from(&owned).map_err(|e| e.to_string())
+        }))
+        .map_err(|_| format!("B_SPLINE_SURFACE_WITH_KNOTS #{id}: truck-stepio failed on it"))?
+        .map_err(|e| format!("B_SPLINE_SURFACE_WITH_KNOTS #{id}: {e}"))?;
+        let (knots, points) = (
+            converted.knot_vecs().clone(),
+            converted.control_points().clone(),
+        );
+        let homogeneous: Vec<Vec<Vector4>> = points
+            .iter()
+            .map(|row| {
+                row.iter()
+                    .map(|p| Vector4::new(p.x, p.y, p.z, 1.0))
+                    .collect()
+            })
+            .collect();
+        let surface = BSplineSurface::try_new(knots, homogeneous)
+            .map_err(|e| format!("B_SPLINE_SURFACE_WITH_KNOTS #{id}: {e}"))?;
+        surfaces.push((id, PatchGeometry::nurbs(surface)));
+    }
+    let mut ids: Vec<u64> = table.rational_b_spline_surface.keys().copied().collect();
+    ids.sort_unstable();
+    for id in ids {
+        let holder = table.rational_b_spline_surface[&id].clone();
+        let converted = catch_unwind(AssertUnwindSafe(|| {
+            let owned = holder.into_owned(table).map_err(|e| e.to_string())?;
+            NurbsSurface::<Vector4>::try_from(&owned).map_err(|e| e.to_string())
+        }))
+        .map_err(|_| format!("RATIONAL_B_SPLINE_SURFACE #{id}: truck-stepio failed on it"))?
+        .map_err(|e| format!("RATIONAL_B_SPLINE_SURFACE #{id}: {e}"))?;
+        surfaces.push((id, PatchGeometry::Nurbs(converted)));
+    }
+    Ok(surfaces)
+}
+
+/// Meshes loose surfaces over their whole parameter domains with the patch mesher.
+fn append_loose_surfaces(
+    soup: &mut TriangleSoup,
+    surfaces: &[(u64, PatchGeometry)],
+    options: &StepOptions,
+    unit_millimetres: f64,
+) -> Result<(), String> {
+    for (index, (id, geometry)) in surfaces.iter().enumerate() {
+        let PatchGeometry::Nurbs(nurbs) = geometry else {
+            continue;
+        };
+        let (u_knots, v_knots) = nurbs.knot_vecs();
+        let (u_degree, v_degree) = (nurbs.udegree(), nurbs.vdegree());
+        let low = DVec2::new(u_knots[u_degree], v_knots[v_degree]);
+        let high = DVec2::new(
+            u_knots[u_knots.len() - 1 - u_degree],
+            v_knots[v_knots.len() - 1 - v_degree],
+        );
+        let patch = PatchSurface {
+            geometry: geometry.clone(),
+            outer: vec![
+                low,
+                DVec2::new(high.x, low.y),
+                high,
+                DVec2::new(low.x, high.y),
+            ],
+            holes: Vec::new(),
+        };
+        let part = CadPart {
+            surfaces: vec![Surface::Patch(patch.clone())],
+            fold_lines: Vec::new(),
+            weld: true,
+        };
+        let file_units = TessellateOptions {
+            mesh_size: options.mesh_size.map(|m| m / unit_millimetres),
+            chord: options.chord.map(|c| c / unit_millimetres),
+        };
+        let (mesh_size, chord) =
+            resolve_sizes(&part, &file_units).map_err(|e| format!("surface #{id}: {e}"))?;
+        let mesh = catch_unwind(AssertUnwindSafe(|| {
+            mesh_patch(&patch, &[], mesh_size, chord)
+        }))
+        .map_err(|_| format!("surface #{id}: the surface could not be tessellated"))?
+        .map_err(|e| format!("surface #{id}: {e}"))?;
+        let offset = soup.positions.len() as u32;
+        soup.positions
+            .extend(mesh.positions.iter().map(|&p| p * unit_millimetres));
+        soup.triangles
+            .extend(mesh.triangles.iter().map(|t| t.map(|v| v + offset)));
+        soup.face_sources
+            .extend(std::iter::repeat_n(index as u32, mesh.triangles.len()));
+    }
+    Ok(())
 }
 
 fn shell_size<C, S>(shell: &truck_topology::compress::CompressedShell<Point3, C, S>) -> f64 {
