@@ -315,3 +315,75 @@ fn a_loose_step_surface_in_metres_is_meshed_in_millimetres() {
         .fold(0.0, f64::max);
     assert!((largest - 200.0).abs() < 1e-6, "{largest}");
 }
+
+#[test]
+fn fold_lines_and_regions_raise_the_stiffness_of_their_edges() {
+    let jobs = load_parts(&sample("bracket_fold.toml"), &RunOptions::default()).expect("loads");
+    let job = &jobs[0];
+    let factors = job.stiffness.factors();
+    let fold_edges = job
+        .model
+        .edge_fold_lines()
+        .iter()
+        .filter(|&&l| l == 0)
+        .count();
+    assert!(fold_edges > 0, "the shared edge is tagged");
+    for factor in [10.0, 4.0, 3.0] {
+        assert!(
+            factors.iter().any(|&f| (f - factor).abs() < 1e-12),
+            "some edge has factor {factor}"
+        );
+    }
+    assert_eq!(job.attributes.thickness, Some(2.0));
+}
+
+fn flatcut(arguments: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_flatcut"))
+        .args(arguments)
+        .output()
+        .expect("flatcut runs")
+}
+
+#[test]
+fn the_cli_tessellates_a_part_and_rejects_bad_input_with_exit_1() {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let mesh = directory.path().join("cone.obj");
+    let cone = sample("cone_frustum.toml");
+    let output = flatcut(&[
+        "tessellate",
+        cone.to_str().expect("utf-8"),
+        "-o",
+        mesh.to_str().expect("utf-8"),
+        "--mesh-size",
+        "20",
+    ]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(
+        std::fs::read_to_string(&mesh)
+            .expect("written")
+            .contains("\nf ")
+    );
+    let out = directory.path().join("out");
+    for (input, expected) in [
+        (
+            "bad/zero_radius.toml",
+            "zero_radius.toml:3: field 'surface[0].radius'",
+        ),
+        ("unsupported_offset_surface.step", "OFFSET_SURFACE"),
+    ] {
+        let path = sample(input);
+        let output = flatcut(&[
+            "flatten",
+            path.to_str().expect("utf-8"),
+            "-o",
+            out.to_str().expect("utf-8"),
+        ]);
+        assert_eq!(output.status.code(), Some(1));
+        let message = String::from_utf8_lossy(&output.stderr);
+        assert!(message.contains(expected), "{message}");
+    }
+}
