@@ -125,3 +125,25 @@ pub fn read_input(
         kind => mesh_from_bytes(path, kind, &bytes, units).map(Input::Mesh),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kinds_are_detected_from_extension_then_content() {
+        let detect = |name: &str, bytes: &[u8]| InputKind::detect(Path::new(name), bytes).ok();
+        assert_eq!(detect("a.toml", b""), Some(InputKind::Part));
+        assert_eq!(detect("a.STP", b""), Some(InputKind::Step));
+        assert_eq!(detect("a.step", b""), Some(InputKind::Step));
+        assert_eq!(
+            detect("a", b"ISO-10303-21;\nHEADER;"),
+            Some(InputKind::Step)
+        );
+        assert_eq!(
+            detect("a", b"name = \"x\"\n[[surface]]\nkind = \"cone\"\n"),
+            Some(InputKind::Part)
+        );
+        assert_eq!(detect("a", b"hello"), None);
+    }
+}

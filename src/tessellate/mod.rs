@@ -175,26 +175,22 @@ fn outline_points(surface: &Surface) -> Vec<DVec3> {
             }
             points
         }
-        Surface::Patch(patch) => patch
-            .outer
-            .iter()
-            .map(|&p| patch.geometry.point(p))
-            .chain(
-                (0..=SIZE_SAMPLES)
-                    .flat_map(|i| (0..=SIZE_SAMPLES).map(move |j| DVec2::new(i as f64, j as f64)))
-                    .map(|t| {
-                        let (low, high) = patch
-                            .outer
-                            .iter()
-                            .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(l, h), &p| {
-                                (l.min(p), h.max(p))
-                            });
-                        patch
-                            .geometry
-                            .point(low + (high - low) * t / SIZE_SAMPLES as f64)
-                    }),
-            )
-            .collect(),
+        Surface::Patch(patch) => {
+            let (low, high) = patch
+                .outer
+                .iter()
+                .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(l, h), &p| {
+                    (l.min(p), h.max(p))
+                });
+            let grid = (0..=SIZE_SAMPLES)
+                .flat_map(|i| (0..=SIZE_SAMPLES).map(move |j| DVec2::new(i as f64, j as f64)));
+            grid.map(|t| {
+                patch
+                    .geometry
+                    .point(low + (high - low) * t / SIZE_SAMPLES as f64)
+            })
+            .collect()
+        }
     }
 }
 

@@ -233,18 +233,13 @@ fn build_profile(start: [f64; 2], segments: &[ProfileSegmentSpec]) -> Result<Pro
                         to.distance(center)
                     ),
                 )?;
-                let counter_clockwise = (from - center).perp_dot(to - center);
+                // The ends differ, so the shorter way turns by a non-zero angle in (-π, π].
                 let mut sweep = (from - center).angle_to(to - center);
                 match segment.clockwise {
                     Some(true) if sweep > 0.0 => sweep -= TAU,
                     Some(false) if sweep < 0.0 => sweep += TAU,
                     _ => {}
                 }
-                check(
-                    sweep.abs() > 0.0 || counter_clockwise.abs() > 0.0,
-                    &field,
-                    "the arc has no sweep",
-                )?;
                 ProfileSegment::Arc { to, center, sweep }
             }
         });
@@ -800,7 +795,7 @@ pub fn build_fold_line(
 /// Builds a stiffness region.
 pub fn build_region(
     spec: &RegionSpec,
-    surface_count: usize,
+    surfaces: &[Surface],
 ) -> Result<StiffnessRegion, SpecDefect> {
     check(
         spec.factor.is_finite() && spec.factor > 0.0,
@@ -827,9 +822,12 @@ pub fn build_region(
             if polygon.is_some() != parameter_box.is_some() =>
         {
             check(
-                surface < surface_count,
+                matches!(surfaces.get(surface), Some(Surface::Patch(_))),
                 "surface",
-                format!("surface {surface} does not exist"),
+                format!(
+                    "surface {surface} is not a polygon or bspline surface: parameter-domain \
+                     regions are given on those; use box_min and box_max elsewhere"
+                ),
             )?;
             let polygon = match (polygon, parameter_box) {
                 (Some(points), _) => points.iter().map(|&p| DVec2::from_array(p)).collect(),

@@ -88,7 +88,7 @@ pub fn parse_part(path: &Path, text: &str) -> Result<PartInput, PartError> {
         .iter()
         .enumerate()
         .map(|(index, region)| {
-            build::build_region(region.get_ref(), surfaces.len())
+            build::build_region(region.get_ref(), &surfaces)
                 .map_err(|d| located(region.span(), d, format!("stiffness_region[{index}]")))
         })
         .collect::<Result<Vec<_>, _>>()?;
