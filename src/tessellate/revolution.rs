@@ -81,7 +81,7 @@ fn doubled_or_halved(previous: usize, needed: usize) -> usize {
     while pieces < needed {
         pieces *= 2;
     }
-    while pieces % 2 == 0 && pieces / 2 >= needed {
+    while pieces.is_multiple_of(2) && pieces / 2 >= needed {
         pieces /= 2;
     }
     pieces

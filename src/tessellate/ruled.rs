@@ -299,7 +299,7 @@ mod tests {
         // Top points lie on the circle or on a chord of it split to match a parallel side.
         assert!(rulings.top.iter().all(|p| {
             let radius = p.truncate().length();
-            radius <= 60.0 + 1e-9 && radius >= 59.0
+            (59.0..=60.0 + 1e-9).contains(&radius)
         }));
         assert_eq!(rulings.pairs.last(), Some(&[80, rulings.top.len() - 1]));
     }
