@@ -164,9 +164,14 @@ fn both_elbow_pieces_are_isometric() {
 }
 
 #[test]
-fn eccentric_round_to_round_is_isometric() {
-    let results = flatten_sample("round_to_round_eccentric.toml");
-    assert_isometric(&results[0]);
+fn eccentric_round_to_round_and_offset_rectangles_are_isometric() {
+    for name in [
+        "round_to_round_eccentric.toml",
+        "rectangle_offset_transition.toml",
+    ] {
+        let results = flatten_sample(name);
+        assert_isometric(&results[0]);
+    }
 }
 
 #[test]

@@ -10,6 +10,7 @@
 //! Mesh size and chord tolerance default from the part's size (the diagonal of its bounding box):
 //! [`DEFAULT_DIVISIONS`] edges along the diagonal, a chord of [`DEFAULT_CHORD_RATIO`] of it.
 
+pub mod face_mesh;
 pub mod patch;
 pub mod revolution;
 pub mod ruled;
@@ -23,7 +24,7 @@ use glam::{DVec2, DVec3};
 use serde::Serialize;
 
 use crate::mesh::{FoldEdge, TriangleSoup};
-use strip::FaceMesh;
+use face_mesh::FaceMesh;
 use surface::{FoldLineGeometry, Surface};
 pub use weld::Welded;
 

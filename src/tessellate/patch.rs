@@ -21,7 +21,7 @@ use spade::{
 };
 
 use super::TessellateError;
-use super::strip::FaceMesh;
+use super::face_mesh::FaceMesh;
 use super::surface::{PatchSurface, pieces_for_length};
 use crate::ingest::part::build::inside;
 

@@ -11,7 +11,8 @@
 
 use glam::{DVec2, DVec3};
 
-use super::strip::{FaceMesh, stitch_rows};
+use super::face_mesh::FaceMesh;
+use super::strip::stitch_rows;
 use super::surface::{RevolutionSurface, pieces_for_arc};
 
 /// A profile point closer to the axis than this fraction of the mesh size is on the axis (a pole).

@@ -17,7 +17,8 @@ use std::f64::consts::TAU;
 
 use glam::{DVec2, DVec3};
 
-use super::strip::{FaceMesh, stitch_rows};
+use super::face_mesh::FaceMesh;
+use super::strip::stitch_rows;
 use super::surface::{Frame, RuledSurface, Section, pieces_for_arc, pieces_for_length};
 
 /// Two edge directions closer than this (radians) are parallel: both sections advance together.

@@ -9,29 +9,6 @@
 
 use glam::DVec3;
 
-/// One mesh face: positions, triangles, the parameter of each vertex (for regions given in a
-/// parameter domain) and the edges that lie on fold lines.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct FaceMesh {
-    /// Vertex positions (part units).
-    pub positions: Vec<DVec3>,
-    /// Parameter-domain coordinates of each vertex (patches; zero for structured meshes).
-    pub parameters: Vec<glam::DVec2>,
-    /// Triangles, consistently oriented.
-    pub triangles: Vec<[u32; 3]>,
-    /// Edges on fold lines: the two vertices and the fold line's index.
-    pub fold_edges: Vec<([u32; 2], u32)>,
-}
-
-impl FaceMesh {
-    /// Adds a vertex with a zero parameter and returns its index.
-    pub fn add_vertex(&mut self, position: DVec3) -> u32 {
-        self.positions.push(position);
-        self.parameters.push(glam::DVec2::ZERO);
-        (self.positions.len() - 1) as u32
-    }
-}
-
 /// Appends the triangles joining rows `left` and `right` (see the module documentation).
 pub fn stitch_rows(
     left: &[u32],

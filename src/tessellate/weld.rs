@@ -9,7 +9,7 @@
 
 use glam::DVec3;
 
-use super::strip::FaceMesh;
+use super::face_mesh::FaceMesh;
 use crate::mesh::{FoldEdge, TriangleSoup};
 
 /// A welded soup and, per soup vertex, the face it came from and its parameter-domain position.
