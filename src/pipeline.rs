@@ -9,7 +9,7 @@ use serde::Serialize;
 
 use crate::error::Error;
 use crate::flatten::{FlattenOptions, Flattened, Stiffness, flatten};
-use crate::ingest::part::{PartAttributes, PartInput, RegionShape, build::inside};
+use crate::ingest::part::{PartAttributes, PartInput, RegionShape, loops::inside};
 use crate::ingest::{Input, read_input};
 use crate::mesh::{FacetModel, TriangleSoup, validate};
 use crate::progress::Progress;

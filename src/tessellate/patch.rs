@@ -23,7 +23,7 @@ use spade::{
 use super::TessellateError;
 use super::face_mesh::FaceMesh;
 use super::surface::{PatchSurface, pieces_for_length};
-use crate::ingest::part::build::inside;
+use crate::ingest::part::loops::inside;
 
 /// The smallest triangle angle refinement aims for, degrees.
 pub const MINIMUM_ANGLE_DEGREES: f64 = 25.0;

@@ -1,10 +1,10 @@
-//! Building a part's geometry from its spec: every field checked (positive radii, rectangular
+//! Building a part's surfaces from their spec: every field checked (positive radii, rectangular
 //! control grids, simple trim loops, ...) and converted once into the tessellator's
-//! [`CadPart`]; B-spline and NURBS patches become truck-geometry surfaces.
+//! [`Surface`]s; B-spline and NURBS patches become truck-geometry surfaces.
 //!
-//! Input: a [`PartSpec`] as parsed. Output: the [`CadPart`], the stiffness regions and fold-line
-//! settings, or the first [`SpecDefect`] with the index of the table it was found in. Lengths
-//! stay in the part's units; angles are converted from degrees to radians.
+//! Input: a [`SurfaceSpec`] as parsed. Output: the [`Surface`], or the first [`SpecDefect`]
+//! naming the field relative to the surface's table. Lengths stay in the part's units; angles are
+//! converted from degrees to radians.
 
 use std::f64::consts::TAU;
 
@@ -12,14 +12,14 @@ use glam::{DVec2, DVec3};
 use truck_modeling::{BSplineSurface, KnotVec, Vector4};
 
 use super::errors::SpecDefect;
+use super::loops::{check_loops, polygon_area};
 use super::spec::{
-    BsplineSpec, ConeSpec, CylinderSpec, ExtrusionSpec, FoldLineSpec, LoftSpec, PlacementSpec,
-    PolygonSpec, ProfileSegmentSpec, RegionSpec, RevolutionSpec, SectionShape, SectionSpec,
-    SurfaceSpec, TrimSpec,
+    BsplineSpec, ConeSpec, CylinderSpec, ExtrusionSpec, LoftSpec, PlacementSpec, PolygonSpec,
+    ProfileSegmentSpec, RevolutionSpec, SectionShape, SectionSpec, SurfaceSpec, TrimSpec,
 };
 use crate::tessellate::surface::{
-    FoldLineGeometry, Frame, PatchGeometry, PatchSurface, Profile, ProfileSegment,
-    RevolutionSurface, RuledCircle, RuledSurface, Section, Surface,
+    Frame, PatchGeometry, PatchSurface, Profile, ProfileSegment, RevolutionSurface, RuledCircle,
+    RuledSurface, Section, Surface,
 };
 
 /// Relative tolerance of geometric checks (planarity, arc end points), as a fraction of the
@@ -28,55 +28,11 @@ pub const GEOMETRY_TOLERANCE: f64 = 1e-6;
 /// The largest mitre tilt accepted, degrees.
 pub const MAXIMUM_CUT_DEGREES: f64 = 80.0;
 
-/// Where a defect was found.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Table {
-    /// `[[surface]]` number `n` (0-based).
-    Surface(usize),
-    /// `[[fold_line]]` number `n`.
-    FoldLine(usize),
-    /// `[[stiffness_region]]` number `n`.
-    Region(usize),
-}
-
-/// A fold line's stiffness settings.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FoldStiffness {
-    /// Factor of the springs near the line.
-    pub factor: f64,
-    /// Width of the band (part units), if given; default twice the mesh size.
-    pub width: Option<f64>,
-}
-
-/// Where a stiffness region is.
-#[derive(Debug, Clone, PartialEq)]
-pub enum RegionShape {
-    /// A 3D box.
-    Box {
-        /// Lower corner.
-        min: DVec3,
-        /// Upper corner.
-        max: DVec3,
-    },
-    /// A polygon in a surface's parameter domain.
-    Parameter {
-        /// The surface.
-        surface: usize,
-        /// The polygon.
-        polygon: Vec<DVec2>,
-    },
-}
-
-/// A region of raised stiffness.
-#[derive(Debug, Clone, PartialEq)]
-pub struct StiffnessRegion {
-    /// The factor.
-    pub factor: f64,
-    /// Where.
-    pub shape: RegionShape,
-}
-
-fn check(condition: bool, field: &str, message: impl Into<String>) -> Result<(), SpecDefect> {
+pub(super) fn check(
+    condition: bool,
+    field: &str,
+    message: impl Into<String>,
+) -> Result<(), SpecDefect> {
     if condition {
         Ok(())
     } else {
@@ -84,7 +40,7 @@ fn check(condition: bool, field: &str, message: impl Into<String>) -> Result<(),
     }
 }
 
-fn positive(value: f64, field: &str) -> Result<(), SpecDefect> {
+pub(super) fn positive(value: f64, field: &str) -> Result<(), SpecDefect> {
     check(
         value.is_finite() && value > 0.0,
         field,
@@ -441,103 +397,6 @@ fn newell_normal(points: &[DVec3]) -> DVec3 {
         .sum::<DVec3>()
 }
 
-fn polygon_area(points: &[DVec2]) -> f64 {
-    let count = points.len();
-    0.5 * (0..count)
-        .map(|k| points[k].perp_dot(points[(k + 1) % count]))
-        .sum::<f64>()
-}
-
-/// Checks trim loops: simple, nested (holes inside the outer loop, apart from each other);
-/// returns the outer loop counter-clockwise and the holes.
-fn check_loops(
-    mut outer: Vec<DVec2>,
-    holes: Vec<Vec<DVec2>>,
-    outer_field: &str,
-    holes_field: &str,
-) -> Result<(Vec<DVec2>, Vec<Vec<DVec2>>), SpecDefect> {
-    let loops = std::iter::once((outer_field.to_string(), &outer)).chain(
-        holes
-            .iter()
-            .enumerate()
-            .map(|(i, h)| (format!("{holes_field}[{i}]"), h)),
-    );
-    let named: Vec<(String, &Vec<DVec2>)> = loops.collect();
-    for (field, points) in &named {
-        check(
-            points.len() >= 3,
-            field,
-            "a loop needs at least three points",
-        )?;
-        check(
-            points.iter().all(|p| p.is_finite()) && polygon_area(points).abs() > 0.0,
-            field,
-            "the loop has no area",
-        )?;
-        check(
-            !self_intersects(points),
-            field,
-            "the loop intersects itself",
-        )?;
-    }
-    for (i, (field, hole)) in named.iter().enumerate().skip(1) {
-        check(
-            hole.iter().all(|&p| inside(p, &outer)) && !loops_cross(hole, &outer),
-            field,
-            "the hole must lie inside the outer boundary",
-        )?;
-        for (_, other) in named.iter().skip(i + 1) {
-            check(
-                !loops_cross(hole, other) && !inside(hole[0], other) && !inside(other[0], hole),
-                field,
-                "two holes overlap",
-            )?;
-        }
-    }
-    if polygon_area(&outer) < 0.0 {
-        outer.reverse();
-    }
-    Ok((outer, holes))
-}
-
-fn segments(points: &[DVec2]) -> impl Iterator<Item = (DVec2, DVec2)> + '_ {
-    (0..points.len()).map(move |k| (points[k], points[(k + 1) % points.len()]))
-}
-
-fn segments_cross(a: (DVec2, DVec2), b: (DVec2, DVec2)) -> bool {
-    let side = |p: DVec2, q: DVec2, r: DVec2| (q - p).perp_dot(r - p);
-    let (d1, d2) = (side(b.0, b.1, a.0), side(b.0, b.1, a.1));
-    let (d3, d4) = (side(a.0, a.1, b.0), side(a.0, a.1, b.1));
-    d1 * d2 < 0.0 && d3 * d4 < 0.0
-}
-
-fn self_intersects(points: &[DVec2]) -> bool {
-    let count = points.len();
-    let all: Vec<(DVec2, DVec2)> = segments(points).collect();
-    (0..count).any(|i| {
-        (i + 2..count)
-            .filter(|&j| !(i == 0 && j == count - 1))
-            .any(|j| segments_cross(all[i], all[j]))
-    }) || (0..count).any(|i| (i + 1..count).any(|j| points[i].distance(points[j]) <= 0.0))
-}
-
-fn loops_cross(a: &[DVec2], b: &[DVec2]) -> bool {
-    segments(a).any(|s| segments(b).any(|t| segments_cross(s, t)))
-}
-
-/// Point in polygon by the crossing rule.
-pub fn inside(point: DVec2, polygon: &[DVec2]) -> bool {
-    segments(polygon)
-        .filter(|(p, q)| (p.y > point.y) != (q.y > point.y))
-        .filter(|(p, q)| {
-            let x = p.x + (point.y - p.y) / (q.y - p.y) * (q.x - p.x);
-            point.x < x
-        })
-        .count()
-        % 2
-        == 1
-}
-
 /// A clamped uniform knot vector on [0, 1] for `count` control points of `degree`.
 fn clamped_uniform_knots(count: usize, degree: usize) -> Vec<f64> {
     let inner = count - degree;
@@ -722,156 +581,9 @@ fn build_trim(
     check_loops(outer, holes, "trim.outer", "trim.holes")
 }
 
-/// Builds a fold line's geometry and stiffness.
-pub fn build_fold_line(
-    spec: &FoldLineSpec,
-    surfaces: &[Surface],
-) -> Result<(FoldLineGeometry, FoldStiffness), SpecDefect> {
-    let factor = spec
-        .factor
-        .unwrap_or(crate::flatten::stiffness::DEFAULT_FOLD_STIFFNESS);
-    check(
-        factor.is_finite() && factor > 0.0,
-        "factor",
-        format!("must be positive, got {factor}"),
-    )?;
-    if let Some(width) = spec.width {
-        positive(width, "width")?;
-    }
-    let in_range = |index: usize, field: &str| {
-        check(
-            index < surfaces.len(),
-            field,
-            format!(
-                "surface {index} does not exist (there are {} surfaces, numbered from 0)",
-                surfaces.len()
-            ),
-        )
-    };
-    let geometry = match (&spec.between, spec.surface, &spec.points) {
-        (Some(pair), None, None) => {
-            in_range(pair[0], "between")?;
-            in_range(pair[1], "between")?;
-            check(
-                pair[0] != pair[1],
-                "between",
-                "needs two different surfaces",
-            )?;
-            FoldLineGeometry::Between { surfaces: *pair }
-        }
-        (None, Some(surface), Some(points)) => {
-            in_range(surface, "surface")?;
-            check(
-                matches!(surfaces[surface], Surface::Patch(_)),
-                "surface",
-                "fold polylines can be given on polygon and bspline surfaces; on other kinds use 'between' with a surface split at the fold",
-            )?;
-            check(
-                points.len() >= 2,
-                "points",
-                "a fold polyline needs at least two points",
-            )?;
-            FoldLineGeometry::OnSurface {
-                surface,
-                points: points.iter().map(|&p| DVec2::from_array(p)).collect(),
-            }
-        }
-        _ => {
-            return Err(SpecDefect::new(
-                "between",
-                "give either 'between = [a, b]' or 'surface' with 'points'",
-            ));
-        }
-    };
-    Ok((
-        geometry,
-        FoldStiffness {
-            factor,
-            width: spec.width,
-        },
-    ))
-}
-
-/// Builds a stiffness region.
-pub fn build_region(
-    spec: &RegionSpec,
-    surfaces: &[Surface],
-) -> Result<StiffnessRegion, SpecDefect> {
-    check(
-        spec.factor.is_finite() && spec.factor > 0.0,
-        "factor",
-        format!("must be positive, got {}", spec.factor),
-    )?;
-    let shape = match (
-        spec.box_min,
-        spec.box_max,
-        spec.surface,
-        &spec.polygon,
-        spec.parameter_box,
-    ) {
-        (Some(min), Some(max), None, None, None) => {
-            let (min, max) = (vector(min), vector(max));
-            check(
-                min.cmplt(max).all(),
-                "box_max",
-                "every coordinate must exceed box_min's",
-            )?;
-            RegionShape::Box { min, max }
-        }
-        (None, None, Some(surface), polygon, parameter_box)
-            if polygon.is_some() != parameter_box.is_some() =>
-        {
-            check(
-                matches!(surfaces.get(surface), Some(Surface::Patch(_))),
-                "surface",
-                format!(
-                    "surface {surface} is not a polygon or bspline surface: parameter-domain \
-                     regions are given on those; use box_min and box_max elsewhere"
-                ),
-            )?;
-            let polygon = match (polygon, parameter_box) {
-                (Some(points), _) => points.iter().map(|&p| DVec2::from_array(p)).collect(),
-                (None, Some([u0, v0, u1, v1])) => {
-                    vec![
-                        DVec2::new(u0, v0),
-                        DVec2::new(u1, v0),
-                        DVec2::new(u1, v1),
-                        DVec2::new(u0, v1),
-                    ]
-                }
-                (None, None) => Vec::new(),
-            };
-            check(
-                polygon.len() >= 3 && polygon_area(&polygon).abs() > 0.0,
-                "polygon",
-                "needs at least three points enclosing an area",
-            )?;
-            RegionShape::Parameter { surface, polygon }
-        }
-        _ => {
-            return Err(SpecDefect::new(
-                "box_min",
-                "give either 'box_min' and 'box_max', or 'surface' with 'polygon' or 'parameter_box'",
-            ));
-        }
-    };
-    Ok(StiffnessRegion {
-        factor: spec.factor,
-        shape,
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn a_self_intersecting_loop_is_found() {
-        let bow_tie = [[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]].map(DVec2::from_array);
-        assert!(self_intersects(&bow_tie));
-        let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]].map(DVec2::from_array);
-        assert!(!self_intersects(&square));
-    }
 
     #[test]
     fn clamped_knots_have_the_right_length() {

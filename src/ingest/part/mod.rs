@@ -4,6 +4,8 @@
 
 pub mod build;
 mod errors;
+pub mod features;
+pub mod loops;
 pub mod spec;
 
 use std::ops::Range;
@@ -11,8 +13,8 @@ use std::path::Path;
 
 use glam::DVec3;
 
-pub use build::{FoldStiffness, RegionShape, StiffnessRegion, Table};
 pub use errors::{PartError, SpecDefect};
+pub use features::{FoldStiffness, RegionShape, StiffnessRegion};
 use spec::{Join, PartSpec};
 
 use crate::tessellate::CadPart;
@@ -78,7 +80,7 @@ pub fn parse_part(path: &Path, text: &str) -> Result<PartInput, PartError> {
     let mut fold_lines = Vec::new();
     let mut fold_stiffness = Vec::new();
     for (index, fold) in spec.fold_lines.iter().enumerate() {
-        let (geometry, stiffness) = build::build_fold_line(fold.get_ref(), &surfaces)
+        let (geometry, stiffness) = features::build_fold_line(fold.get_ref(), &surfaces)
             .map_err(|d| located(fold.span(), d, format!("fold_line[{index}]")))?;
         fold_lines.push(geometry);
         fold_stiffness.push(stiffness);
@@ -88,7 +90,7 @@ pub fn parse_part(path: &Path, text: &str) -> Result<PartInput, PartError> {
         .iter()
         .enumerate()
         .map(|(index, region)| {
-            build::build_region(region.get_ref(), &surfaces)
+            features::build_region(region.get_ref(), &surfaces)
                 .map_err(|d| located(region.span(), d, format!("stiffness_region[{index}]")))
         })
         .collect::<Result<Vec<_>, _>>()?;
