@@ -1,5 +1,7 @@
 //! Ingest: the only stage that reads files. Turns mesh files (OBJ, STL) into raw
-//! [`TriangleSoup`]s in the part's units; validation happens in [`crate::mesh`].
+//! [`TriangleSoup`]s in the part's units, part files (TOML) into CAD surfaces for
+//! [`crate::tessellate`], and STEP files into tessellated faces in millimetres; validation
+//! happens in [`crate::mesh`].
 
 mod errors;
 mod obj;
