@@ -23,6 +23,14 @@ pub enum Error {
         /// Every defect found.
         defects: MeshDefects,
     },
+    /// A part's surfaces could not be tessellated.
+    #[error("{path}: cannot tessellate: {defect}")]
+    Tessellate {
+        /// The input file.
+        path: PathBuf,
+        /// Why.
+        defect: crate::tessellate::TessellateError,
+    },
     /// A part could not be flattened.
     #[error("{path}: part '{part}': {source}")]
     Flatten {

@@ -16,6 +16,7 @@ pub mod mesh;
 pub mod nest;
 pub mod pipeline;
 pub mod progress;
+pub mod tessellate;
 pub mod units;
 
 pub use error::Error;

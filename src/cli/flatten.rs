@@ -24,7 +24,7 @@ const PAPER_SOLVER_ADVISED_TRIANGLES: usize = 5_000;
 /// Arguments shared by `flatten` and `run`.
 #[derive(Debug, Args)]
 pub struct FlattenArgs {
-    /// Input parts: triangle meshes (.obj, .stl).
+    /// Input parts: part files (.toml), STEP files (.step, .stp), triangle meshes (.obj, .stl).
     #[arg(required = true)]
     inputs: Vec<PathBuf>,
     /// Output directory (created if missing).
@@ -57,6 +57,8 @@ pub struct FlattenArgs {
     /// pattern's outline goes to the sew layer.
     #[arg(long, value_name = "MM")]
     seam_allowance: Option<f64>,
+    #[command(flatten)]
+    sizes: super::tessellate::MeshSizeArgs,
     /// Print the report to stdout as JSON.
     #[arg(long)]
     json: bool,
@@ -113,6 +115,7 @@ impl FlattenArgs {
             units: self.units,
             flatten,
             cut,
+            tessellate: self.sizes.options()?,
         })
     }
 }

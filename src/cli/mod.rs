@@ -8,6 +8,7 @@ use clap::{Parser, Subcommand};
 mod flatten;
 mod nest;
 mod progress_bar;
+mod tessellate;
 
 /// Exit code when every part finished within tolerance.
 const EXIT_SUCCESS: u8 = 0;
@@ -32,6 +33,8 @@ enum Command {
     Flatten(flatten::FlattenArgs),
     /// Nest parts or a benchmark instance (ESICUP JSON) on sheets or a roll; writes OUT/nest.json.
     Nest(nest::NestArgs),
+    /// Write the facet model of a part file or STEP file as OBJ.
+    Tessellate(tessellate::TessellateArgs),
 }
 
 /// How a successful command ended.
@@ -51,6 +54,7 @@ pub fn main() -> ExitCode {
     let result: anyhow::Result<Outcome> = match cli.command {
         Command::Run(args) | Command::Flatten(args) => flatten::run(args, &progress),
         Command::Nest(args) => nest::run(args, &progress),
+        Command::Tessellate(args) => tessellate::run(args),
     };
     match result {
         Ok(Outcome::Success) => ExitCode::from(EXIT_SUCCESS),

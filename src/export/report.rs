@@ -7,8 +7,9 @@
 use serde::Serialize;
 
 use crate::cut::{Cut, CutFigures, CutStop, Seam, SeamKind};
+use crate::flatten::fold_lines::fold_line_lengths;
 use crate::flatten::{Solver, StopReason};
-use crate::pipeline::{PartResult, RunOptions};
+use crate::pipeline::{PartResult, RunOptions, TessellationFigures};
 
 /// Version of the report's layout.
 pub const SCHEMA_VERSION: u32 = 1;
@@ -82,6 +83,9 @@ pub struct PartReport {
     pub seams: Vec<SeamReport>,
     /// Fold lines and how well their length was kept.
     pub fold_lines: Vec<FoldLineReport>,
+    /// Tessellation figures (mesh size, chord, smallest angle) for parts made from surfaces.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tessellation: Option<TessellationFigures>,
     /// Repairs made to the input.
     pub warnings: Vec<String>,
 }
@@ -175,7 +179,19 @@ impl PartReport {
                 .fold(0.0, |total, cut| total + cut.length),
             cut_stop: result.cut_stop,
             seams: result.seams.iter().map(SeamReport::new).collect(),
-            fold_lines: Vec::new(),
+            fold_lines: fold_line_lengths(
+                &job.model,
+                &result.flattened.positions,
+                job.fold_line_count,
+            )
+            .into_iter()
+            .map(|fold| FoldLineReport {
+                length_3d: fold.length_3d,
+                length_flat: fold.length_flat,
+                error: fold.error,
+            })
+            .collect(),
+            tessellation: job.tessellation,
             warnings: job.warnings.clone(),
         }
     }

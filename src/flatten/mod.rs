@@ -13,6 +13,7 @@
 pub mod accuracy;
 pub mod energy_release;
 pub mod fast;
+pub mod fold_lines;
 pub mod init_flatten;
 pub mod isolines;
 pub mod outline;

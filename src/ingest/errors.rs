@@ -14,7 +14,9 @@ pub enum IngestError {
         source: std::io::Error,
     },
     /// Neither the extension nor the content says what the file is.
-    #[error("{path}: unknown input kind; give a .obj or .stl mesh")]
+    #[error(
+        "{path}: unknown input kind; give a .obj or .stl mesh, a .toml part file or a .step file"
+    )]
     UnknownKind {
         /// The file.
         path: PathBuf,
@@ -27,6 +29,23 @@ pub enum IngestError {
         /// What is wrong.
         message: String,
     },
+    /// A part or STEP file was given where only a mesh is read.
+    #[error("{path}: not a mesh file; part and STEP files are read with read_input")]
+    NotAMesh {
+        /// The file.
+        path: PathBuf,
+    },
+    /// A STEP file cannot be used.
+    #[error("{path}: {message}")]
+    Step {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong, naming the entity.
+        message: String,
+    },
+    /// A part file is malformed or describes impossible geometry.
+    #[error(transparent)]
+    Part(#[from] super::part::PartError),
     /// The content is malformed.
     #[error("{path}: {defect}")]
     Malformed {

@@ -1,10 +1,13 @@
 //! Ingest: the only stage that reads files. Turns mesh files (OBJ, STL) into raw
-//! [`TriangleSoup`]s in the part's units, and reads a mesh's cut sidecar (user seams, no-cut
-//! regions); validation happens in [`crate::mesh`].
+//! [`TriangleSoup`]s in the part's units, part files (TOML) into CAD surfaces for
+//! [`crate::tessellate`], STEP files into tessellated faces in millimetres, and a mesh's cut
+//! sidecar (user seams, no-cut regions); validation happens in [`crate::mesh`].
 
 mod cut_sidecar;
 mod errors;
 mod obj;
+pub mod part;
+pub mod step;
 mod stl;
 
 use std::path::Path;
@@ -24,6 +27,10 @@ pub enum InputKind {
     Obj,
     /// STL mesh, ASCII or binary.
     Stl,
+    /// A part file (TOML) describing CAD surfaces.
+    Part,
+    /// A STEP file (AP203/AP214).
+    Step,
 }
 
 impl InputKind {
@@ -36,6 +43,10 @@ impl InputKind {
         match extension.as_deref() {
             Some("obj") => Ok(Self::Obj),
             Some("stl") => Ok(Self::Stl),
+            Some("toml") => Ok(Self::Part),
+            Some("step" | "stp") => Ok(Self::Step),
+            _ if bytes.starts_with(b"ISO-10303-21") => Ok(Self::Step),
+            _ if part::looks_like_part(bytes) => Ok(Self::Part),
             _ if stl::looks_like_stl(bytes) => Ok(Self::Stl),
             _ if obj::looks_like_obj(bytes) => Ok(Self::Obj),
             _ => Err(IngestError::UnknownKind {
@@ -62,9 +73,24 @@ pub fn read_mesh(path: &Path, units: Units) -> Result<MeshInput, IngestError> {
         path: path.to_path_buf(),
         source,
     })?;
-    let soup = match InputKind::detect(path, &bytes)? {
-        InputKind::Obj => parse_obj(&bytes),
-        InputKind::Stl => parse_stl(&bytes),
+    let kind = InputKind::detect(path, &bytes)?;
+    mesh_from_bytes(path, kind, &bytes, units)
+}
+
+fn mesh_from_bytes(
+    path: &Path,
+    kind: InputKind,
+    bytes: &[u8],
+    units: Units,
+) -> Result<MeshInput, IngestError> {
+    let soup = match kind {
+        InputKind::Obj => parse_obj(bytes),
+        InputKind::Stl => parse_stl(bytes),
+        InputKind::Part | InputKind::Step => {
+            return Err(IngestError::NotAMesh {
+                path: path.to_path_buf(),
+            });
+        }
     }
     .map_err(|defect| defect.in_file(path))?;
     let name = path
@@ -73,4 +99,55 @@ pub fn read_mesh(path: &Path, units: Units) -> Result<MeshInput, IngestError> {
         .unwrap_or("part")
         .to_string();
     Ok(MeshInput { name, units, soup })
+}
+
+/// Any input file, read according to its kind.
+#[derive(Debug, Clone)]
+pub enum Input {
+    /// A triangle mesh.
+    Mesh(MeshInput),
+    /// A part file's surfaces.
+    Part(Box<part::PartInput>),
+    /// A STEP file's faces, tessellated.
+    Step(step::StepInput),
+}
+
+/// Reads any input: meshes in `units`; part and STEP files carry their own units.
+/// `step_options` sizes the tessellation of STEP faces.
+pub fn read_input(
+    path: &Path,
+    units: Units,
+    step_options: &step::StepOptions,
+) -> Result<Input, IngestError> {
+    let bytes = std::fs::read(path).map_err(|source| IngestError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    match InputKind::detect(path, &bytes)? {
+        InputKind::Part => Ok(Input::Part(Box::new(part::read_part_text(path, &bytes)?))),
+        InputKind::Step => Ok(Input::Step(step::read_step(path, &bytes, step_options)?)),
+        kind => mesh_from_bytes(path, kind, &bytes, units).map(Input::Mesh),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kinds_are_detected_from_extension_then_content() {
+        let detect = |name: &str, bytes: &[u8]| InputKind::detect(Path::new(name), bytes).ok();
+        assert_eq!(detect("a.toml", b""), Some(InputKind::Part));
+        assert_eq!(detect("a.STP", b""), Some(InputKind::Step));
+        assert_eq!(detect("a.step", b""), Some(InputKind::Step));
+        assert_eq!(
+            detect("a", b"ISO-10303-21;\nHEADER;"),
+            Some(InputKind::Step)
+        );
+        assert_eq!(
+            detect("a", b"name = \"x\"\n[[surface]]\nkind = \"cone\"\n"),
+            Some(InputKind::Part)
+        );
+        assert_eq!(detect("a", b"hello"), None);
+    }
 }

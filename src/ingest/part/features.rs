@@ -1,0 +1,187 @@
+//! Fold lines and stiffness regions of a part file, checked and converted: a fold line is a
+//! polyline in a patch's parameter domain or the edge two surfaces share; a region is a 3D box or
+//! a polygon in a patch's parameter domain.
+
+use glam::{DVec2, DVec3};
+
+use super::build::{check, positive};
+use super::errors::SpecDefect;
+use super::loops::polygon_area;
+use super::spec::{FoldLineSpec, RegionSpec};
+use crate::tessellate::surface::{FoldLineGeometry, Surface};
+
+/// A fold line's stiffness settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FoldStiffness {
+    /// Factor of the springs near the line.
+    pub factor: f64,
+    /// Width of the band (part units), if given; default twice the mesh size.
+    pub width: Option<f64>,
+}
+
+/// Where a stiffness region is.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RegionShape {
+    /// A 3D box.
+    Box {
+        /// Lower corner.
+        min: DVec3,
+        /// Upper corner.
+        max: DVec3,
+    },
+    /// A polygon in a surface's parameter domain.
+    Parameter {
+        /// The surface.
+        surface: usize,
+        /// The polygon.
+        polygon: Vec<DVec2>,
+    },
+}
+
+/// A region of raised stiffness.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StiffnessRegion {
+    /// The factor.
+    pub factor: f64,
+    /// Where.
+    pub shape: RegionShape,
+}
+
+/// Builds a fold line's geometry and stiffness.
+pub fn build_fold_line(
+    spec: &FoldLineSpec,
+    surfaces: &[Surface],
+) -> Result<(FoldLineGeometry, FoldStiffness), SpecDefect> {
+    let factor = spec
+        .factor
+        .unwrap_or(crate::flatten::stiffness::DEFAULT_FOLD_STIFFNESS);
+    check(
+        factor.is_finite() && factor > 0.0,
+        "factor",
+        format!("must be positive, got {factor}"),
+    )?;
+    if let Some(width) = spec.width {
+        positive(width, "width")?;
+    }
+    let in_range = |index: usize, field: &str| {
+        check(
+            index < surfaces.len(),
+            field,
+            format!(
+                "surface {index} does not exist (there are {} surfaces, numbered from 0)",
+                surfaces.len()
+            ),
+        )
+    };
+    let geometry = match (&spec.between, spec.surface, &spec.points) {
+        (Some(pair), None, None) => {
+            in_range(pair[0], "between")?;
+            in_range(pair[1], "between")?;
+            check(
+                pair[0] != pair[1],
+                "between",
+                "needs two different surfaces",
+            )?;
+            FoldLineGeometry::Between { surfaces: *pair }
+        }
+        (None, Some(surface), Some(points)) => {
+            in_range(surface, "surface")?;
+            check(
+                matches!(surfaces[surface], Surface::Patch(_)),
+                "surface",
+                "fold polylines can be given on polygon and bspline surfaces; on other kinds use 'between' with a surface split at the fold",
+            )?;
+            check(
+                points.len() >= 2,
+                "points",
+                "a fold polyline needs at least two points",
+            )?;
+            FoldLineGeometry::OnSurface {
+                surface,
+                points: points.iter().map(|&p| DVec2::from_array(p)).collect(),
+            }
+        }
+        _ => {
+            return Err(SpecDefect::new(
+                "between",
+                "give either 'between = [a, b]' or 'surface' with 'points'",
+            ));
+        }
+    };
+    Ok((
+        geometry,
+        FoldStiffness {
+            factor,
+            width: spec.width,
+        },
+    ))
+}
+
+/// Builds a stiffness region.
+pub fn build_region(
+    spec: &RegionSpec,
+    surfaces: &[Surface],
+) -> Result<StiffnessRegion, SpecDefect> {
+    check(
+        spec.factor.is_finite() && spec.factor > 0.0,
+        "factor",
+        format!("must be positive, got {}", spec.factor),
+    )?;
+    let shape = match (
+        spec.box_min,
+        spec.box_max,
+        spec.surface,
+        &spec.polygon,
+        spec.parameter_box,
+    ) {
+        (Some(min), Some(max), None, None, None) => {
+            let (min, max) = (DVec3::from_array(min), DVec3::from_array(max));
+            check(
+                min.cmplt(max).all(),
+                "box_max",
+                "every coordinate must exceed box_min's",
+            )?;
+            RegionShape::Box { min, max }
+        }
+        (None, None, Some(surface), polygon, parameter_box)
+            if polygon.is_some() != parameter_box.is_some() =>
+        {
+            check(
+                matches!(surfaces.get(surface), Some(Surface::Patch(_))),
+                "surface",
+                format!(
+                    "surface {surface} is not a polygon or bspline surface: parameter-domain \
+                     regions are given on those; use box_min and box_max elsewhere"
+                ),
+            )?;
+            let polygon = match (polygon, parameter_box) {
+                (Some(points), _) => points.iter().map(|&p| DVec2::from_array(p)).collect(),
+                (None, Some([u0, v0, u1, v1])) => {
+                    vec![
+                        DVec2::new(u0, v0),
+                        DVec2::new(u1, v0),
+                        DVec2::new(u1, v1),
+                        DVec2::new(u0, v1),
+                    ]
+                }
+                (None, None) => Vec::new(),
+            };
+            check(
+                polygon.len() >= 3 && polygon_area(&polygon).abs() > 0.0,
+                "polygon",
+                "needs at least three points enclosing an area",
+            )?;
+            RegionShape::Parameter { surface, polygon }
+        }
+        _ => {
+            return Err(SpecDefect::new(
+                "box_min",
+                "give either 'box_min' and 'box_max', or 'surface' with 'polygon' or 'parameter_box'",
+            ));
+        }
+    };
+    Ok(StiffnessRegion {
+        factor: spec.factor,
+        shape,
+    })
+}

@@ -1,0 +1,125 @@
+//! Trim loops and polygons in a plane: areas, simplicity, nesting, point-in-polygon. Used to
+//! check the loops of polygon surfaces and patch trims before they reach the tessellator.
+
+use glam::DVec2;
+
+use super::errors::SpecDefect;
+
+fn check(condition: bool, field: &str, message: impl Into<String>) -> Result<(), SpecDefect> {
+    if condition {
+        Ok(())
+    } else {
+        Err(SpecDefect::new(field, message))
+    }
+}
+
+/// Signed area of a closed polygon (positive when counter-clockwise), by the shoelace formula.
+pub fn polygon_area(points: &[DVec2]) -> f64 {
+    let count = points.len();
+    0.5 * (0..count)
+        .map(|k| points[k].perp_dot(points[(k + 1) % count]))
+        .sum::<f64>()
+}
+
+/// Checks trim loops: simple, nested (holes inside the outer loop, apart from each other);
+/// returns the outer loop counter-clockwise and the holes.
+pub fn check_loops(
+    mut outer: Vec<DVec2>,
+    holes: Vec<Vec<DVec2>>,
+    outer_field: &str,
+    holes_field: &str,
+) -> Result<(Vec<DVec2>, Vec<Vec<DVec2>>), SpecDefect> {
+    let loops = std::iter::once((outer_field.to_string(), &outer)).chain(
+        holes
+            .iter()
+            .enumerate()
+            .map(|(i, h)| (format!("{holes_field}[{i}]"), h)),
+    );
+    let named: Vec<(String, &Vec<DVec2>)> = loops.collect();
+    for (field, points) in &named {
+        check(
+            points.len() >= 3,
+            field,
+            "a loop needs at least three points",
+        )?;
+        check(
+            points.iter().all(|p| p.is_finite()) && polygon_area(points).abs() > 0.0,
+            field,
+            "the loop has no area",
+        )?;
+        check(
+            !self_intersects(points),
+            field,
+            "the loop intersects itself",
+        )?;
+    }
+    for (i, (field, hole)) in named.iter().enumerate().skip(1) {
+        check(
+            hole.iter().all(|&p| inside(p, &outer)) && !loops_cross(hole, &outer),
+            field,
+            "the hole must lie inside the outer boundary",
+        )?;
+        for (_, other) in named.iter().skip(i + 1) {
+            check(
+                !loops_cross(hole, other) && !inside(hole[0], other) && !inside(other[0], hole),
+                field,
+                "two holes overlap",
+            )?;
+        }
+    }
+    if polygon_area(&outer) < 0.0 {
+        outer.reverse();
+    }
+    Ok((outer, holes))
+}
+
+fn segments(points: &[DVec2]) -> impl Iterator<Item = (DVec2, DVec2)> + '_ {
+    (0..points.len()).map(move |k| (points[k], points[(k + 1) % points.len()]))
+}
+
+fn segments_cross(a: (DVec2, DVec2), b: (DVec2, DVec2)) -> bool {
+    let side = |p: DVec2, q: DVec2, r: DVec2| (q - p).perp_dot(r - p);
+    let (d1, d2) = (side(b.0, b.1, a.0), side(b.0, b.1, a.1));
+    let (d3, d4) = (side(a.0, a.1, b.0), side(a.0, a.1, b.1));
+    d1 * d2 < 0.0 && d3 * d4 < 0.0
+}
+
+fn self_intersects(points: &[DVec2]) -> bool {
+    let count = points.len();
+    let all: Vec<(DVec2, DVec2)> = segments(points).collect();
+    (0..count).any(|i| {
+        (i + 2..count)
+            .filter(|&j| !(i == 0 && j == count - 1))
+            .any(|j| segments_cross(all[i], all[j]))
+    }) || (0..count).any(|i| (i + 1..count).any(|j| points[i].distance(points[j]) <= 0.0))
+}
+
+fn loops_cross(a: &[DVec2], b: &[DVec2]) -> bool {
+    segments(a).any(|s| segments(b).any(|t| segments_cross(s, t)))
+}
+
+/// Point in polygon by the crossing rule.
+pub fn inside(point: DVec2, polygon: &[DVec2]) -> bool {
+    segments(polygon)
+        .filter(|(p, q)| (p.y > point.y) != (q.y > point.y))
+        .filter(|(p, q)| {
+            let x = p.x + (point.y - p.y) / (q.y - p.y) * (q.x - p.x);
+            point.x < x
+        })
+        .count()
+        % 2
+        == 1
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_self_intersecting_loop_is_found() {
+        let bow_tie = [[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]].map(DVec2::from_array);
+        assert!(self_intersects(&bow_tie));
+        let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]].map(DVec2::from_array);
+        assert!(!self_intersects(&square));
+    }
+}

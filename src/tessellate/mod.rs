@@ -1,0 +1,313 @@
+//! Tessellation: a part's CAD surfaces into one triangle soup fit for the spring model.
+//!
+//! Input: a [`CadPart`] (surfaces, fold lines) in part units and [`TessellateOptions`]. Output: a
+//! [`Tessellation`]: a [`TriangleSoup`] whose `face_sources` name the surface of each triangle
+//! and whose `fold_edges` carry every fold line onto mesh edges, with the figures a user checks
+//! (triangles, worst angle). Each surface is meshed by the algorithm that suits it (see
+//! [`surface`]); faces are then welded along their shared edges ([`weld`]); a fold line given as
+//! the edge between two surfaces becomes the mesh edges those surfaces share.
+//!
+//! Mesh size and chord tolerance default from the part's size (the diagonal of its bounding box):
+//! [`DEFAULT_DIVISIONS`] edges along the diagonal, a chord of [`DEFAULT_CHORD_RATIO`] of it.
+
+pub mod face_mesh;
+pub mod patch;
+pub mod revolution;
+pub mod ruled;
+pub mod strip;
+pub mod surface;
+pub mod weld;
+
+use std::f64::consts::TAU;
+
+use glam::{DVec2, DVec3};
+use serde::Serialize;
+
+use crate::mesh::{FoldEdge, TriangleSoup};
+use face_mesh::FaceMesh;
+use surface::{FoldLineGeometry, Surface};
+pub use weld::Welded;
+
+/// Default mesh size: the part's bounding diagonal divided by this.
+pub const DEFAULT_DIVISIONS: f64 = 50.0;
+/// Default chord tolerance as a fraction of the part's bounding diagonal.
+pub const DEFAULT_CHORD_RATIO: f64 = 2e-4;
+/// The smallest mesh size accepted, as a fraction of the bounding diagonal (bounds the
+/// triangle count near four million).
+pub const MINIMUM_MESH_SIZE_RATIO: f64 = 1.0 / 2000.0;
+/// Vertices of different faces closer than this fraction of the diagonal are welded.
+pub const WELD_TOLERANCE_RATIO: f64 = 1e-7;
+/// Angular samples of a circle when the part's size is estimated.
+const SIZE_SAMPLES: usize = 16;
+
+/// Options of [`tessellate`]. `Default` is the only source of defaults.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct TessellateOptions {
+    /// Target edge length (part units); default the bounding diagonal / [`DEFAULT_DIVISIONS`].
+    pub mesh_size: Option<f64>,
+    /// Largest distance between the surface and a triangle (part units); default the bounding
+    /// diagonal × [`DEFAULT_CHORD_RATIO`].
+    pub chord: Option<f64>,
+}
+
+/// Errors of tessellation.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TessellateError {
+    /// The mesh size or chord tolerance is not a positive length, or too small for the part.
+    #[error(
+        "the mesh size {mesh_size} and chord {chord} must be positive and the mesh size at least \
+         {minimum} for a part of this size; give a larger --mesh-size"
+    )]
+    BadSize {
+        /// The mesh size used.
+        mesh_size: f64,
+        /// The chord tolerance used.
+        chord: f64,
+        /// The smallest mesh size accepted.
+        minimum: f64,
+    },
+    /// A patch's derivatives vanish: it has no area.
+    #[error("a patch is degenerate (its derivatives vanish); check its control points")]
+    DegenerateSurface,
+    /// A parameter point could not be triangulated (NaN or huge).
+    #[error("the parameter point ({u}, {v}) cannot be triangulated")]
+    BadParameterPoint {
+        /// u.
+        u: f64,
+        /// v.
+        v: f64,
+    },
+    /// A fold line crosses a trim loop or another fold line.
+    #[error(
+        "a fold line or trim loop crosses another near parameters ({u}, {v}); fold lines must \
+         stay inside the trimmed domain"
+    )]
+    CrossingConstraints {
+        /// u.
+        u: f64,
+        /// v.
+        v: f64,
+    },
+    /// A surface produced no triangles.
+    #[error("surface {surface} produced no triangles; check its dimensions")]
+    EmptySurface {
+        /// Surface index.
+        surface: usize,
+    },
+}
+
+/// A part's geometry as the tessellator needs it.
+#[derive(Debug, Clone)]
+pub struct CadPart {
+    /// Surfaces in file order.
+    pub surfaces: Vec<Surface>,
+    /// Fold lines in file order.
+    pub fold_lines: Vec<FoldLineGeometry>,
+    /// Whether surfaces are welded along shared edges (false: each surface its own part).
+    pub weld: bool,
+}
+
+/// A tessellated part.
+#[derive(Debug, Clone)]
+pub struct Tessellation {
+    /// The welded soup.
+    pub welded: Welded,
+    /// The mesh size used.
+    pub mesh_size: f64,
+    /// The chord tolerance used.
+    pub chord: f64,
+    /// The smallest triangle angle, degrees.
+    pub minimum_angle: f64,
+}
+
+impl Tessellation {
+    /// The soup.
+    pub fn soup(&self) -> &TriangleSoup {
+        &self.welded.soup
+    }
+}
+
+impl CadPart {
+    /// The diagonal of a bounding box of sample points of every surface: the part's size.
+    pub fn size(&self) -> f64 {
+        let mut low = DVec3::splat(f64::INFINITY);
+        let mut high = DVec3::splat(f64::NEG_INFINITY);
+        for surface in &self.surfaces {
+            for p in outline_points(surface) {
+                low = low.min(p);
+                high = high.max(p);
+            }
+        }
+        (high - low).length()
+    }
+}
+
+/// Sample points spanning a surface (for its size).
+fn outline_points(surface: &Surface) -> Vec<DVec3> {
+    match surface {
+        Surface::Ruled(ruled) => {
+            let rulings = ruled::rulings(ruled, f64::INFINITY, 0.0);
+            let mut points = rulings.bottom;
+            points.extend(rulings.top);
+            if let surface::RuledSurface::Circular {
+                frame,
+                bottom,
+                top,
+                angles,
+            } = ruled
+            {
+                for k in 0..=SIZE_SAMPLES {
+                    let angle =
+                        angles[0] + (angles[1] - angles[0]) * k as f64 / SIZE_SAMPLES as f64;
+                    points.push(frame.point(bottom.point(angle)));
+                    points.push(frame.point(top.point(angle)));
+                }
+            }
+            points
+        }
+        Surface::Revolution(revolution) => {
+            let mut points = Vec::new();
+            for p in revolution.profile.sample(f64::INFINITY, 0.0) {
+                for k in 0..SIZE_SAMPLES {
+                    let angle = TAU * k as f64 / SIZE_SAMPLES as f64;
+                    let local = DVec3::new(p.x * angle.cos(), p.x * angle.sin(), p.y);
+                    points.push(revolution.frame.point(local));
+                }
+            }
+            points
+        }
+        Surface::Patch(patch) => {
+            let (low, high) = patch
+                .outer
+                .iter()
+                .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(l, h), &p| {
+                    (l.min(p), h.max(p))
+                });
+            let grid = (0..=SIZE_SAMPLES)
+                .flat_map(|i| (0..=SIZE_SAMPLES).map(move |j| DVec2::new(i as f64, j as f64)));
+            grid.map(|t| {
+                patch
+                    .geometry
+                    .point(low + (high - low) * t / SIZE_SAMPLES as f64)
+            })
+            .collect()
+        }
+    }
+}
+
+/// The mesh size and chord tolerance for a part, defaults filled in and checked.
+pub fn resolve_sizes(
+    part: &CadPart,
+    options: &TessellateOptions,
+) -> Result<(f64, f64), TessellateError> {
+    let size = part.size();
+    let mesh_size = options.mesh_size.unwrap_or(size / DEFAULT_DIVISIONS);
+    let chord = options.chord.unwrap_or(size * DEFAULT_CHORD_RATIO);
+    let minimum = size * MINIMUM_MESH_SIZE_RATIO;
+    if !(mesh_size.is_finite() && mesh_size >= minimum && chord.is_finite() && chord > 0.0) {
+        return Err(TessellateError::BadSize {
+            mesh_size,
+            chord,
+            minimum,
+        });
+    }
+    Ok((mesh_size, chord))
+}
+
+/// Tessellates a part (see the module documentation).
+pub fn tessellate(
+    part: &CadPart,
+    options: &TessellateOptions,
+) -> Result<Tessellation, TessellateError> {
+    let (mesh_size, chord) = resolve_sizes(part, options)?;
+    let mut faces = Vec::with_capacity(part.surfaces.len());
+    for (index, surface) in part.surfaces.iter().enumerate() {
+        let face = mesh_surface(part, index, surface, mesh_size, chord)?;
+        if face.triangles.is_empty() {
+            return Err(TessellateError::EmptySurface { surface: index });
+        }
+        faces.push(face);
+    }
+    let mut welded = weld::weld_faces(&faces, part.weld, part.size() * WELD_TOLERANCE_RATIO);
+    add_shared_edge_folds(part, &mut welded.soup);
+    let minimum_angle = minimum_angle(&welded.soup);
+    Ok(Tessellation {
+        welded,
+        mesh_size,
+        chord,
+        minimum_angle,
+    })
+}
+
+fn mesh_surface(
+    part: &CadPart,
+    index: usize,
+    surface: &Surface,
+    mesh_size: f64,
+    chord: f64,
+) -> Result<FaceMesh, TessellateError> {
+    Ok(match surface {
+        Surface::Ruled(ruled) => ruled::mesh_ruled(ruled, mesh_size, chord),
+        Surface::Revolution(revolution) => {
+            revolution::mesh_revolution(revolution, mesh_size, chord)
+        }
+        Surface::Patch(patch) => {
+            let folds: Vec<(u32, Vec<DVec2>)> = part
+                .fold_lines
+                .iter()
+                .enumerate()
+                .filter_map(|(line, fold)| match fold {
+                    FoldLineGeometry::OnSurface { surface, points } if *surface == index => {
+                        Some((line as u32, points.clone()))
+                    }
+                    _ => None,
+                })
+                .collect();
+            patch::mesh_patch(patch, &folds, mesh_size, chord)?
+        }
+    })
+}
+
+/// Tags the edges shared by the two surfaces of each `Between` fold line.
+fn add_shared_edge_folds(part: &CadPart, soup: &mut TriangleSoup) {
+    let mut half_edges: Vec<([u32; 2], u32)> = Vec::with_capacity(soup.triangles.len() * 3);
+    for (t, source) in soup.triangles.iter().zip(&soup.face_sources) {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            half_edges.push(([a.min(b), a.max(b)], *source));
+        }
+    }
+    half_edges.sort_unstable();
+    for (line, fold) in part.fold_lines.iter().enumerate() {
+        let FoldLineGeometry::Between { surfaces } = fold else {
+            continue;
+        };
+        let wanted = [
+            surfaces[0].min(surfaces[1]) as u32,
+            surfaces[0].max(surfaces[1]) as u32,
+        ];
+        for pair in half_edges.windows(2) {
+            let (first, second) = (pair[0], pair[1]);
+            if first.0 == second.0 && [first.1, second.1] == wanted {
+                soup.fold_edges.push(FoldEdge {
+                    vertices: first.0,
+                    fold_line: line as u32,
+                });
+            }
+        }
+    }
+}
+
+/// The smallest interior angle over all triangles, degrees.
+pub fn minimum_angle(soup: &TriangleSoup) -> f64 {
+    soup.triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| soup.positions[v as usize]);
+            [(a, b, c), (b, c, a), (c, a, b)]
+                .iter()
+                .map(|&(p, q, r)| (q - p).angle_between(r - p).to_degrees())
+                .fold(180.0, f64::min)
+        })
+        .fold(180.0, f64::min)
+}

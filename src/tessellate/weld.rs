@@ -1,0 +1,178 @@
+//! Welding the faces of a part into one surface.
+//!
+//! Input: per-face meshes whose shared edges were sampled at the same points (part units) and a
+//! weld tolerance. Output: one [`TriangleSoup`] in which vertices of *different* faces closer
+//! than the tolerance are one vertex, every vertex referenced, with per-triangle face sources
+//! (the face index) and the faces' fold edges renumbered. Vertices of the same face are never
+//! merged, so a seam that a face keeps open (a full turn) stays open. Deterministic: vertices are
+//! visited in a sorted order and merged into the lowest index.
+
+use glam::DVec3;
+
+use super::face_mesh::FaceMesh;
+use crate::mesh::{FoldEdge, TriangleSoup};
+
+/// A welded soup and, per soup vertex, the face it came from and its parameter-domain position.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Welded {
+    /// The soup.
+    pub soup: TriangleSoup,
+    /// Per vertex: the face (surface index) that produced it (the lowest when welded).
+    pub vertex_faces: Vec<u32>,
+    /// Per vertex: its parameter-domain coordinates on that face.
+    pub vertex_parameters: Vec<glam::DVec2>,
+}
+
+/// Welds `faces` (see the module documentation); `weld` says, per face, whether it may be welded
+/// to other faces at all.
+pub fn weld_faces(faces: &[FaceMesh], weld: bool, tolerance: f64) -> Welded {
+    let mut positions = Vec::new();
+    let mut owners = Vec::new();
+    let mut parameters = Vec::new();
+    let mut offsets = Vec::with_capacity(faces.len());
+    for (index, face) in faces.iter().enumerate() {
+        offsets.push(positions.len() as u32);
+        positions.extend_from_slice(&face.positions);
+        parameters.extend_from_slice(&face.parameters);
+        owners.extend(std::iter::repeat_n(index as u32, face.positions.len()));
+    }
+    let representative = if weld {
+        merge_close_vertices(&positions, &owners, tolerance)
+    } else {
+        (0..positions.len() as u32).collect()
+    };
+    let mut triangles = Vec::new();
+    let mut face_sources = Vec::new();
+    let mut fold_edges = Vec::new();
+    for (index, face) in faces.iter().enumerate() {
+        let map = |v: u32| representative[(offsets[index] + v) as usize];
+        for t in &face.triangles {
+            triangles.push(t.map(map));
+            face_sources.push(index as u32);
+        }
+        for &(vertices, fold_line) in &face.fold_edges {
+            fold_edges.push(FoldEdge {
+                vertices: vertices.map(map),
+                fold_line,
+            });
+        }
+    }
+    compact(
+        TriangleSoup {
+            positions,
+            triangles,
+            face_sources,
+            fold_edges,
+        },
+        owners,
+        parameters,
+    )
+}
+
+/// For each vertex, the lowest-numbered vertex of another face within `tolerance` (or itself).
+fn merge_close_vertices(positions: &[DVec3], owners: &[u32], tolerance: f64) -> Vec<u32> {
+    let mut order: Vec<u32> = (0..positions.len() as u32).collect();
+    order.sort_by(|&a, &b| {
+        positions[a as usize]
+            .x
+            .total_cmp(&positions[b as usize].x)
+            .then(a.cmp(&b))
+    });
+    let mut representative: Vec<u32> = (0..positions.len() as u32).collect();
+    for (rank, &v) in order.iter().enumerate() {
+        let p = positions[v as usize];
+        for &w in order[rank + 1..].iter() {
+            let q = positions[w as usize];
+            if q.x - p.x > tolerance {
+                break;
+            }
+            if owners[v as usize] != owners[w as usize] && p.distance(q) <= tolerance {
+                let (low, high) = (v.min(w), v.max(w));
+                let target = representative[low as usize];
+                if target < representative[high as usize] {
+                    representative[high as usize] = target;
+                }
+            }
+        }
+    }
+    // Resolve chains so every vertex points at a vertex that points at itself.
+    for v in 0..representative.len() {
+        let mut r = representative[v];
+        while representative[r as usize] != r {
+            r = representative[r as usize];
+        }
+        representative[v] = r;
+    }
+    representative
+}
+
+/// Drops unreferenced vertices, renumbering in ascending order.
+fn compact(soup: TriangleSoup, owners: Vec<u32>, parameters: Vec<glam::DVec2>) -> Welded {
+    let mut new_index = vec![u32::MAX; soup.positions.len()];
+    for t in &soup.triangles {
+        for &v in t {
+            new_index[v as usize] = 0;
+        }
+    }
+    let mut kept = Vec::new();
+    for (v, slot) in new_index.iter_mut().enumerate() {
+        if *slot == 0 {
+            *slot = kept.len() as u32;
+            kept.push(v);
+        }
+    }
+    let remap = |v: u32| new_index[v as usize];
+    let fold_edges = soup
+        .fold_edges
+        .iter()
+        .filter(|e| {
+            e.vertices
+                .iter()
+                .all(|&v| new_index[v as usize] != u32::MAX)
+        })
+        .map(|e| FoldEdge {
+            vertices: e.vertices.map(remap),
+            fold_line: e.fold_line,
+        })
+        .collect();
+    Welded {
+        soup: TriangleSoup {
+            positions: kept.iter().map(|&v| soup.positions[v]).collect(),
+            triangles: soup.triangles.iter().map(|t| t.map(remap)).collect(),
+            face_sources: soup.face_sources,
+            fold_edges,
+        },
+        vertex_faces: kept.iter().map(|&v| owners[v]).collect(),
+        vertex_parameters: kept.iter().map(|&v| parameters[v]).collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(x: f64) -> FaceMesh {
+        let mut face = FaceMesh::default();
+        for p in [[x, 0.0], [x + 1.0, 0.0], [x + 1.0, 1.0], [x, 1.0]] {
+            face.add_vertex(DVec3::new(p[0], p[1], 0.0));
+        }
+        face.triangles = vec![[0, 1, 2], [0, 2, 3]];
+        face
+    }
+
+    #[test]
+    fn two_faces_sharing_an_edge_share_its_vertices() {
+        let welded = weld_faces(&[square(0.0), square(1.0)], true, 1e-9);
+        assert_eq!(welded.soup.positions.len(), 6);
+        assert_eq!(welded.soup.face_sources, vec![0, 0, 1, 1]);
+    }
+
+    #[test]
+    fn a_face_is_never_welded_to_itself() {
+        let mut face = square(0.0);
+        face.add_vertex(DVec3::ZERO);
+        face.triangles.push([4, 1, 2]);
+        let welded = weld_faces(&[face], true, 1e-9);
+        assert_eq!(welded.soup.positions.len(), 5);
+    }
+}

@@ -1,0 +1,394 @@
+//! CAD surfaces in, end to end through the library: part files and STEP files tessellated,
+//! flattened and measured against their analytic developments and areas.
+
+use std::f64::consts::{PI, TAU};
+use std::path::{Path, PathBuf};
+
+use glam::DVec2;
+
+use flatcut::flatten::fold_lines::fold_line_lengths;
+use flatcut::pipeline::{PartResult, RunOptions, flatten_part, load_parts};
+use flatcut::progress::NoProgress;
+
+/// Tessellated areas must be within this fraction of the analytic area.
+const AREA_TOLERANCE: f64 = 1e-3;
+/// Developable parts must flatten with E_S and E_C below this.
+const DEVELOPABLE_TOLERANCE: f64 = 1e-5;
+/// The flat outline must match the analytic development within this (mm).
+const OUTLINE_TOLERANCE: f64 = 0.05;
+
+fn sample(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("samples")
+        .join(name)
+}
+
+fn flatten_sample(name: &str) -> Vec<PartResult> {
+    let options = RunOptions::default();
+    load_parts(&sample(name), &options)
+        .unwrap_or_else(|e| panic!("{name}: {e}"))
+        .into_iter()
+        .map(|job| flatten_part(job, &options, &NoProgress).expect("flattens"))
+        .collect()
+}
+
+fn assert_isometric(result: &PartResult) {
+    let accuracy = result.flattened.stats.accuracy;
+    assert!(
+        accuracy.area_error <= DEVELOPABLE_TOLERANCE
+            && accuracy.shape_error <= DEVELOPABLE_TOLERANCE,
+        "{}: E_S {} E_C {}",
+        result.job.name,
+        accuracy.area_error,
+        accuracy.shape_error
+    );
+}
+
+fn assert_area(result: &PartResult, analytic: f64) {
+    let area = result.job.model.area();
+    assert!(
+        (area - analytic).abs() / analytic <= AREA_TOLERANCE,
+        "{}: area {area} vs analytic {analytic}",
+        result.job.name
+    );
+}
+
+/// The circle through three points.
+fn circle_centre(a: DVec2, b: DVec2, c: DVec2) -> DVec2 {
+    let d = 2.0 * (a.x * (b.y - c.y) + b.x * (c.y - a.y) + c.x * (a.y - b.y));
+    let (a2, b2, c2) = (a.length_squared(), b.length_squared(), c.length_squared());
+    DVec2::new(
+        (a2 * (b.y - c.y) + b2 * (c.y - a.y) + c2 * (a.y - b.y)) / d,
+        (a2 * (c.x - b.x) + b2 * (a.x - c.x) + c2 * (b.x - a.x)) / d,
+    )
+}
+
+#[test]
+fn cone_frustum_develops_into_its_annular_sector() {
+    let results = flatten_sample("cone_frustum.toml");
+    let result = &results[0];
+    assert_isometric(result);
+    let (bottom, top, height) = (100.0_f64, 50.0_f64, 80.0_f64);
+    let slant = ((bottom - top).powi(2) + height * height).sqrt();
+    assert_area(result, PI * (bottom + top) * slant);
+    // The flat images of the bottom rim (z = 0) and the top rim (z = height).
+    let model = &result.job.model;
+    let flat = &result.flattened.positions;
+    let rim = |z: f64| -> Vec<DVec2> {
+        (0..model.vertex_count())
+            .filter(|&v| (model.positions()[v].z - z).abs() < 1e-9)
+            .map(|v| flat[v])
+            .collect()
+    };
+    let (outer, inner) = (rim(0.0), rim(height));
+    let centre = circle_centre(outer[0], outer[outer.len() / 3], outer[2 * outer.len() / 3]);
+    let sine = (bottom - top) / slant;
+    for (points, radius) in [(&outer, bottom / sine), (&inner, top / sine)] {
+        for p in points.iter() {
+            assert!(
+                (p.distance(centre) - radius).abs() <= OUTLINE_TOLERANCE,
+                "a rim point is {} from the apex, the development says {radius}",
+                p.distance(centre)
+            );
+        }
+    }
+    // The sector angle 2π sin(a), from the seam's two copies of the bottom rim's start. The
+    // pattern is compared after the best rotation about the apex, which splits the deficit of
+    // the inscribed polygon between the two seam ends.
+    let angles: Vec<f64> = outer.iter().map(|p| (*p - centre).to_angle()).collect();
+    let spread = sector_angle(&angles);
+    let seam_end_error = 0.5 * (spread - TAU * sine).abs() * bottom / sine;
+    assert!(
+        seam_end_error <= OUTLINE_TOLERANCE,
+        "each seam end is {seam_end_error} mm off the development"
+    );
+}
+
+/// The angle a set of directions spans (they cover less than a full turn).
+fn sector_angle(angles: &[f64]) -> f64 {
+    let mut sorted = angles.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let largest_gap = sorted
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .chain(std::iter::once(sorted[0] + TAU - sorted[sorted.len() - 1]))
+        .fold(0.0, f64::max);
+    TAU - largest_gap
+}
+
+#[test]
+fn cylinder_panel_is_isometric_with_its_area() {
+    let results = flatten_sample("cylinder_panel.toml");
+    assert_isometric(&results[0]);
+    assert_area(&results[0], 150.0 * TAU / 3.0 * 200.0);
+}
+
+/// Area of the exact square-to-round: four plane triangles and four oblique quarter cones
+/// (each integrated finely).
+fn square_to_round_area(half_side: f64, radius: f64, height: f64) -> f64 {
+    let triangle = 2.0 * half_side * ((half_side - radius).powi(2) + height * height).sqrt() / 2.0;
+    let steps = 100_000;
+    let corner = glam::DVec3::new(half_side, -half_side, 0.0);
+    let point = |t: f64| {
+        let angle = -PI / 2.0 + t * PI / 2.0;
+        glam::DVec3::new(radius * angle.cos(), radius * angle.sin(), height)
+    };
+    let cone: f64 = (0..steps)
+        .map(|k| {
+            let (a, b) = (
+                point(k as f64 / steps as f64),
+                point((k + 1) as f64 / steps as f64),
+            );
+            0.5 * (a - corner).cross(b - corner).length()
+        })
+        .sum();
+    4.0 * (triangle + cone)
+}
+
+#[test]
+fn square_to_round_is_isometric_with_its_area() {
+    let results = flatten_sample("square_to_round.toml");
+    assert_isometric(&results[0]);
+    assert_area(&results[0], square_to_round_area(100.0, 60.0, 150.0));
+}
+
+#[test]
+fn both_elbow_pieces_are_isometric() {
+    let results = flatten_sample("elbow_two_piece.toml");
+    assert_eq!(results.len(), 2);
+    for result in &results {
+        assert_isometric(result);
+        // A cylinder cut at 45° at its top: the mean height stays 100.
+        assert_area(result, TAU * 50.0 * 100.0);
+    }
+}
+
+#[test]
+fn eccentric_round_to_round_and_offset_rectangles_are_isometric() {
+    for name in [
+        "round_to_round_eccentric.toml",
+        "rectangle_offset_transition.toml",
+    ] {
+        let results = flatten_sample(name);
+        assert_isometric(&results[0]);
+    }
+}
+
+#[test]
+fn dome_has_the_area_of_its_spherical_cap() {
+    let options = RunOptions::default();
+    let jobs = load_parts(&sample("dome.toml"), &options).expect("loads");
+    let (radius, cap_height) = (120.0, 60.0);
+    let area = jobs[0].model.area();
+    let analytic = TAU * radius * cap_height;
+    assert!(
+        (area - analytic).abs() / analytic <= AREA_TOLERANCE,
+        "{area} vs {analytic}"
+    );
+}
+
+#[test]
+fn a_stiff_fold_line_keeps_its_length_better_than_a_uniform_one() {
+    let stiff = &flatten_sample("garment_panel.toml")[0];
+    let uniform = &flatten_sample("garment_panel_uniform.toml")[0];
+    let error = |result: &PartResult| {
+        fold_line_lengths(&result.job.model, &result.flattened.positions, 1)[0].error
+    };
+    assert!(error(stiff) <= 5e-4, "fold error {}", error(stiff));
+    assert!(
+        error(stiff) < error(uniform),
+        "{} vs {}",
+        error(stiff),
+        error(uniform)
+    );
+}
+
+#[test]
+fn step_samples_ingest_tessellate_and_flatten() {
+    for name in ["cone_frustum_half.step", "bspline_patch.step"] {
+        let results = flatten_sample(name);
+        assert!(!results.is_empty(), "{name}");
+        for result in &results {
+            let accuracy = result.flattened.stats.accuracy;
+            assert!(
+                accuracy.area_error < 0.01 && accuracy.shape_error < 0.01,
+                "{name}: {accuracy:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn step_units_are_converted_to_millimetres() {
+    let jobs =
+        load_parts(&sample("cone_frustum_half.step"), &RunOptions::default()).expect("loads");
+    // The file is in inches: a 4 in bottom radius is 101.6 mm.
+    let largest = jobs[0]
+        .model
+        .positions()
+        .iter()
+        .map(|p| p.truncate().length())
+        .fold(0.0, f64::max);
+    assert!((largest - 101.6).abs() < 0.5, "{largest}");
+}
+
+#[test]
+fn unsupported_step_content_is_named() {
+    let error = load_parts(
+        &sample("unsupported_offset_surface.step"),
+        &RunOptions::default(),
+    )
+    .expect_err("an offset surface cannot be read");
+    assert!(error.to_string().contains("OFFSET_SURFACE"), "{error}");
+}
+
+#[test]
+fn bad_part_files_name_the_file_line_and_field() {
+    let bad = sample("bad");
+    let mut checked = 0;
+    let mut entries: Vec<PathBuf> = std::fs::read_dir(&bad)
+        .expect("samples/bad exists")
+        .map(|e| e.expect("entry").path())
+        .collect();
+    entries.sort();
+    for path in entries {
+        let error = load_parts(&path, &RunOptions::default()).expect_err("bad file rejected");
+        let text = error.to_string();
+        let file = path.file_name().and_then(|f| f.to_str()).expect("name");
+        assert!(text.contains(file), "{text}");
+        assert!(text.contains("field '"), "{text}");
+        assert!(text.contains(".toml:"), "{text}");
+        checked += 1;
+    }
+    assert!(checked >= 6);
+}
+
+/// Regenerates the STEP samples written with truck-stepio's writer:
+/// `cargo test --test cad -- --ignored regenerate_step_samples`.
+#[test]
+#[ignore = "regenerates samples/bspline_patch.step"]
+fn regenerate_step_samples() {
+    use truck_modeling::*;
+    let curve = |points: [[f64; 3]; 4]| {
+        let points = points.map(|p| Point3::new(p[0], p[1], p[2])).to_vec();
+        BSplineCurve::new(KnotVec::bezier_knot(3), points)
+    };
+    let near = curve([
+        [0.0, 0.0, 0.0],
+        [60.0, 0.0, 30.0],
+        [140.0, 0.0, 30.0],
+        [200.0, 0.0, 0.0],
+    ]);
+    let far = curve([
+        [0.0, 150.0, 20.0],
+        [60.0, 150.0, -10.0],
+        [140.0, 150.0, 50.0],
+        [200.0, 150.0, 10.0],
+    ]);
+    let edge = |c: BSplineCurve<Point3>| {
+        let (front, back) = (c.front(), c.back());
+        Edge::new(
+            &builder::vertex(front),
+            &builder::vertex(back),
+            Curve::BSplineCurve(c),
+        )
+    };
+    let face = builder::homotopy(&edge(near), &edge(far));
+    let shell: Shell = vec![face].into();
+    let compressed = shell.compress();
+    let text = truck_stepio::out::CompleteStepDisplay::new(
+        truck_stepio::out::StepModel::from(&compressed),
+        truck_stepio::out::StepHeaderDescriptor {
+            file_name: "bspline_patch.step".to_owned(),
+            organization_system: "flatcut sample generator (truck-stepio writer)".to_owned(),
+            ..Default::default()
+        },
+    )
+    .to_string();
+    std::fs::write(sample("bspline_patch.step"), text).expect("writes");
+}
+
+#[test]
+fn a_loose_step_surface_in_metres_is_meshed_in_millimetres() {
+    let jobs =
+        load_parts(&sample("loose_hypar_metres.step"), &RunOptions::default()).expect("loads");
+    let largest = jobs[0]
+        .model
+        .positions()
+        .iter()
+        .map(|p| p.x)
+        .fold(0.0, f64::max);
+    assert!((largest - 200.0).abs() < 1e-6, "{largest}");
+}
+
+#[test]
+fn fold_lines_and_regions_raise_the_stiffness_of_their_edges() {
+    let jobs = load_parts(&sample("bracket_fold.toml"), &RunOptions::default()).expect("loads");
+    let job = &jobs[0];
+    let factors = job.stiffness.factors();
+    let fold_edges = job
+        .model
+        .edge_fold_lines()
+        .iter()
+        .filter(|&&l| l == 0)
+        .count();
+    assert!(fold_edges > 0, "the shared edge is tagged");
+    for factor in [10.0, 4.0, 3.0] {
+        assert!(
+            factors.iter().any(|&f| (f - factor).abs() < 1e-12),
+            "some edge has factor {factor}"
+        );
+    }
+    assert_eq!(job.attributes.thickness, Some(2.0));
+}
+
+fn flatcut(arguments: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_flatcut"))
+        .args(arguments)
+        .output()
+        .expect("flatcut runs")
+}
+
+#[test]
+fn the_cli_tessellates_a_part_and_rejects_bad_input_with_exit_1() {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let mesh = directory.path().join("cone.obj");
+    let cone = sample("cone_frustum.toml");
+    let output = flatcut(&[
+        "tessellate",
+        cone.to_str().expect("utf-8"),
+        "-o",
+        mesh.to_str().expect("utf-8"),
+        "--mesh-size",
+        "20",
+    ]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(
+        std::fs::read_to_string(&mesh)
+            .expect("written")
+            .contains("\nf ")
+    );
+    let out = directory.path().join("out");
+    for (input, expected) in [
+        (
+            "bad/zero_radius.toml",
+            "zero_radius.toml:3: field 'surface[0].radius'",
+        ),
+        ("unsupported_offset_surface.step", "OFFSET_SURFACE"),
+    ] {
+        let path = sample(input);
+        let output = flatcut(&[
+            "flatten",
+            path.to_str().expect("utf-8"),
+            "-o",
+            out.to_str().expect("utf-8"),
+        ]);
+        assert_eq!(output.status.code(), Some(1));
+        let message = String::from_utf8_lossy(&output.stderr);
+        assert!(message.contains(expected), "{message}");
+    }
+}
