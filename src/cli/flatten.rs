@@ -49,10 +49,10 @@ pub struct FlattenArgs {
     /// controllers.
     #[arg(long, value_enum, default_value_t = DxfVersionArg::R2000)]
     dxf_version: DxfVersionArg,
-    /// Chord tolerance of the cut contours in mm: the written contour (lines and arcs) stays this
-    /// close to the pattern's outline.
+    /// Chord tolerance of the DXF cut contours in mm: the written contour (lines and arcs) stays
+    /// this close to the pattern's outline. (`--chord` is the tessellation's.)
     #[arg(long, value_name = "MM", default_value_t = DEFAULT_CHORD_TOLERANCE)]
-    chord: f64,
+    dxf_chord: f64,
     /// Seam allowance in mm for garments: the cut contour is offset outward by it, and the
     /// pattern's outline goes to the sew layer.
     #[arg(long, value_name = "MM")]
@@ -85,7 +85,7 @@ impl FlattenArgs {
         };
         let dxf = DxfOptions {
             version,
-            chord_tolerance: self.chord,
+            chord_tolerance: self.dxf_chord,
             seam_allowance: self.seam_allowance,
         };
         PartFileOptions {

@@ -75,10 +75,46 @@ fn zero_area_triangle() {
     refuses("sliver.obj", text.as_bytes(), "zero area");
 }
 
+/// OBJ text of a torus (radii 3 and 1) on an 8 x 4 grid, without its first `missing` quads.
+fn holed_torus(missing: usize) -> String {
+    let (around, across) = (8, 4);
+    let mut text = String::new();
+    for i in 0..around {
+        for j in 0..across {
+            let (u, v) = (
+                i as f64 * std::f64::consts::TAU / around as f64,
+                j as f64 * std::f64::consts::TAU / across as f64,
+            );
+            let radius = 3.0 + v.cos();
+            text.push_str(&format!(
+                "v {} {} {}\n",
+                radius * u.cos(),
+                radius * u.sin(),
+                v.sin()
+            ));
+        }
+    }
+    let index = |i: usize, j: usize| (i % around) * across + (j % across) + 1;
+    for i in 0..around {
+        for j in 0..across {
+            if i * across + j < missing {
+                continue;
+            }
+            let (a, b, c, d) = (
+                index(i, j),
+                index(i + 1, j),
+                index(i + 1, j + 1),
+                index(i, j + 1),
+            );
+            text.push_str(&format!("f {a} {b} {c}\nf {a} {c} {d}\n"));
+        }
+    }
+    text
+}
+
 #[test]
-fn closed_surface() {
-    let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
-    refuses("tetrahedron.obj", text.as_bytes(), "closed");
+fn surface_with_a_handle_and_a_boundary() {
+    refuses("handle.obj", holed_torus(1).as_bytes(), "handle");
 }
 
 #[test]

@@ -47,8 +47,9 @@ fn saddle_map_spans_the_colour_scale() {
     let pixmap = energy_png("saddle");
     assert_eq!(pixmap.width(), DEFAULT_WIDTH_PIXELS);
     assert!(pixmap.height() > 800, "{}", pixmap.height());
-    // Near both ends of the scale (the lowest energy is small but not 0) and in the middle.
-    for position in [0.05, 0.5, 0.95] {
+    // Near both ends of the scale and in the middle (the converged saddle has little energy
+    // below 10 % of the square-root scale).
+    for position in [0.15, 0.5, 0.95] {
         let count = pixels_near(&pixmap, position);
         assert!(count > 500, "{count} pixels at scale position {position}");
     }

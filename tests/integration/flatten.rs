@@ -198,3 +198,25 @@ fn usage_errors_exit_2() {
         Some(2)
     );
 }
+
+#[test]
+fn a_closed_tetrahedron_opens_to_its_exact_net() {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let input = directory.path().join("tetrahedron.obj");
+    let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
+    std::fs::write(&input, text).expect("write input");
+    let output_directory = directory.path().join("out");
+    let output = flatten_into(&input, &output_directory, &[]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let part = &read_report(&output_directory)["parts"][0];
+    assert!(
+        !part["seams"].as_array().expect("seams").is_empty(),
+        "{part}"
+    );
+    let figures = recompute(&output_directory, "tetrahedron");
+    assert!(
+        figures.area_error <= DEVELOPABLE_ERROR && figures.shape_error <= DEVELOPABLE_ERROR,
+        "{figures:?}"
+    );
+    assert_eq!(figures.flipped, 0);
+}

@@ -45,20 +45,35 @@ fn check_golden(sample: &str) {
     let input = format!("samples/{sample}");
     let output = std::process::Command::new(env!("CARGO_BIN_EXE_flatcut"))
         .current_dir(root)
-        .args(["flatten", &input, "-o", directory.path().to_str().expect("utf-8"), "--no-timings"])
+        .args([
+            "flatten",
+            &input,
+            "-o",
+            directory.path().to_str().expect("utf-8"),
+            "--no-timings",
+        ])
         .output()
         .expect("flatcut runs");
-    assert!(matches!(output.status.code(), Some(0 | 3)), "{sample}: {}", stderr(&output));
-    let actual: Value =
-        serde_json::from_str(&std::fs::read_to_string(directory.path().join("report.json")).expect("report")).expect("json");
-    let golden = root.join("samples/golden").join(format!("{sample}.report.json"));
+    assert!(
+        matches!(output.status.code(), Some(0 | 3)),
+        "{sample}: {}",
+        stderr(&output)
+    );
+    let actual: Value = serde_json::from_str(
+        &std::fs::read_to_string(directory.path().join("report.json")).expect("report"),
+    )
+    .expect("json");
+    let golden = root
+        .join("samples/golden")
+        .join(format!("{sample}.report.json"));
     if std::env::var_os("FLATCUT_BLESS").is_some() {
         std::fs::create_dir_all(golden.parent().expect("parent")).expect("golden directory");
         std::fs::copy(directory.path().join("report.json"), &golden).expect("bless");
         return;
     }
     let expected: Value = serde_json::from_str(
-        &std::fs::read_to_string(&golden).unwrap_or_else(|e| panic!("{}: {e} (bless with FLATCUT_BLESS=1)", golden.display())),
+        &std::fs::read_to_string(&golden)
+            .unwrap_or_else(|e| panic!("{}: {e} (bless with FLATCUT_BLESS=1)", golden.display())),
     )
     .expect("golden json");
     compare(&expected["parts"], &actual["parts"], sample);
