@@ -7,10 +7,11 @@ use anyhow::Context;
 use clap::Args;
 
 use flatcut::cut::CutOptions;
-use flatcut::export::part_files::{PartFileOptions, write_part_files};
+use flatcut::export::part_files::{PartFileOptions, part_drawing, write_part_files};
 use flatcut::export::report::{PartReport, Report};
 use flatcut::export::{DEFAULT_CHORD_TOLERANCE, DxfOptions, DxfVersion, write_atomically};
 use flatcut::flatten::{FlattenOptions, Solver};
+use flatcut::nest::{NestOptions, Rotations};
 use flatcut::pipeline::{PartResult, RunOptions, flatten_part, load_parts};
 use flatcut::progress::Progress;
 use flatcut::units::Units;
@@ -121,7 +122,24 @@ impl FlattenArgs {
 }
 
 /// Runs `flatten` or `run`: every input is read and checked before anything is written.
-pub fn run(args: FlattenArgs, progress: &dyn Progress) -> anyhow::Result<Outcome> {
+/// The nesting step of `run`: where to nest and how.
+#[derive(Debug, Clone)]
+pub struct Nesting {
+    /// Stock, gap, budget and seed.
+    pub options: NestOptions,
+    /// Rotations allowed for every part.
+    pub rotations: Rotations,
+    /// Whether parts may be mirrored.
+    pub mirror: bool,
+}
+
+/// Runs `flatten`, or `run` when `nesting` is given: every input is read and checked before
+/// anything is written.
+pub fn run(
+    args: FlattenArgs,
+    nesting: Option<&Nesting>,
+    progress: &dyn Progress,
+) -> anyhow::Result<Outcome> {
     let options = args.run_options()?;
     let file_options = args.part_file_options();
     file_options.dxf.validate()?;
@@ -162,6 +180,19 @@ pub fn run(args: FlattenArgs, progress: &dyn Progress) -> anyhow::Result<Outcome
             &file_options,
         )?;
     }
+    let sheets = match nesting {
+        Some(nesting) => {
+            let drawings: Vec<_> = results.iter().map(part_drawing).collect();
+            super::run::nest_and_write(
+                &args.output,
+                &drawings,
+                nesting,
+                &file_options.dxf,
+                progress,
+            )?
+        }
+        None => Vec::new(),
+    };
     let parts: Vec<PartReport> = results
         .iter()
         .map(|r| PartReport::new(r, &options, !args.no_timings))
@@ -184,7 +215,9 @@ pub fn run(args: FlattenArgs, progress: &dyn Progress) -> anyhow::Result<Outcome
             }
         );
     }
-    let report = Report::new(options, parts).to_json();
+    let mut report = Report::new(options, parts);
+    report.sheets = sheets;
+    let report = report.to_json();
     let report_path = args.output.join("report.json");
     write_atomically(&report_path, report.as_bytes())
         .with_context(|| format!("{}: cannot write", report_path.display()))?;

@@ -8,6 +8,7 @@ use clap::{Parser, Subcommand};
 mod flatten;
 mod nest;
 mod progress_bar;
+mod run;
 mod tessellate;
 
 /// Exit code when every part finished within tolerance.
@@ -28,7 +29,7 @@ struct Cli {
 #[derive(Debug, Subcommand)]
 enum Command {
     /// The whole pipeline: flatten every part and write its files and the report.
-    Run(flatten::FlattenArgs),
+    Run(run::RunArgs),
     /// Flatten parts and write their patterns, no nesting.
     Flatten(flatten::FlattenArgs),
     /// Nest parts or a benchmark instance (ESICUP JSON) on sheets or a roll; writes OUT/nest.json.
@@ -52,7 +53,8 @@ pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let progress = progress_bar::TerminalProgress::new();
     let result: anyhow::Result<Outcome> = match cli.command {
-        Command::Run(args) | Command::Flatten(args) => flatten::run(args, &progress),
+        Command::Run(args) => run::run(args, &progress),
+        Command::Flatten(args) => flatten::run(args, None, &progress),
         Command::Nest(args) => nest::run(args, &progress),
         Command::Tessellate(args) => tessellate::run(args),
     };

@@ -206,7 +206,7 @@ fn write_atomically(directory: &Path, name: &str, contents: &str) -> anyhow::Res
 }
 
 /// Parses `WxH` (mm).
-fn parse_sheet(text: &str) -> Result<(f64, f64), String> {
+pub(super) fn parse_sheet(text: &str) -> Result<(f64, f64), String> {
     let (width, height) = text
         .split_once(['x', 'X'])
         .ok_or("expected WIDTHxHEIGHT, for example 3000x1500")?;
@@ -219,7 +219,7 @@ fn parse_sheet(text: &str) -> Result<(f64, f64), String> {
 }
 
 /// Parses `0,90,180`, `step:15` or `free`.
-fn parse_rotations(text: &str) -> Result<Rotations, String> {
+pub(super) fn parse_rotations(text: &str) -> Result<Rotations, String> {
     if text.eq_ignore_ascii_case("free") {
         return Ok(Rotations::Free);
     }

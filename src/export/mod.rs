@@ -26,6 +26,7 @@ pub mod raster;
 pub mod report;
 mod seam;
 mod sheet_png;
+pub mod sheets;
 pub mod text;
 
 pub use atomic::write_atomically;

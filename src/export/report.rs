@@ -26,7 +26,7 @@ pub struct Report {
     /// One entry per part.
     pub parts: Vec<PartReport>,
     /// One entry per nested sheet or roll (empty without nesting).
-    pub sheets: Vec<serde_json::Value>,
+    pub sheets: Vec<SheetReport>,
 }
 
 /// Figures of one part.
@@ -88,6 +88,42 @@ pub struct PartReport {
     pub tessellation: Option<TessellationFigures>,
     /// Repairs made to the input.
     pub warnings: Vec<String>,
+}
+
+/// One nested sheet, or the used part of a roll. Lengths in mm.
+#[derive(Debug, Clone, Serialize)]
+pub struct SheetReport {
+    /// The sheet's DXF, relative to the output directory.
+    pub file: String,
+    /// Sheet width (on a roll: the length used).
+    pub width: f64,
+    /// Sheet height (on a roll: the roll width).
+    pub height: f64,
+    /// On a roll, the length used; absent for sheets.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub length: Option<f64>,
+    /// The parts placed on it.
+    pub parts: Vec<PlacementReport>,
+    /// Net part area over sheet area.
+    pub utilisation: f64,
+}
+
+/// One part placed on a sheet: its outline is mirrored in x (when `mirrored`), rotated by
+/// `rotation` degrees counter-clockwise about the pattern's origin, then moved by `(x, y)`.
+#[derive(Debug, Clone, Serialize)]
+pub struct PlacementReport {
+    /// Part name.
+    pub name: String,
+    /// Which copy of the part (from 0).
+    pub copy: u32,
+    /// Rotation, degrees counter-clockwise.
+    pub rotation: f64,
+    /// Mirrored before rotating.
+    pub mirrored: bool,
+    /// Translation along x, mm.
+    pub x: f64,
+    /// Translation along y, mm.
+    pub y: f64,
 }
 
 /// One cut.
@@ -216,4 +252,38 @@ impl Report {
         text.push('\n');
         text
     }
+}
+
+/// The report entries of a nested layout; `names[i]` is the name of nesting item `i` and
+/// `files[k]` the DXF of sheet `k`.
+pub fn sheet_reports(
+    layout: &crate::nest::NestLayout,
+    names: &[String],
+    files: &[std::path::PathBuf],
+) -> Vec<SheetReport> {
+    let on_roll = matches!(layout.stock, crate::nest::Stock::Roll { .. });
+    layout
+        .sheets
+        .iter()
+        .zip(files)
+        .map(|(sheet, file)| SheetReport {
+            file: file.display().to_string(),
+            width: sheet.width,
+            height: sheet.height,
+            length: on_roll.then_some(sheet.used_length),
+            parts: sheet
+                .placements
+                .iter()
+                .map(|placement| PlacementReport {
+                    name: names[placement.item].clone(),
+                    copy: placement.copy,
+                    rotation: placement.rotation_degrees,
+                    mirrored: placement.mirrored,
+                    x: placement.translation.x,
+                    y: placement.translation.y,
+                })
+                .collect(),
+            utilisation: sheet.utilisation,
+        })
+        .collect()
 }

@@ -19,6 +19,7 @@
 pub mod collision;
 mod errors;
 pub mod instance;
+pub mod parts;
 pub mod search;
 pub mod verify;
 

@@ -4,4 +4,5 @@ mod bad_inputs;
 mod energy_png;
 mod flatten;
 mod golden;
+mod nesting;
 mod util;
