@@ -444,23 +444,23 @@ mod tests {
         let run = |items: &[NestItem], options: &NestOptions| nest(items, options, &NoProgress);
         assert!(matches!(run(&[], &roll(10.0)), Err(NestError::EmptyInput)));
         assert!(matches!(
-            run(&[square.clone()], &roll(0.0)),
+            run(std::slice::from_ref(&square), &roll(0.0)),
             Err(NestError::InvalidStock { .. })
         ));
         assert!(matches!(
-            run(&[square.clone()], &roll(5.0)),
+            run(std::slice::from_ref(&square), &roll(5.0)),
             Err(NestError::PartTooLarge { .. })
         ));
         assert!(
             matches!(
-                run(&[square.clone()], &roll(10.0)),
+                run(std::slice::from_ref(&square), &roll(10.0)),
                 Err(NestError::PartTooLarge { .. })
             ),
             "the engine's clearance is part of the fit"
         );
         assert!(matches!(
             run(
-                &[square.clone()],
+                std::slice::from_ref(&square),
                 &options(Stock::Roll { width: 20.0 }, -1.0, 1_000)
             ),
             Err(NestError::InvalidGap(_))
