@@ -255,7 +255,8 @@ pub fn flatten_part(
     options: &RunOptions,
     progress: &dyn Progress,
 ) -> Result<PartResult, Error> {
-    let result = cut_and_flatten(
+    let started = std::time::Instant::now();
+    let mut result = cut_and_flatten(
         &job.model,
         &job.stiffness,
         &job.constraints,
@@ -268,6 +269,8 @@ pub fn flatten_part(
         part: job.name.clone(),
         reason,
     })?;
+    // The part's time is the whole of it: seams, every cut tried and every flattening.
+    result.flattened.stats.seconds = started.elapsed().as_secs_f64();
     job.model = result.model;
     job.stiffness = result.stiffness;
     Ok(PartResult {

@@ -62,7 +62,7 @@ pub struct PartReport {
     pub tolerance: f64,
     /// Both errors within the tolerance and no overlap.
     pub tolerance_met: bool,
-    /// Wall-clock seconds of flattening (0 with `--no-timings`).
+    /// Wall-clock seconds for the part: seams, cuts and every flattening (0 with `--no-timings`).
     pub seconds: f64,
     /// The solver used.
     pub solver: Solver,
