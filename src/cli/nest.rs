@@ -1,13 +1,14 @@
 //! `flatcut nest`: benchmark instances (ESICUP JSON) onto sheets or a roll, checked independently,
 //! written to `OUT/nest.json`.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, bail};
 use clap::Args;
 use serde::Serialize;
 
+use flatcut::export::write_atomically;
 use flatcut::nest::instance::read_instance;
 use flatcut::nest::verify::verify;
 use flatcut::nest::{self, NestItem, NestLayout, NestOptions, Rotations, Stock};
@@ -171,7 +172,11 @@ pub fn run(args: NestArgs, progress: &dyn Progress) -> anyhow::Result<Outcome> {
         density: layout.utilisation,
     };
     let json = serde_json::to_string_pretty(&report)? + "\n";
-    write_atomically(&args.output, "nest.json", &json)?;
+    std::fs::create_dir_all(&args.output)
+        .with_context(|| format!("{}: cannot create the directory", args.output.display()))?;
+    let path = args.output.join("nest.json");
+    write_atomically(&path, json.as_bytes())
+        .with_context(|| format!("{}: cannot write", path.display()))?;
     if args.json {
         print!("{json}");
     }
@@ -190,19 +195,6 @@ pub fn run(args: NestArgs, progress: &dyn Progress) -> anyhow::Result<Outcome> {
         layout.stop_reason,
     );
     Ok(Outcome::Success)
-}
-
-/// Writes `directory/name` through a temporary file in the same directory and a rename.
-fn write_atomically(directory: &Path, name: &str, contents: &str) -> anyhow::Result<()> {
-    std::fs::create_dir_all(directory)
-        .with_context(|| format!("{}: cannot create the directory", directory.display()))?;
-    let target = directory.join(name);
-    let temporary = directory.join(format!(".{name}.{}.tmp", std::process::id()));
-    std::fs::write(&temporary, contents)
-        .with_context(|| format!("{}: cannot write", temporary.display()))?;
-    std::fs::rename(&temporary, &target)
-        .with_context(|| format!("{}: cannot rename into place", target.display()))?;
-    Ok(())
 }
 
 /// Parses `WxH` (mm).

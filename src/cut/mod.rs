@@ -19,7 +19,6 @@
 
 pub mod crest;
 pub mod cut_graph;
-pub mod energy_field;
 mod errors;
 pub mod paths;
 pub mod seam;
@@ -463,7 +462,7 @@ fn best_cut(
         state.stiffness.factors(),
         flatten_options.spring_constant,
     );
-    let energies = energy_field::vertex_energies(&springs, &flattened.positions);
+    let energies = springs.vertex_energies(&flattened.positions);
     let adjacency = Adjacency::new(&state.model);
     let settings = CrestSettings {
         blocked: starts.blocked,
