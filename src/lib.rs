@@ -11,6 +11,7 @@ pub mod cut;
 pub mod error;
 pub mod export;
 pub mod flatten;
+pub mod geometry;
 pub mod ingest;
 pub mod mesh;
 pub mod nest;

@@ -115,14 +115,7 @@ pub fn fit_open(chain: &[DVec2], tolerance: f64) -> Option<Vec<BulgeVertex>> {
     Some(vertices)
 }
 
-/// The signed area of a ring, in squared drawing units (positive when counter-clockwise).
-pub fn signed_area(ring: &[DVec2]) -> f64 {
-    let count = ring.len();
-    let twice: f64 = (0..count)
-        .map(|index| ring[index].perp_dot(ring[(index + 1) % count]))
-        .sum();
-    twice * 0.5
-}
+pub use crate::geometry::signed_area;
 
 /// The points with every point closer than `duplicate` to the last kept one removed.
 fn remove_duplicates(points: &[DVec2], duplicate: f64) -> Vec<DVec2> {

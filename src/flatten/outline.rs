@@ -64,13 +64,7 @@ impl Outline {
     }
 }
 
-/// Signed area of a closed ring (positive when counter-clockwise), by the shoelace formula.
-pub fn signed_area(ring: &[DVec2]) -> f64 {
-    let n = ring.len();
-    0.5 * (0..n)
-        .map(|i| ring[i].perp_dot(ring[(i + 1) % n]))
-        .sum::<f64>()
-}
+pub use crate::geometry::signed_area;
 
 #[cfg(test)]
 mod tests {

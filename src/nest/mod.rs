@@ -306,14 +306,7 @@ pub fn nest(
     search::Problem::new(items, options)?.solve(progress)
 }
 
-/// Signed area of a ring (positive when counter-clockwise), by the shoelace formula.
-pub fn polygon_area(ring: &[DVec2]) -> f64 {
-    let count = ring.len();
-    (0..count)
-        .map(|index| ring[index].perp_dot(ring[(index + 1) % count]))
-        .sum::<f64>()
-        / 2.0
-}
+pub use crate::geometry::signed_area as polygon_area;
 
 #[cfg(test)]
 mod tests {

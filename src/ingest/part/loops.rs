@@ -13,13 +13,7 @@ fn check(condition: bool, field: &str, message: impl Into<String>) -> Result<(),
     }
 }
 
-/// Signed area of a closed polygon (positive when counter-clockwise), by the shoelace formula.
-pub fn polygon_area(points: &[DVec2]) -> f64 {
-    let count = points.len();
-    0.5 * (0..count)
-        .map(|k| points[k].perp_dot(points[(k + 1) % count]))
-        .sum::<f64>()
-}
+pub use crate::geometry::signed_area as polygon_area;
 
 /// Checks trim loops: simple, nested (holes inside the outer loop, apart from each other);
 /// returns the outer loop counter-clockwise and the holes.
