@@ -174,6 +174,11 @@ fn longest_span(points: &[DVec2], start: usize, tolerance: f64) -> Span {
         let end = (start + run).min(last);
         match fit_span(&points[start..=end], tolerance) {
             Some(bulge) => best = Span { start, end, bulge },
+            None if run <= MIN_SAMPLED_CHORDS => {
+                // Too short to be taken for a sampled arc: try a run that is long enough.
+                run = MIN_SAMPLED_CHORDS + 1;
+                continue;
+            }
             None => {
                 failed = Some(end);
                 break;
@@ -221,9 +226,19 @@ fn line_fits(points: &[DVec2], tolerance: f64) -> bool {
         .all(|&point| super::bulge::distance_to_line_segment(point, first, last) <= tolerance)
 }
 
-/// The bulge of the arc through the first, middle and last points, if it fits every point and
-/// chord midpoint within `tolerance`, visits the points in order and sweeps at most
-/// [`MAX_ARC_SWEEP`].
+/// The largest angle one chord of a sampled arc may subtend (15°): a boundary polyline whose
+/// vertices lie on a circle, in chords this short, is that circle sampled by a mesh, not a
+/// polygon (a hexagon's chords subtend 60°, a 16-gon's 22.5°).
+pub const MAX_SAMPLED_CHORD_ANGLE: f64 = PI / 12.0;
+
+/// The fewest chords a run needs before it is taken for a sampled arc.
+pub const MIN_SAMPLED_CHORDS: usize = 4;
+
+/// The bulge of the arc through the first, middle and last points, if it fits every point
+/// within `tolerance`, visits the points in order and sweeps at most [`MAX_ARC_SWEEP`], and every
+/// chord either has its midpoint within `tolerance` of the arc or is a chord of the arc itself
+/// (a sampled arc: see [`MAX_SAMPLED_CHORD_ANGLE`]). A mesh boundary samples the true curve at
+/// its vertices; the arc through them is the true development, closer to it than the chords.
 fn arc_bulge(points: &[DVec2], tolerance: f64) -> Option<f64> {
     let first = points[0];
     let middle = points[points.len() / 2];
@@ -239,12 +254,23 @@ fn arc_bulge(points: &[DVec2], tolerance: f64) -> Option<f64> {
         return None;
     }
     let on_circle = |point: DVec2| ((point - center).length() - radius).abs() <= tolerance;
+    let sampled = points.len() > MIN_SAMPLED_CHORDS;
+    let chord_of_arc = |start: DVec2, end: DVec2| {
+        let half = start.distance(end) / 2.0;
+        let subtended = 2.0 * (half / radius).min(1.0).asin();
+        let chord_distance = (radius * radius - half * half).max(0.0).sqrt();
+        let midpoint_distance = ((start + end) * 0.5 - center).length();
+        sampled
+            && subtended <= MAX_SAMPLED_CHORD_ANGLE
+            && (midpoint_distance - chord_distance).abs() <= tolerance
+    };
     let angular_slack = tolerance / radius;
     let mut previous = 0.0;
     for pair in points.windows(2) {
         let angle = turned(pair[1]);
         let in_order = angle + angular_slack >= previous && angle <= sweep + angular_slack;
-        if !in_order || !on_circle(pair[1]) || !on_circle((pair[0] + pair[1]) * 0.5) {
+        let chord_fits = on_circle((pair[0] + pair[1]) * 0.5) || chord_of_arc(pair[0], pair[1]);
+        if !in_order || !on_circle(pair[1]) || !chord_fits {
             return None;
         }
         previous = angle;
@@ -424,6 +450,32 @@ mod tests {
                 to_circles.min(to_start).min(to_end)
             })
             .fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn coarsely_meshed_cone_development_is_still_true_arcs() {
+        // A mesh boundary: 25 chords per arc (6.4° each, sagitta 0.35 mm), vertices on the circles.
+        let (inner, outer, angle) = (111.8, 223.6, 2.81);
+        let mut ring = arc_points(outer, 0.0, angle, 26);
+        let mut inner_arc = arc_points(inner, 0.0, angle, 26);
+        inner_arc.reverse();
+        ring.extend(inner_arc);
+        let fitted = fit_closed(&ring, DEFAULT_CHORD_TOLERANCE).expect("fits");
+        assert_eq!(fitted.len(), 4, "{fitted:?}");
+        assert!(deviation_from_sector(&fitted, inner, outer, angle) <= DEFAULT_CHORD_TOLERANCE);
+    }
+
+    #[test]
+    fn a_regular_polygon_with_few_sides_stays_a_polygon() {
+        let octagon = arc_points(50.0, 0.0, std::f64::consts::TAU * 7.0 / 8.0, 8);
+        let fitted = fit_closed(&octagon, DEFAULT_CHORD_TOLERANCE).expect("fits");
+        assert!(
+            fitted
+                .iter()
+                .all(|v| v.bulge.abs() < crate::export::STRAIGHT_BULGE),
+            "{fitted:?}"
+        );
+        assert_eq!(fitted.len(), 8);
     }
 
     #[test]
