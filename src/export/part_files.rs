@@ -111,15 +111,35 @@ fn energy_png(
         triangles: job.model.triangles(),
         vertex_energies: &energies,
         boundary_loops: job.model.boundary_loops(),
-        cut_polylines: Vec::new(),
+        cut_polylines: cut_polylines(result),
         fold_polylines: fold_polylines(&job.model, &flattened.positions),
         figures: PatternFigures {
             area_error: accuracy.area_error,
             shape_error: accuracy.shape_error,
             max_strain: accuracy.max_strain,
-            cuts: 0,
+            cuts: result.cuts.len(),
         },
         negligible_energy: negligible_vertex_energy(&springs, NEGLIGIBLE_STRAIN),
     };
     render_energy_png(&map, None, options)
+}
+
+/// The cuts in the flat pattern: after splitting, both sides of a cut are boundary edges whose
+/// ends sit at the cut's 3D points, so those edges are drawn (each as a two-point polyline).
+fn cut_polylines(result: &PartResult) -> Vec<Vec<glam::DVec2>> {
+    let key = |p: glam::DVec3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
+    let on_cut: std::collections::BTreeSet<[u64; 3]> = result
+        .cuts
+        .iter()
+        .flat_map(|cut| cut.points.iter().map(|&p| key(p)))
+        .collect();
+    let (model, flat) = (&result.job.model, &result.flattened.positions);
+    let at_cut = |v: u32| on_cut.contains(&key(model.positions()[v as usize]));
+    model
+        .edges()
+        .iter()
+        .enumerate()
+        .filter(|&(e, &[a, b])| model.is_boundary_edge(e) && at_cut(a) && at_cut(b))
+        .map(|(_, &[a, b])| vec![flat[a as usize], flat[b as usize]])
+        .collect()
 }
