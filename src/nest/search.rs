@@ -122,6 +122,18 @@ struct Solution<E> {
     bins: Vec<E>,
 }
 
+impl<E> Solution<E> {
+    /// Sheets (bins) that hold at least one placed copy: one past the highest bin used.
+    fn bins_in_use(&self) -> usize {
+        self.placed
+            .iter()
+            .flatten()
+            .map(|placed| placed.bin + 1)
+            .max()
+            .unwrap_or(0)
+    }
+}
+
 /// The objective, compared lexicographically: net area of the copies left out (strip shrinking
 /// only), sheets used, then the length used on the last.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -468,13 +480,7 @@ impl<'a> Problem<'a> {
             }
         }
         prefix.placed.truncate(first_changed);
-        let used_bins = prefix
-            .placed
-            .iter()
-            .flatten()
-            .map(|placed| placed.bin + 1)
-            .max()
-            .unwrap_or(0);
+        let used_bins = prefix.bins_in_use();
         prefix.bins.truncate(used_bins.max(1));
         prefix.order = order;
         self.extend(prefix, pass, random)
@@ -638,13 +644,11 @@ impl<'a> Problem<'a> {
     }
 
     fn cost(&self, solution: &Solution<JaguaEngine>) -> Cost {
-        let placed = solution.placed.iter().flatten();
-        let bins = placed
-            .clone()
-            .map(|placed| placed.bin + 1)
-            .max()
-            .unwrap_or(0);
-        let length = placed
+        let bins = solution.bins_in_use();
+        let length = solution
+            .placed
+            .iter()
+            .flatten()
             .filter(|placed| placed.bin + 1 == bins)
             .map(|placed| placed.right)
             .fold(0.0, f64::max);
@@ -684,13 +688,7 @@ impl<'a> Problem<'a> {
         evaluations: u64,
         stop_reason: StopReason,
     ) -> NestLayout {
-        let bin_count = solution
-            .placed
-            .iter()
-            .flatten()
-            .map(|placed| placed.bin + 1)
-            .max()
-            .unwrap_or(0);
+        let bin_count = solution.bins_in_use();
         let mut sheets: Vec<SheetLayout> = Vec::with_capacity(bin_count);
         for bin in 0..bin_count {
             let mut placements = Vec::new();
