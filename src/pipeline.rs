@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use glam::DVec3;
 use serde::Serialize;
 
-use crate::cut::{Cut, CutConstraints, CutOptions, CutStop, Seam, cut_and_flatten};
+use crate::cut::{Cut, CutConstraints, CutOptions, CutStop, Seam, UncutPattern, cut_and_flatten};
 use crate::error::Error;
 use crate::flatten::{FlattenOptions, Flattened, Stiffness};
 use crate::ingest::part::{PartAttributes, PartInput, RegionShape, loops::inside};
@@ -81,6 +81,8 @@ pub struct PartResult {
     pub cuts: Vec<Cut>,
     /// Why cutting stopped.
     pub cut_stop: CutStop,
+    /// The part before its first crest-line cut, when one was made.
+    pub uncut: Option<UncutPattern>,
 }
 
 /// Reads an input file (mesh, part file or STEP file) and splits it into parts, one per
@@ -279,5 +281,6 @@ pub fn flatten_part(
         seams: result.seams,
         cuts: result.cuts,
         cut_stop: result.stop,
+        uncut: result.uncut,
     })
 }

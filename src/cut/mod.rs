@@ -178,6 +178,20 @@ pub struct CutResult {
     pub cuts: Vec<Cut>,
     /// Why cutting stopped.
     pub stop: CutStop,
+    /// The part as it was before the first crest-line cut, when one was made.
+    pub uncut: Option<UncutPattern>,
+}
+
+/// A part opened by its seams and flattened, before any crest-line cut: what the energy report
+/// shows as "before cutting".
+#[derive(Debug, Clone)]
+pub struct UncutPattern {
+    /// The facet model after its seams.
+    pub model: FacetModel,
+    /// Its stiffness factors.
+    pub stiffness: Stiffness,
+    /// Its pattern.
+    pub flattened: Flattened,
 }
 
 impl CutResult {
@@ -233,6 +247,7 @@ pub fn cut_and_flatten(
     let flatten_options = &loop_options;
     let mut cuts: Vec<Cut> = Vec::new();
     let mut tips: Vec<u32> = Vec::new();
+    let mut uncut = None;
     let step_budget = options.max_cuts * (1 + EXTENSIONS_PER_CUT);
     let mut reporting = false;
     let mut steps = 0;
@@ -277,6 +292,13 @@ pub fn cut_and_flatten(
                 tips[extended] = tip;
             }
             None => {
+                if cuts.is_empty() {
+                    uncut = Some(UncutPattern {
+                        model: state.model.clone(),
+                        stiffness: state.stiffness.clone(),
+                        flattened: flattened.clone(),
+                    });
+                }
                 cuts.push(Cut {
                     points,
                     length: line.length,
@@ -300,6 +322,7 @@ pub fn cut_and_flatten(
         seams,
         cuts,
         stop,
+        uncut,
     })
 }
 

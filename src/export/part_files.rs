@@ -4,6 +4,8 @@
 
 use std::path::Path;
 
+use glam::DVec2;
+
 use super::drawing::PartDrawing;
 use super::dxf::{DxfOptions, write_part_dxf};
 use super::energy_png::{
@@ -14,8 +16,10 @@ use super::fold_polylines::fold_polylines;
 use super::obj::{mesh_obj, pattern_obj};
 use super::write_atomically;
 use crate::error::Error;
-use crate::flatten::SpringSystem;
 use crate::flatten::outline::Outline;
+use crate::flatten::stiffness::Stiffness;
+use crate::flatten::{Flattened, SpringSystem};
+use crate::mesh::FacetModel;
 use crate::pipeline::PartResult;
 
 /// How a part's files are drawn.
@@ -93,40 +97,96 @@ pub fn part_drawing(result: &PartResult) -> PartDrawing {
     }
 }
 
-/// The energy picture of a flattened part: per-vertex energy (Eq. 1) of the final pattern.
+/// The energy picture of a flattened part: per-vertex energy (Eq. 1) of the final pattern, and
+/// beside it the pattern before crest-line cutting when the part was cut.
 fn energy_png(
     result: &PartResult,
     spring_constant: f64,
     options: &EnergyPngOptions,
 ) -> Result<Vec<u8>, EnergyPngError> {
-    let (job, flattened) = (&result.job, &result.flattened);
-    let springs = SpringSystem::new(&job.model, job.stiffness.factors(), spring_constant);
-    let energies = springs.vertex_energies(&flattened.positions);
-    let accuracy = flattened.stats.accuracy;
-    let map = EnergyMap {
-        name: job.name.clone(),
-        energy_units: format!("{}², C = {spring_constant}", job.units.symbol()),
-        length_units: job.units.symbol().to_string(),
-        positions: &flattened.positions,
-        triangles: job.model.triangles(),
-        vertex_energies: &energies,
-        boundary_loops: job.model.boundary_loops(),
-        cut_polylines: cut_polylines(result),
-        fold_polylines: fold_polylines(&job.model, &flattened.positions),
-        figures: PatternFigures {
-            area_error: accuracy.area_error,
-            shape_error: accuracy.shape_error,
-            max_strain: accuracy.max_strain,
-            cuts: result.cuts.len(),
-        },
-        negligible_energy: negligible_vertex_energy(&springs, NEGLIGIBLE_STRAIN),
-    };
-    render_energy_png(&map, None, options)
+    let job = &result.job;
+    let after = PatternEnergy::new(
+        &job.model,
+        &job.stiffness,
+        &result.flattened,
+        spring_constant,
+    );
+    let after_map = after.map(result, cut_polylines(result), result.cuts.len());
+    let before = result.uncut.as_ref().map(|uncut| {
+        PatternEnergy::new(
+            &uncut.model,
+            &uncut.stiffness,
+            &uncut.flattened,
+            spring_constant,
+        )
+    });
+    let before_map = before
+        .as_ref()
+        .map(|before| before.map(result, Vec::new(), 0));
+    render_energy_png(&after_map, before_map.as_ref(), options)
+}
+
+/// A pattern with its springs' per-vertex energies (Eq. 1).
+struct PatternEnergy<'a> {
+    model: &'a FacetModel,
+    flattened: &'a Flattened,
+    energies: Vec<f64>,
+    negligible_energy: f64,
+    spring_constant: f64,
+}
+
+impl<'a> PatternEnergy<'a> {
+    fn new(
+        model: &'a FacetModel,
+        stiffness: &Stiffness,
+        flattened: &'a Flattened,
+        spring_constant: f64,
+    ) -> Self {
+        let springs = SpringSystem::new(model, stiffness.factors(), spring_constant);
+        Self {
+            model,
+            flattened,
+            energies: springs.vertex_energies(&flattened.positions),
+            negligible_energy: negligible_vertex_energy(&springs, NEGLIGIBLE_STRAIN),
+            spring_constant,
+        }
+    }
+
+    /// The energy map of this pattern of `result`'s part, with `cuts` cuts drawn as
+    /// `cut_polylines`.
+    fn map(
+        &self,
+        result: &PartResult,
+        cut_polylines: Vec<Vec<DVec2>>,
+        cuts: usize,
+    ) -> EnergyMap<'_> {
+        let units = result.job.units.symbol();
+        let accuracy = self.flattened.stats.accuracy;
+        let positions = &self.flattened.positions;
+        EnergyMap {
+            name: result.job.name.clone(),
+            energy_units: format!("{units}², C = {}", self.spring_constant),
+            length_units: units.to_string(),
+            positions,
+            triangles: self.model.triangles(),
+            vertex_energies: &self.energies,
+            boundary_loops: self.model.boundary_loops(),
+            cut_polylines,
+            fold_polylines: fold_polylines(self.model, positions),
+            figures: PatternFigures {
+                area_error: accuracy.area_error,
+                shape_error: accuracy.shape_error,
+                max_strain: accuracy.max_strain,
+                cuts,
+            },
+            negligible_energy: self.negligible_energy,
+        }
+    }
 }
 
 /// The cuts in the flat pattern: after splitting, both sides of a cut are boundary edges whose
 /// ends sit at the cut's 3D points, so those edges are drawn (each as a two-point polyline).
-fn cut_polylines(result: &PartResult) -> Vec<Vec<glam::DVec2>> {
+fn cut_polylines(result: &PartResult) -> Vec<Vec<DVec2>> {
     let key = |p: glam::DVec3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
     let on_cut: std::collections::BTreeSet<[u64; 3]> = result
         .cuts

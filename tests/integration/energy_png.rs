@@ -25,14 +25,23 @@ fn energy_png(name: &str) -> tiny_skia::Pixmap {
     tiny_skia::Pixmap::decode_png(&bytes).expect("a valid PNG")
 }
 
-/// Pixels of the pattern panel within [`COLOUR_TOLERANCE`] of the palette colour at `position`.
+/// Pixels of the pattern panels within [`COLOUR_TOLERANCE`] of the palette colour at `position`.
 fn pixels_near(pixmap: &tiny_skia::Pixmap, position: f64) -> usize {
+    pixels_near_between(pixmap, position, 0..PANEL_RIGHT)
+}
+
+/// Pixels with x in `columns` within [`COLOUR_TOLERANCE`] of the palette colour at `position`.
+fn pixels_near_between(
+    pixmap: &tiny_skia::Pixmap,
+    position: f64,
+    columns: std::ops::Range<u32>,
+) -> usize {
     let target = palette_colour(position);
     pixmap
         .pixels()
         .iter()
         .enumerate()
-        .filter(|(index, _)| (*index as u32) % pixmap.width() < PANEL_RIGHT)
+        .filter(|(index, _)| columns.contains(&((*index as u32) % pixmap.width())))
         .filter(|(_, pixel)| {
             let colour = pixel.demultiply();
             let channels = [colour.red(), colour.green(), colour.blue()];
@@ -65,5 +74,24 @@ fn developable_part_is_all_low_energy() {
             0,
             "scale position {position}"
         );
+    }
+}
+
+#[test]
+fn a_cut_part_shows_its_map_before_cutting_beside_the_map_after() {
+    // The hemisphere is cut from about 17 % to under 1 %: on the shared colour scale the panel
+    // before cutting (left) reaches red at its rim, the panel after cutting (right) stays blue.
+    let pixmap = energy_png("hemisphere");
+    let middle = DEFAULT_WIDTH_PIXELS / 2;
+    let red_before = pixels_near_between(&pixmap, 0.95, 0..middle);
+    assert!(red_before > 500, "{red_before} red pixels before cutting");
+    let blue_after = pixels_near_between(&pixmap, 0.05, middle..PANEL_RIGHT);
+    assert!(
+        blue_after > 50_000,
+        "{blue_after} blue pixels after cutting"
+    );
+    for position in [0.5, 0.95] {
+        let count = pixels_near_between(&pixmap, position, middle..PANEL_RIGHT);
+        assert_eq!(count, 0, "after cutting, scale position {position}");
     }
 }
