@@ -9,6 +9,7 @@ use serde::Serialize;
 
 use crate::cut::{Cut, CutConstraints, CutOptions, CutStop, Seam, UncutPattern, cut_and_flatten};
 use crate::error::Error;
+use crate::flatten::orient::orient;
 use crate::flatten::{FlattenOptions, Flattened, Stiffness};
 use crate::ingest::part::{PartAttributes, PartInput, RegionShape, loops::inside};
 use crate::ingest::{Input, read_cut_sidecar, read_input};
@@ -271,6 +272,11 @@ pub fn flatten_part(
         part: job.name.clone(),
         reason,
     })?;
+    let grain = job.attributes.grain;
+    orient(&result.model, &mut result.flattened, grain);
+    if let Some(uncut) = &mut result.uncut {
+        orient(&uncut.model, &mut uncut.flattened, grain);
+    }
     // The part's time is the whole of it: seams, every cut tried and every flattening.
     result.flattened.stats.seconds = started.elapsed().as_secs_f64();
     job.model = result.model;

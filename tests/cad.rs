@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec2;
 
+use flatcut::export::part_files::part_drawing;
 use flatcut::flatten::fold_lines::fold_line_lengths;
 use flatcut::pipeline::{PartResult, RunOptions, flatten_part, load_parts};
 use flatcut::progress::NoProgress;
@@ -121,6 +122,38 @@ fn cylinder_panel_is_isometric_with_its_area() {
     let results = flatten_sample("cylinder_panel.toml");
     assert_isometric(&results[0]);
     assert_area(&results[0], 150.0 * TAU / 3.0 * 200.0);
+}
+
+#[test]
+fn a_grain_direction_turns_the_pattern_and_is_drawn_along_it() {
+    // The panel's grain runs along the cylinder's axis: the pattern is its development, a
+    // 200 mm (axis, now x) by 150 · 2π/3 mm (arc, now y) rectangle with the grain line along x.
+    let result = &flatten_sample("cylinder_panel.toml")[0];
+    let flat = &result.flattened.positions;
+    let size = flat.iter().fold(DVec2::ZERO, |size, &p| size.max(p));
+    assert!(flat.iter().all(|p| p.min_element() >= 0.0));
+    assert!((size.x - 200.0).abs() < 1e-6, "{size}");
+    // The arc side is the development of the inscribed polygon: short by its chords' sag.
+    assert!((size.y - 100.0 * PI).abs() < OUTLINE_TOLERANCE, "{size}");
+    let drawing = part_drawing(result);
+    let [tail, head] = drawing.grain.expect("a grain line");
+    assert!(
+        (head.y - tail.y).abs() < 1e-9 && head.x > tail.x,
+        "{tail} {head}"
+    );
+    assert!((head.x - tail.x - 100.0).abs() < 1e-6, "{tail} {head}");
+    assert_eq!(drawing.material, None);
+}
+
+#[test]
+fn a_part_without_grain_lies_along_its_smallest_bounding_rectangle() {
+    // The garment panel is a square-ish sheet: its pattern comes out axis-aligned, not turned.
+    let result = &flatten_sample("garment_panel.toml")[0];
+    let flat = &result.flattened.positions;
+    let size = flat.iter().fold(DVec2::ZERO, |size, &p| size.max(p));
+    let area = result.job.model.area();
+    assert!(size.x * size.y < 1.02 * area, "{size} around {area}");
+    assert_eq!(part_drawing(result).material.as_deref(), Some("wool"));
 }
 
 /// Area of the exact square-to-round: four plane triangles and four oblique quarter cones

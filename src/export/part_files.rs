@@ -16,6 +16,7 @@ use super::fold_polylines::fold_polylines;
 use super::obj::{mesh_obj, pattern_obj};
 use super::write_atomically;
 use crate::error::Error;
+use crate::flatten::grain::flat_grain;
 use crate::flatten::outline::Outline;
 use crate::flatten::stiffness::Stiffness;
 use crate::flatten::{Flattened, SpringSystem};
@@ -81,20 +82,44 @@ pub fn write_part_files(
     Ok(())
 }
 
-/// What the part's DXF shows: its flat outline, holes and fold lines, with its name and quantity.
+/// What the part's DXF shows: its flat outline, holes and fold lines, with its name, quantity and
+/// material, and its grain line when the part has a grain direction.
 pub fn part_drawing(result: &PartResult) -> PartDrawing {
     let (job, positions) = (&result.job, &result.flattened.positions);
     let outline = Outline::of_pattern(&job.model, positions);
+    let grain = job
+        .attributes
+        .grain
+        .and_then(|direction| flat_grain(&job.model, positions, direction))
+        .map(|direction| grain_line(&outline.outer, direction));
     PartDrawing {
         name: job.name.clone(),
         units: job.units,
         quantity: job.quantity,
-        material: None,
+        material: job.attributes.material.clone(),
         outer: outline.outer,
         holes: outline.holes,
         fold_lines: fold_polylines(&job.model, positions),
-        grain: None,
+        grain,
     }
+}
+
+/// The grain line drawn on a pattern: along the unit `direction`, through the middle of the
+/// outer contour's bounding box, half as long as the contour's extent along `direction`.
+fn grain_line(outer: &[DVec2], direction: DVec2) -> [DVec2; 2] {
+    let (low, high) = outer.iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(low, high), &p| (low.min(p), high.max(p)),
+    );
+    let (first, last) = outer
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            let along = p.dot(direction);
+            (a.min(along), b.max(along))
+        });
+    let centre = 0.5 * (low + high);
+    let half = 0.25 * (last - first);
+    [centre - half * direction, centre + half * direction]
 }
 
 /// The energy picture of a flattened part: per-vertex energy (Eq. 1) of the final pattern, and

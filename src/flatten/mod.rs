@@ -14,8 +14,10 @@ pub mod accuracy;
 pub mod energy_release;
 pub mod fast;
 pub mod fold_lines;
+pub mod grain;
 pub mod init_flatten;
 pub mod isolines;
+pub mod orient;
 pub mod outline;
 pub mod springs;
 pub mod stiffness;
@@ -215,7 +217,7 @@ fn finish(
         }
         Solver::Fast => minimise(model, springs, &mut positions, options)?,
     };
-    move_to_origin(&mut positions);
+    orient::move_to_origin(&mut positions);
     let stats = FlattenStats {
         accuracy: Accuracy::measure(model, &positions),
         initial_accuracy,
@@ -255,14 +257,4 @@ fn minimise(
 ) -> Result<(usize, StopReason), FlattenError> {
     let outcome = fast_solve(model, springs, positions, options.fast)?;
     Ok((outcome.iterations, outcome.stop_reason))
-}
-
-/// Translates the pattern so its bounding box starts at the origin.
-fn move_to_origin(positions: &mut [DVec2]) {
-    let min = positions
-        .iter()
-        .fold(DVec2::splat(f64::INFINITY), |m, &p| m.min(p));
-    for p in positions.iter_mut() {
-        *p -= min;
-    }
 }

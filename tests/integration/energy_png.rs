@@ -80,17 +80,18 @@ fn developable_part_is_all_low_energy() {
 #[test]
 fn a_cut_part_shows_its_map_before_cutting_beside_the_map_after() {
     // The hemisphere is cut from about 17 % to under 1 %: on the shared colour scale the panel
-    // before cutting (left) reaches red at its rim, the panel after cutting (right) stays blue.
+    // before cutting (left) reaches orange-red at its rim, the panel after cutting (right)
+    // stays blue.
     let pixmap = energy_png("hemisphere");
     let middle = DEFAULT_WIDTH_PIXELS / 2;
-    let red_before = pixels_near_between(&pixmap, 0.95, 0..middle);
-    assert!(red_before > 500, "{red_before} red pixels before cutting");
+    let red_before = pixels_near_between(&pixmap, 0.85, 0..middle);
+    assert!(red_before > 300, "{red_before} red pixels before cutting");
     let blue_after = pixels_near_between(&pixmap, 0.05, middle..PANEL_RIGHT);
     assert!(
         blue_after > 50_000,
         "{blue_after} blue pixels after cutting"
     );
-    for position in [0.5, 0.95] {
+    for position in [0.5, 0.85] {
         let count = pixels_near_between(&pixmap, position, middle..PANEL_RIGHT);
         assert_eq!(count, 0, "after cutting, scale position {position}");
     }
