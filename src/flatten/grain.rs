@@ -9,13 +9,15 @@ use crate::mesh::FacetModel;
 /// In each triangle the direction is projected into the triangle's plane, written in the
 /// triangle's edge vectors and mapped by the same combination of the flat edge vectors (the
 /// triangle's affine map from surface to plane); the images are summed weighted by the 3D
-/// triangle areas. `None` when the sum vanishes: a direction normal to the surface everywhere,
-/// or a zero or non-finite direction.
+/// triangle areas. `None` for a zero or non-finite direction, or when the sum is shorter than
+/// [`GRAIN_IN_PLANE_FRACTION`] of its largest possible length (the direction lying in every
+/// triangle's plane): a direction normal to the surface, or one that cancels over it.
 pub fn flat_grain(model: &FacetModel, flat: &[DVec2], direction: DVec3) -> Option<DVec2> {
     if !direction.is_finite() || direction.length_squared() == 0.0 {
         return None;
     }
     let positions = model.positions();
+    let unit = direction.normalize();
     let sum = model
         .triangles()
         .iter()
@@ -28,14 +30,19 @@ pub fn flat_grain(model: &FacetModel, flat: &[DVec2], direction: DVec3) -> Optio
             if gram.determinant().abs() <= f64::EPSILON * e1.dot(e1) * e2.dot(e2) {
                 return None;
             }
-            let weights = gram.inverse() * DVec2::new(direction.dot(e1), direction.dot(e2));
+            let weights = gram.inverse() * DVec2::new(unit.dot(e1), unit.dot(e2));
             let image = weights.x * (f1 - f0) + weights.y * (f2 - f0);
             Some(image * area)
         })
         .fold(DVec2::ZERO, |total, image| total + image);
-    let unit = sum.normalize_or_zero();
-    (unit != DVec2::ZERO && unit.is_finite()).then_some(unit)
+    let significant = sum.length() > GRAIN_IN_PLANE_FRACTION * model.area();
+    (significant && sum.is_finite()).then(|| sum.normalize())
 }
+
+/// The flat grain must sum to at least this fraction of the part's area (the length of the sum
+/// of unit images in an isometric pattern when the grain lies in every triangle's plane), or the
+/// grain is taken as normal to the surface; see [`flat_grain`].
+pub const GRAIN_IN_PLANE_FRACTION: f64 = 1e-3;
 
 #[cfg(test)]
 mod tests {
@@ -91,5 +98,8 @@ mod tests {
         let (model, flat) = half_cylinder(0.0);
         assert_eq!(flat_grain(&model, &flat, DVec3::ZERO), None);
         assert_eq!(flat_grain(&model, &flat, DVec3::NAN), None);
+        // Across the cylinder at its middle, the grain is normal to the surface at the top and
+        // cancels over the two sides.
+        assert_eq!(flat_grain(&model, &flat, DVec3::Z), None);
     }
 }
