@@ -4,7 +4,7 @@
 use std::path::Path;
 use std::process::Command;
 
-use crate::util::{flatcut, read_report, sample, stderr};
+use crate::util::{flatcut, read_obj, read_report, sample, stderr};
 
 fn run_on_sheets(directory: &Path) {
     let output = flatcut(&[
@@ -84,4 +84,58 @@ fn check_every_dxf_with_ezdxf(directory: &Path) {
             stderr(&output)
         );
     }
+}
+
+/// The cylinder panel (radius 150 mm, 120°, height 200 mm, grain along the axis) unrolls to a
+/// 314 × 200 mm rectangle whose 200 mm side follows the grain. Nested with any multiple of 30°
+/// allowed, it must lie with that side along the sheet's x axis: measured on the part's own
+/// pattern.obj turned by the reported rotation.
+#[test]
+fn a_part_with_grain_is_nested_with_the_grain_along_x() {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let output = flatcut(&[
+        "run",
+        sample("cylinder_panel.toml").to_str().expect("utf-8"),
+        "-o",
+        directory.path().to_str().expect("utf-8"),
+        "--sheet",
+        "1000x1000",
+        "--rotations",
+        "step:30",
+        "--time",
+        "1",
+        "--no-timings",
+    ]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let report = read_report(directory.path());
+    let placement = &report["sheets"][0]["parts"][0];
+    let rotation = placement["rotation"]
+        .as_f64()
+        .expect("rotation")
+        .to_radians();
+    let (vertices, _) = read_obj(&directory.path().join("cylinder_panel.pattern.obj"));
+    let turned: Vec<(f64, f64)> = vertices
+        .iter()
+        .map(|v| {
+            let x = if placement["mirrored"] == true {
+                -v[0]
+            } else {
+                v[0]
+            };
+            (
+                x * rotation.cos() - v[1] * rotation.sin(),
+                x * rotation.sin() + v[1] * rotation.cos(),
+            )
+        })
+        .collect();
+    let extent = |coordinate: fn(&(f64, f64)) -> f64| {
+        let values = turned.iter().map(coordinate);
+        values.clone().fold(f64::NEG_INFINITY, f64::max) - values.fold(f64::INFINITY, f64::min)
+    };
+    let (along_x, along_y) = (extent(|p| p.0), extent(|p| p.1));
+    assert!((along_x - 200.0).abs() < 1.0, "extent along x {along_x}");
+    assert!(
+        (along_y - 100.0 * std::f64::consts::PI).abs() < 1.0,
+        "extent along y {along_y}"
+    );
 }
