@@ -49,7 +49,7 @@ pub struct NestArgs {
     #[arg(long, value_name = "N", default_value_t = nest::DEFAULT_SEED)]
     seed: u64,
     /// Allowed rotations for every part, overriding the instance: a list of degrees ("0,90,180"),
-    /// a step ("step:15") or "free".
+    /// a step ("step:15") or "free" (24 angles, every 15°; not a continuous search).
     #[arg(long, value_name = "LIST|step:DEG|free", value_parser = parse_rotations)]
     rotations: Option<Rotations>,
     /// Place small parts inside the holes of larger ones (the parts keep the gap to the hole edge).

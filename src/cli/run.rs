@@ -44,8 +44,9 @@ pub struct RunArgs {
     /// Seed of the nesting search.
     #[arg(long, value_name = "N", default_value_t = nest::DEFAULT_SEED)]
     seed: u64,
-    /// Allowed rotations: a list of degrees ("0,180"), a step ("step:15") or "free"; default
-    /// 0,90,180,270.
+    /// Allowed rotations, measured from the pattern's minimum-area bounding rectangle: a list of
+    /// degrees ("0,180"), a step ("step:15") or "free" (24 angles, every 15°); default
+    /// 0,90,180,270. A part with a grain is only turned to keep it along x.
     #[arg(long, value_name = "LIST|step:DEG|free", value_parser = parse_rotations)]
     rotations: Option<Rotations>,
     /// Nest small parts inside the holes of larger ones (keeping the gap to the hole edge).

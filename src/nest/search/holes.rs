@@ -4,7 +4,7 @@
 //! Copies are taken by decreasing outer area. For each copy of an item with holes (that is not
 //! itself in a hole), each hole becomes a container of its own (the hole ring shrunk by the gap,
 //! [`JaguaEngine::in_polygon`]); every smaller copy whose outer area is below the hole's area is
-//! tried in it, at the first fitting point of a [`HOLE_GRID`] × [`HOLE_GRID`] grid over the hole's
+//! tried in it, at the first fitting point of a grid of [`HOLE_GRID`] + 1 points per axis over the hole's
 //! bounding box (bottom row first, left to right), slid left and down until it touches. A copy in
 //! a hole then travels with its host: the search places the host by its outer ring (its holes
 //! and their contents lie inside it), and the layout composes the two placements.
@@ -21,7 +21,7 @@ use super::{COMPACTION_STEP_FRACTION, Problem, bounds, compact};
 use crate::nest::collision::{CollisionEngine, JaguaEngine, ShapeId};
 use crate::nest::{Placement, polygon_area};
 
-/// Grid points per axis tried for a copy in a hole.
+/// Grid intervals per axis (so `HOLE_GRID + 1` points) tried for a copy in a hole.
 pub const HOLE_GRID: u32 = 24;
 
 /// A copy placed inside a hole of another copy, in the host's own frame.
@@ -57,8 +57,8 @@ impl Problem<'_> {
                 };
                 let hole_area = polygon_area(hole).abs();
                 let mut failed_items = Vec::new();
-                for guest in host + 1..self.copies.len() {
-                    let guest_item = self.copies[guest].item;
+                for (guest, guest_copy) in self.copies.iter().enumerate().skip(host + 1) {
+                    let guest_item = guest_copy.item;
                     if is_guest[guest]
                         || failed_items.contains(&guest_item)
                         || outer_area(guest) >= hole_area
