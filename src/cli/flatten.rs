@@ -7,7 +7,7 @@ use anyhow::Context;
 use clap::Args;
 
 use flatcut::cut::CutOptions;
-use flatcut::export::part_files::{PartFileOptions, part_drawing, write_part_files};
+use flatcut::export::part_files::{PartFileOptions, write_part_files};
 use flatcut::export::report::{PartReport, Report};
 use flatcut::export::{DEFAULT_CHORD_TOLERANCE, DxfOptions, DxfVersion, write_atomically};
 use flatcut::flatten::{FlattenOptions, Solver};
@@ -181,16 +181,13 @@ pub fn run(
         )?;
     }
     let sheets = match nesting {
-        Some(nesting) => {
-            let drawings: Vec<_> = results.iter().map(part_drawing).collect();
-            super::run::nest_and_write(
-                &args.output,
-                &drawings,
-                nesting,
-                &file_options.dxf,
-                progress,
-            )?
-        }
+        Some(nesting) => super::run::nest_and_write(
+            &args.output,
+            &results,
+            nesting,
+            &file_options.dxf,
+            progress,
+        )?,
         None => Vec::new(),
     };
     let parts: Vec<PartReport> = results

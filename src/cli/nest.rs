@@ -49,9 +49,12 @@ pub struct NestArgs {
     #[arg(long, value_name = "N", default_value_t = nest::DEFAULT_SEED)]
     seed: u64,
     /// Allowed rotations for every part, overriding the instance: a list of degrees ("0,90,180"),
-    /// a step ("step:15") or "free".
+    /// a step ("step:15") or "free" (24 angles, every 15°; not a continuous search).
     #[arg(long, value_name = "LIST|step:DEG|free", value_parser = parse_rotations)]
     rotations: Option<Rotations>,
+    /// Place small parts inside the holes of larger ones (the parts keep the gap to the hole edge).
+    #[arg(long)]
+    in_holes: bool,
     /// Allow parts to be mirrored.
     #[arg(long)]
     mirror: bool,
@@ -83,6 +86,7 @@ struct ReportOptions<'a> {
     work_limit: Option<u64>,
     rotations: Option<&'a Rotations>,
     mirror: bool,
+    in_holes: bool,
 }
 
 #[derive(Serialize)]
@@ -135,6 +139,7 @@ pub fn run(args: NestArgs, progress: &dyn Progress) -> anyhow::Result<Outcome> {
         time_limit: Duration::from_secs_f64(args.time),
         seed: args.seed,
         work_limit: args.work,
+        in_holes: args.in_holes,
     };
     let layout = nest::nest(&items, &options, progress)?;
     let violations = verify(&items, &layout);
@@ -158,6 +163,7 @@ pub fn run(args: NestArgs, progress: &dyn Progress) -> anyhow::Result<Outcome> {
             work_limit: options.work_limit,
             rotations: args.rotations.as_ref(),
             mirror: args.mirror,
+            in_holes: args.in_holes,
         },
         parts: items
             .iter()

@@ -8,11 +8,14 @@ use anyhow::bail;
 use clap::Args;
 
 use flatcut::export::PartDrawing;
+use flatcut::export::part_files::part_drawing;
 use flatcut::export::report::sheet_reports;
 use flatcut::export::sheets::{sheet_drawings, write_sheet_files};
+use flatcut::flatten::grain::flat_grain;
 use flatcut::nest::parts::items_from_drawings;
 use flatcut::nest::verify::verify;
 use flatcut::nest::{self, NestOptions, Rotations, Stock};
+use flatcut::pipeline::PartResult;
 use flatcut::progress::Progress;
 
 use super::Outcome;
@@ -42,10 +45,14 @@ pub struct RunArgs {
     /// Seed of the nesting search.
     #[arg(long, value_name = "N", default_value_t = nest::DEFAULT_SEED)]
     seed: u64,
-    /// Allowed rotations: a list of degrees ("0,180"), a step ("step:15") or "free"; default
-    /// 0,90,180,270.
+    /// Allowed rotations, measured from the pattern's minimum-area bounding rectangle: a list of
+    /// degrees ("0,180"), a step ("step:15") or "free" (24 angles, every 15°); default
+    /// 0,90,180,270. A part with a grain is only turned to keep it along x.
     #[arg(long, value_name = "LIST|step:DEG|free", value_parser = parse_rotations)]
     rotations: Option<Rotations>,
+    /// Nest small parts inside the holes of larger ones (keeping the gap to the hole edge).
+    #[arg(long)]
+    in_holes: bool,
     /// Allow parts to be mirrored (only for material with no face side).
     #[arg(long)]
     mirror: bool,
@@ -76,6 +83,7 @@ pub fn run(args: RunArgs, progress: &dyn Progress) -> anyhow::Result<Outcome> {
         time_limit: Duration::from_secs_f64(args.time),
         seed: args.seed,
         work_limit: None,
+        in_holes: args.in_holes,
     };
     let rotations = args
         .rotations
@@ -89,16 +97,25 @@ pub fn run(args: RunArgs, progress: &dyn Progress) -> anyhow::Result<Outcome> {
     super::flatten::run(args.flatten, Some(&nesting), progress)
 }
 
-/// Nests the part drawings, checks the layout independently, writes the sheet files and
-/// returns the report's sheet entries.
+/// Nests the flattened parts (their drawings, with the grain of each part file), checks the
+/// layout independently, writes the sheet files and returns the report's sheet entries.
 pub fn nest_and_write(
     directory: &std::path::Path,
-    drawings: &[PartDrawing],
+    results: &[PartResult],
     nesting: &Nesting,
     dxf: &flatcut::export::DxfOptions,
     progress: &dyn Progress,
 ) -> anyhow::Result<Vec<flatcut::export::report::SheetReport>> {
-    let items = items_from_drawings(drawings, dxf, &nesting.rotations, nesting.mirror)?;
+    let drawings: Vec<PartDrawing> = results.iter().map(part_drawing).collect();
+    let grains: Vec<Option<f64>> = results
+        .iter()
+        .map(|result| {
+            let grain = result.job.attributes.grain?;
+            let flat = flat_grain(&result.job.model, &result.flattened.positions, grain)?;
+            Some(flat.y.atan2(flat.x).to_degrees())
+        })
+        .collect();
+    let items = items_from_drawings(&drawings, &grains, dxf, &nesting.rotations, nesting.mirror)?;
     let layout = nest::nest(&items, &nesting.options, progress)?;
     let violations = verify(&items, &layout);
     if !violations.is_empty() {
@@ -108,7 +125,7 @@ pub fn nest_and_write(
             list.join("\n  ")
         );
     }
-    let files = write_sheet_files(directory, &sheet_drawings(drawings, &layout), dxf)?;
+    let files = write_sheet_files(directory, &sheet_drawings(&drawings, &layout), dxf)?;
     let names: Vec<String> = items.iter().map(|item| item.name.clone()).collect();
     eprintln!(
         "flatcut: nested on {} sheet(s), utilisation {:.2} %, length used {:.1} mm",

@@ -170,7 +170,30 @@ impl JaguaEngine {
             Point(high.x as f32, high.y as f32),
             Point(low.x as f32, high.y as f32),
         ];
-        let outline = SPolygon::new(corners)?;
+        Self::with_outline(library, SPolygon::new(corners)?, min, max)
+    }
+
+    /// An empty container bounded by the closed `ring` (exact coordinates, mm, either
+    /// orientation; a part's hole), shrunk by the library's inflation (an inward offset with
+    /// round joins, whose chords lie at most `1 − cos 0.05` of it closer to the ring, covered by
+    /// the parts' own inflation) so that parts keep the gap to the ring.
+    pub fn in_polygon(library: Arc<ShapeLibrary>, ring: &[DVec2]) -> anyhow::Result<Self> {
+        let exact = to_spolygon(ring)?;
+        let outline = offset_shape(&exact, ShapeModifyMode::Deflate, library.inflation() as f32)?;
+        let (min, max) = ring.iter().fold(
+            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+            |(min, max), point| (min.min(*point), max.max(*point)),
+        );
+        Self::with_outline(library, outline, min, max)
+    }
+
+    /// An empty engine whose container is the inside of `outline`, within `min`..`max`.
+    fn with_outline(
+        library: Arc<ShapeLibrary>,
+        outline: SPolygon,
+        min: DVec2,
+        max: DVec2,
+    ) -> anyhow::Result<Self> {
         let bounds = Rect::try_new(min.x as f32, min.y as f32, max.x as f32, max.y as f32)?
             .inflate_to_square();
         let config = CDEConfig {

@@ -35,6 +35,14 @@ pub enum NestError {
         /// The part's name.
         item: String,
     },
+    /// The grain direction is not a finite angle.
+    #[error("part '{item}': its grain direction {degrees} degrees is not a finite angle")]
+    InvalidGrain {
+        /// The part's name.
+        item: String,
+        /// The grain direction given, degrees.
+        degrees: f64,
+    },
     /// The outline is not a usable simple polygon.
     #[error(
         "part '{item}': {defect}: give a closed, non-self-intersecting outline with at least 3 distinct points"

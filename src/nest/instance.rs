@@ -96,6 +96,7 @@ pub fn parse_instance(text: &str) -> Result<Instance, String> {
                     .allowed_orientations
                     .map_or(Rotations::Free, Rotations::Fixed),
                 mirror_allowed: false,
+                grain_degrees: None,
             }
         })
         .collect();

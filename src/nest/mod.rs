@@ -43,9 +43,8 @@ pub const FREE_ROTATION_SAMPLES: u32 = 24;
 
 /// Which rotations a part may take, in degrees counter-clockwise about its own origin.
 ///
-/// A grain direction is expressed as `Fixed(vec![g, g + 180.0])`, where `g` is the rotation that
-/// lines the part's grain up with the stock's grain (x axis): the part may then only be turned
-/// end over end along the grain.
+/// A part with a grain direction ([`NestItem::grain_degrees`]) ignores its `Rotations`: it is only
+/// placed with its grain along the stock's x axis (see [`NestItem::poses`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Rotations {
@@ -106,6 +105,12 @@ impl Rotations {
     }
 }
 
+/// The direction (degrees) of a grain at `grain` degrees after the part is mirrored (x → −x), or
+/// `grain` itself when it is not.
+fn grain_after_mirror(grain: f64, mirrored: bool) -> f64 {
+    if mirrored { 180.0 - grain } else { grain }
+}
+
 /// Two angles closer than this (degrees) are the same rotation.
 pub const ANGLE_TOLERANCE_DEGREES: f64 = 1e-6;
 
@@ -131,9 +136,54 @@ pub struct NestItem {
     pub rotations: Rotations,
     /// Whether a copy may be mirrored (turned over) before rotation.
     pub mirror_allowed: bool,
+    /// Grain direction of the material in the item's own coordinates, degrees counter-clockwise
+    /// from its x axis. When set, `rotations` is ignored: a copy is only placed with its grain
+    /// along the stock's x axis (the roll length, the sheet width), pointing either way, so at
+    /// the two rotations that do so (and, if `mirror_allowed`, the two that do so for the mirrored
+    /// part).
+    pub grain_degrees: Option<f64>,
 }
 
 impl NestItem {
+    /// The distinct (rotation in degrees in [0, 360), mirrored) poses a copy may take: with a
+    /// grain, the rotations that lay the grain along x; without, every allowed rotation, each also
+    /// mirrored when mirroring is allowed. `None` for invalid rotations or a non-finite grain.
+    pub fn poses(&self) -> Option<Vec<(f64, bool)>> {
+        let mirrors: &[bool] = if self.mirror_allowed {
+            &[false, true]
+        } else {
+            &[false]
+        };
+        let mut poses = Vec::new();
+        for &mirrored in mirrors {
+            let angles = match self.grain_degrees {
+                Some(grain) => {
+                    let along_x = -grain_after_mirror(grain, mirrored);
+                    Rotations::Fixed(vec![along_x, along_x + 180.0]).angles()?
+                }
+                None => self.rotations.angles()?,
+            };
+            poses.extend(angles.into_iter().map(|angle| (angle, mirrored)));
+        }
+        Some(poses)
+    }
+
+    /// Whether a copy may be placed at `rotation_degrees`, mirrored or not (see
+    /// [`NestItem::poses`]), within [`ANGLE_TOLERANCE_DEGREES`].
+    pub fn allows(&self, rotation_degrees: f64, mirrored: bool) -> bool {
+        if mirrored && !self.mirror_allowed {
+            return false;
+        }
+        match self.grain_degrees {
+            Some(grain) => {
+                let along_x = grain_after_mirror(grain, mirrored) + rotation_degrees;
+                angle_distance(along_x, 0.0) < ANGLE_TOLERANCE_DEGREES
+                    || angle_distance(along_x, 180.0) < ANGLE_TOLERANCE_DEGREES
+            }
+            None => self.rotations.allows(rotation_degrees),
+        }
+    }
+
     /// Net area in mm²: outer ring minus holes.
     pub fn area(&self) -> f64 {
         let holes: f64 = self.holes.iter().map(|hole| polygon_area(hole).abs()).sum();
@@ -185,6 +235,9 @@ pub struct NestOptions {
     /// Work budget in collision queries, replacing `time_limit × NOMINAL_QUERIES_PER_SECOND`
     /// (the wall-clock `time_limit` still applies). Default `None`.
     pub work_limit: Option<u64>,
+    /// Place small parts inside the holes of larger ones (before the search, see
+    /// `search::holes`). Default `false`: a part with holes is placed as a solid.
+    pub in_holes: bool,
 }
 
 /// Default roll width when none is given, mm.
@@ -200,6 +253,7 @@ impl Default for NestOptions {
             time_limit: DEFAULT_TIME_LIMIT,
             seed: DEFAULT_SEED,
             work_limit: None,
+            in_holes: false,
         }
     }
 }
@@ -230,6 +284,23 @@ impl Placement {
             point
         };
         DVec2::from_angle(self.rotation_degrees.to_radians()).rotate(mirrored) + self.translation
+    }
+
+    /// The placement of a copy that sits at `inner` in the frame of the copy placed by `self`
+    /// (a part in a hole): `result.transform_point(p) == self.transform_point(inner.transform_point(p))`.
+    /// The item and copy are those of `inner`.
+    pub fn compose(&self, inner: &Placement) -> Placement {
+        let turned = if self.mirrored {
+            -inner.rotation_degrees
+        } else {
+            inner.rotation_degrees
+        };
+        Placement {
+            rotation_degrees: (self.rotation_degrees + turned).rem_euclid(360.0),
+            mirrored: self.mirrored != inner.mirrored,
+            translation: self.transform_point(inner.translation),
+            ..*inner
+        }
     }
 
     /// The ring `points` (outer ring or hole of the item) at its placed position. A mirrored ring
@@ -327,6 +398,7 @@ mod tests {
             quantity,
             rotations,
             mirror_allowed: false,
+            grain_degrees: None,
         }
     }
 
@@ -397,6 +469,93 @@ mod tests {
         );
         let net_area = 30.0 * 30.0 - 20.0 * 20.0 + 2.0 * 25.0;
         assert!((layout.utilisation - net_area / (30.01 * layout.used_length)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_part_with_grain_is_only_placed_with_its_grain_along_x() {
+        let mut strip = rectangle(4.0, 20.0, 6, Rotations::Step(15.0));
+        strip.grain_degrees = Some(90.0);
+        let items = [strip];
+        // Standing (across the grain) six strips would take 27 of this roll; lying, 41.
+        let layout = checked(&items, &options(Stock::Roll { width: 21.0 }, 0.5, 100_000));
+        for placement in &layout.sheets[0].placements {
+            let turned = (placement.rotation_degrees - 270.0).abs() < ANGLE_TOLERANCE_DEGREES
+                || (placement.rotation_degrees - 90.0).abs() < ANGLE_TOLERANCE_DEGREES;
+            assert!(turned, "rotation {}", placement.rotation_degrees);
+        }
+        assert!(layout.used_length > 40.0, "length {}", layout.used_length);
+        let mut across = layout.clone();
+        across.sheets[0].placements[0].rotation_degrees = 0.0;
+        assert!(
+            verify::verify(&items, &across)
+                .iter()
+                .any(|violation| matches!(
+                    violation,
+                    verify::Violation::OrientationNotAllowed { .. }
+                )),
+            "the check refuses a copy across the grain"
+        );
+    }
+
+    #[test]
+    fn grain_poses_include_the_mirrored_ones_when_mirroring_is_allowed() {
+        let mut item = rectangle(5.0, 3.0, 1, Rotations::Fixed(vec![0.0]));
+        item.grain_degrees = Some(30.0);
+        assert_eq!(item.poses(), Some(vec![(150.0, false), (330.0, false)]));
+        item.mirror_allowed = true;
+        let poses = item.poses().expect("valid grain");
+        assert_eq!(poses.len(), 4);
+        for (rotation, mirrored) in poses {
+            assert!(item.allows(rotation, mirrored));
+            let grain = DVec2::from_angle(30f64.to_radians());
+            let pose = Placement {
+                item: 0,
+                copy: 0,
+                rotation_degrees: rotation,
+                mirrored,
+                translation: DVec2::ZERO,
+            };
+            let placed = pose.transform_point(grain) - pose.transform_point(DVec2::ZERO);
+            assert!(placed.y.abs() < 1e-9, "grain along x: {placed}");
+        }
+        assert!(!item.allows(0.0, false));
+        item.grain_degrees = Some(f64::NAN);
+        assert!(matches!(
+            nest(
+                &[item],
+                &options(Stock::Roll { width: 20.0 }, 0.0, 1_000),
+                &NoProgress
+            ),
+            Err(NestError::InvalidGrain { .. })
+        ));
+    }
+
+    #[test]
+    fn small_parts_go_into_holes_when_asked() {
+        let mut frame = rectangle(30.0, 30.0, 2, Rotations::Fixed(vec![0.0, 180.0]));
+        frame.holes = vec![vec![
+            DVec2::new(5.0, 5.0),
+            DVec2::new(5.0, 25.0),
+            DVec2::new(25.0, 25.0),
+            DVec2::new(25.0, 5.0),
+        ]];
+        let items = [
+            frame,
+            rectangle(8.0, 5.0, 7, Rotations::Fixed(vec![0.0, 180.0])),
+        ];
+        let mut chosen = options(Stock::Roll { width: 31.5 }, 0.5, 50_000);
+        chosen.in_holes = true;
+        let layout = checked(&items, &chosen);
+        assert!(
+            layout.used_length < 62.0,
+            "every small part in a hole: {}",
+            layout.used_length
+        );
+        let net_area = 2.0 * (30.0 * 30.0 - 20.0 * 20.0) + 7.0 * 40.0;
+        assert!((layout.utilisation - net_area / (31.5 * layout.used_length)).abs() < 1e-9);
+        chosen.in_holes = false;
+        let solid = checked(&items, &chosen);
+        assert!(solid.used_length > layout.used_length + 5.0);
     }
 
     #[test]

@@ -5,38 +5,111 @@ use glam::DVec2;
 
 use super::{NestItem, Rotations};
 use crate::export::{DxfOptions, ExportError, PartDrawing, part_contours, sample_closed};
+use crate::geometry::long_side_of_smallest_rectangle;
 
 /// Largest step when a fitted contour (lines and arcs) is sampled back into a polygon for the
 /// nester, in mm: arcs are followed within a fraction of the chord tolerance.
 pub const OUTLINE_SAMPLE_STEP: f64 = 1.0;
 
 /// One nesting item per part drawing, in mm: the contour that will be cut (offset by the seam
-/// allowance when `options` has one), with `rotations` and mirroring as given.
+/// allowance when `options` has one), with `rotations` taken from the part's minimum-area
+/// bounding rectangle ([`aligned_rotations`]), mirroring as given, and the grain direction of the
+/// same index in `grains` (degrees in the drawing's frame, see `flatten::grain::flat_grain`), which
+/// overrides the rotations.
 pub fn items_from_drawings(
     drawings: &[PartDrawing],
+    grains: &[Option<f64>],
     options: &DxfOptions,
     rotations: &Rotations,
     mirror_allowed: bool,
 ) -> Result<Vec<NestItem>, ExportError> {
     drawings
         .iter()
-        .map(|drawing| {
+        .zip(grains.iter().chain(std::iter::repeat(&None)))
+        .map(|(drawing, &grain_degrees)| {
             let scale = drawing.units.millimetres();
             let contours = part_contours(drawing, options)?;
             let to_millimetres = |ring: Vec<DVec2>| ring.into_iter().map(|p| p * scale).collect();
             let step = OUTLINE_SAMPLE_STEP / scale;
+            let outer: Vec<DVec2> = to_millimetres(sample_closed(&contours.outer, step));
             Ok(NestItem {
                 name: drawing.name.clone(),
-                outer: to_millimetres(sample_closed(&contours.outer, step)),
+                outer: outer.clone(),
                 holes: contours
                     .holes
                     .iter()
                     .map(|hole| to_millimetres(sample_closed(hole, step)))
                     .collect(),
                 quantity: drawing.quantity,
-                rotations: rotations.clone(),
+                rotations: aligned_rotations(rotations, &outer),
                 mirror_allowed,
+                grain_degrees,
             })
         })
         .collect()
+}
+
+/// `rotations` measured from the orientation that lays the side of the minimum-area bounding
+/// rectangle of `outer` along x: rotation 0 of the result puts that rectangle square to the
+/// stock, so a flattened pattern, whatever angle the flattening left it at, is tried square to
+/// the sheet first. `Free` and invalid rotations are returned unchanged.
+pub fn aligned_rotations(rotations: &Rotations, outer: &[DVec2]) -> Rotations {
+    match (rotations, rotations.angles()) {
+        (Rotations::Free, _) | (_, None) => rotations.clone(),
+        (_, Some(angles)) => {
+            let offset = minimum_area_rectangle_degrees(outer);
+            Rotations::Fixed(angles.into_iter().map(|angle| angle - offset).collect())
+        }
+    }
+}
+
+/// Direction (degrees, in [0, 180)) of the longer side of the smallest-area rectangle enclosing
+/// `ring` ([`long_side_of_smallest_rectangle`]); 0 for a degenerate ring.
+pub fn minimum_area_rectangle_degrees(ring: &[DVec2]) -> f64 {
+    long_side_of_smallest_rectangle(ring).map_or(0.0, |side| {
+        side.y.atan2(side.x).to_degrees().rem_euclid(180.0)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_tilted_rectangle_is_tried_square_to_the_stock() {
+        let tilt = DVec2::from_angle(30f64.to_radians());
+        let ring: Vec<DVec2> = [
+            (0.0, 0.0),
+            (40.0, 0.0),
+            (40.0, 10.0),
+            (20.0, 12.0),
+            (0.0, 10.0),
+        ]
+        .map(|(x, y)| tilt.rotate(DVec2::new(x, y)))
+        .to_vec();
+        let side = minimum_area_rectangle_degrees(&ring);
+        assert!(
+            (side.rem_euclid(90.0) - 30.0).abs() < 1e-9,
+            "side at {side}"
+        );
+        let Rotations::Fixed(angles) = aligned_rotations(&Rotations::Fixed(vec![0.0, 90.0]), &ring)
+        else {
+            panic!("a list of angles")
+        };
+        assert_eq!(angles.len(), 2);
+        for angle in angles {
+            let turn = DVec2::from_angle(angle.to_radians());
+            let turned: Vec<DVec2> = ring.iter().map(|point| turn.rotate(*point)).collect();
+            let (low, high) = turned.iter().fold(
+                (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+                |(low, high), point| (low.min(*point), high.max(*point)),
+            );
+            let size = high - low;
+            assert!(
+                (size.x * size.y - 480.0).abs() < 1e-6,
+                "square to the stock at {angle}: {size}"
+            );
+        }
+        assert_eq!(aligned_rotations(&Rotations::Free, &ring), Rotations::Free);
+    }
 }

@@ -25,6 +25,8 @@
 //! wall-clock `time_limit` is also enforced between rounds; when it stops the search first (a slow
 //! or busy machine) the layout says so with [`StopReason::TimeLimit`] and may differ between runs.
 
+mod holes;
+
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -58,8 +60,14 @@ struct Pass {
     allow_unplaced: bool,
 }
 
-/// Strip shrinking: each time every copy fits, the roll is cut this fraction shorter.
-pub const SHRINK_FRACTION: f64 = 0.01;
+/// Strip shrinking: each time every copy fits, the roll is first cut this fraction shorter.
+pub const SHRINK_FRACTION: f64 = 0.02;
+/// Smallest cut of the strip shrinking: the fraction is halved, down to this, whenever the search
+/// stalls.
+pub const MIN_SHRINK_FRACTION: f64 = 0.0025;
+/// Rounds without a strict decrease of the area left out after which the shrinking search goes
+/// back to the best complete layout and cuts it by half the previous fraction.
+pub const STALL_ROUNDS: u32 = 40;
 /// Random positions tried per orientation of a copy.
 pub const SAMPLES_PER_ORIENTATION: usize = 200;
 /// How many of the fitting samples (those with the lowest right edge) are compacted.
@@ -155,6 +163,8 @@ pub(crate) struct Problem<'a> {
     height: f64,
     sheet_width: Option<f64>,
     scale: f64,
+    /// Per copy, the copies placed in its holes (see [`holes`]).
+    guests: Vec<Vec<holes::Guest>>,
 }
 
 /// splitmix64 (Steele, Lea and Flood 2014): a tiny, seedable, well-mixed generator.
@@ -195,43 +205,33 @@ impl<'a> Problem<'a> {
         let mut item_shapes = Vec::with_capacity(items.len());
         for (index, item) in items.iter().enumerate() {
             validate_outline(item)?;
-            let angles = item
-                .rotations
-                .angles()
-                .ok_or_else(|| rotation_error(item))?;
-            let mirrors: &[bool] = if item.mirror_allowed {
-                &[false, true]
-            } else {
-                &[false]
-            };
+            let poses = item.poses().ok_or_else(|| rotation_error(item))?;
             let mut shapes = Vec::new();
-            for &rotation_degrees in &angles {
-                for &mirrored in mirrors {
-                    let pose = Placement {
+            for &(rotation_degrees, mirrored) in &poses {
+                let pose = Placement {
+                    item: index,
+                    copy: 0,
+                    rotation_degrees,
+                    mirrored,
+                    translation: DVec2::ZERO,
+                };
+                let ring = pose.transform_ring(&item.outer);
+                let (min, max) = bounds(&ring);
+                let size = max - min + DVec2::splat(2.0 * options.gap);
+                if size.y <= height && sheet_width.is_none_or(|width| size.x <= width) {
+                    shapes.push(orientations.len());
+                    orientations.push(Orientation {
                         item: index,
-                        copy: 0,
                         rotation_degrees,
                         mirrored,
-                        translation: DVec2::ZERO,
-                    };
-                    let ring = pose.transform_ring(&item.outer);
-                    let (min, max) = bounds(&ring);
-                    let size = max - min + DVec2::splat(2.0 * options.gap);
-                    if size.y <= height && sheet_width.is_none_or(|width| size.x <= width) {
-                        shapes.push(orientations.len());
-                        orientations.push(Orientation {
-                            item: index,
-                            rotation_degrees,
-                            mirrored,
-                            min,
-                            max,
-                        });
-                        rings.push(ring);
-                    }
+                        min,
+                        max,
+                    });
+                    rings.push(ring);
                 }
             }
             if shapes.is_empty() && item.quantity > 0 {
-                return Err(too_large(item, &angles, options));
+                return Err(too_large(item, &poses, options));
             }
             item_shapes.push(shapes);
         }
@@ -256,8 +256,8 @@ impl<'a> Problem<'a> {
                 size.y <= height && sheet_width.is_none_or(|width| size.x <= width)
             });
             if shapes.is_empty() && item.quantity > 0 {
-                let angles = item.rotations.angles().unwrap_or_default();
-                return Err(too_large(item, &angles, options));
+                let poses = item.poses().unwrap_or_default();
+                return Err(too_large(item, &poses, options));
             }
         }
         let mut copies: Vec<PartCopy> = items
@@ -275,7 +275,7 @@ impl<'a> Problem<'a> {
                 .then(a.item.cmp(&b.item))
                 .then(a.copy.cmp(&b.copy))
         });
-        Ok(Self {
+        let mut problem = Self {
             items,
             options,
             orientations,
@@ -285,7 +285,10 @@ impl<'a> Problem<'a> {
             height,
             sheet_width,
             scale,
-        })
+            guests: Vec::new(),
+        };
+        problem.guests = problem.fill_holes();
+        Ok(problem)
     }
 
     /// Runs the construction and the local search, and returns the best layout.
@@ -304,11 +307,8 @@ impl<'a> Problem<'a> {
         };
         let mut attempts = 0;
         let (mut best, mut work) = loop {
-            let (solution, work) = self.extend(
-                self.empty((0..self.copies.len()).collect()),
-                pass,
-                &mut random,
-            );
+            let (solution, work) =
+                self.extend(self.empty(self.hosts_and_others()), pass, &mut random);
             match solution {
                 Some(solution) => break (solution, work),
                 None if shrinking && attempts < MAX_ROLL_DOUBLINGS => pass.roll_length *= 2.0,
@@ -317,8 +317,10 @@ impl<'a> Problem<'a> {
             attempts += 1;
         };
         let mut current = best.clone();
+        let mut shrink_fraction = SHRINK_FRACTION;
+        let mut stalled_rounds = 0;
         if shrinking {
-            (current, pass) = self.shrink(&mut best, &mut work, &mut random);
+            (current, pass) = self.shrink(&mut best, shrink_fraction, &mut work, &mut random);
         }
         let mut evaluations = 1;
         let stop_reason = loop {
@@ -329,7 +331,7 @@ impl<'a> Problem<'a> {
             if started.elapsed() >= self.options.time_limit {
                 break StopReason::TimeLimit;
             }
-            let Some(moves) = self.draw_moves(&current.order, &mut random) else {
+            let Some(moves) = self.draw_moves(&current, &mut random) else {
                 break StopReason::Complete;
             };
             let results: Vec<(Option<Solution<JaguaEngine>>, u64)> = moves
@@ -354,10 +356,22 @@ impl<'a> Problem<'a> {
             let (chosen_cost, current_cost) = (self.cost(&chosen), self.cost(&current));
             if shrinking && chosen_cost.unplaced <= 0.0 {
                 best = chosen;
-                (current, pass) = self.shrink(&mut best, &mut work, &mut random);
+                stalled_rounds = 0;
+                (current, pass) = self.shrink(&mut best, shrink_fraction, &mut work, &mut random);
             } else if shrinking {
+                stalled_rounds = if self.less_left_out(chosen_cost, current_cost) {
+                    0
+                } else {
+                    stalled_rounds + 1
+                };
                 if chosen_cost.unplaced <= current_cost.unplaced {
                     current = chosen;
+                }
+                if stalled_rounds >= STALL_ROUNDS && shrink_fraction > MIN_SHRINK_FRACTION {
+                    shrink_fraction = (shrink_fraction / 2.0).max(MIN_SHRINK_FRACTION);
+                    stalled_rounds = 0;
+                    (current, pass) =
+                        self.shrink(&mut best, shrink_fraction, &mut work, &mut random);
                 }
             } else {
                 let remaining = (1.0 - work as f64 / budget.max(1) as f64).max(0.0);
@@ -389,13 +403,14 @@ impl<'a> Problem<'a> {
     fn shrink(
         &self,
         best: &mut Solution<JaguaEngine>,
+        fraction: f64,
         work: &mut u64,
         random: &mut SplitMix64,
     ) -> (Solution<JaguaEngine>, Pass) {
         let order = best.order.clone();
         loop {
             let pass = Pass {
-                roll_length: self.cost(best).length * (1.0 - SHRINK_FRACTION),
+                roll_length: self.cost(best).length * (1.0 - fraction),
                 allow_unplaced: true,
             };
             let (solution, spent) = self.extend(self.empty(order.clone()), pass, random);
@@ -428,13 +443,22 @@ impl<'a> Problem<'a> {
         INITIAL_ROLL_FACTOR * (area / self.height + largest) + 2.0 * self.options.gap
     }
 
-    /// Draws the moves of one round: each a new sequence and its first changed position. `None`
-    /// when no move changes anything (fewer than two distinct items).
+    /// Draws the moves of one round: each a new sequence, its first changed position and a seed.
+    /// `None` when no move changes anything (fewer than two distinct items).
+    ///
+    /// Positions are drawn with a bias towards the end of the sequence (re-placing a short tail
+    /// is cheap, and the tail decides the length). While copies are left out (strip shrinking),
+    /// half the moves take one of them and insert it at a uniformly drawn earlier position.
     fn draw_moves(
         &self,
-        order: &[usize],
+        current: &Solution<JaguaEngine>,
         random: &mut SplitMix64,
     ) -> Option<Vec<(Vec<usize>, usize, u64)>> {
+        let order = &current.order;
+        let left_out: Vec<usize> = (current.placed.iter().enumerate())
+            .filter(|(_, placed)| placed.is_none())
+            .map(|(position, _)| position)
+            .collect();
         let first_item = self.copies[order[0]].item;
         if order
             .iter()
@@ -443,8 +467,18 @@ impl<'a> Problem<'a> {
             return None;
         }
         let mut moves = Vec::with_capacity(NEIGHBOURS_PER_ROUND);
+        let tail_biased = |random: &mut SplitMix64| {
+            let reach = random.below(order.len()) + 1;
+            order.len() - 1 - random.below(reach)
+        };
         while moves.len() < NEIGHBOURS_PER_ROUND {
-            let (mut first, mut second) = (random.below(order.len()), random.below(order.len()));
+            let targeted = !left_out.is_empty() && random.below(2) == 0;
+            let (mut first, mut second) = if targeted {
+                let second = left_out[random.below(left_out.len())];
+                (random.below(second.max(1)), second)
+            } else {
+                (tail_biased(random), tail_biased(random))
+            };
             if self.copies[order[first]].item == self.copies[order[second]].item {
                 continue;
             }
@@ -452,7 +486,7 @@ impl<'a> Problem<'a> {
                 std::mem::swap(&mut first, &mut second);
             }
             let mut changed = order.to_vec();
-            if random.below(2) == 0 {
+            if !targeted && random.below(2) == 0 {
                 changed.swap(first, second);
             } else {
                 let moved = changed.remove(second);
@@ -670,10 +704,19 @@ impl<'a> Problem<'a> {
             || (candidate.bins == current.bins && candidate.length <= current.length + threshold)
     }
 
+    /// Two areas closer than this are equal.
+    fn area_tolerance(&self) -> f64 {
+        LENGTH_TOLERANCE_RELATIVE * self.scale * self.scale
+    }
+
+    /// Whether `a` leaves strictly less area out than `b` (strip shrinking).
+    fn less_left_out(&self, a: Cost, b: Cost) -> bool {
+        a.unplaced < b.unplaced - self.area_tolerance()
+    }
+
     /// Whether `a` is strictly better than `b`.
     fn better(&self, a: Cost, b: Cost) -> bool {
-        let area_tolerance = LENGTH_TOLERANCE_RELATIVE * self.scale * self.scale;
-        if (a.unplaced - b.unplaced).abs() > area_tolerance {
+        if (a.unplaced - b.unplaced).abs() > self.area_tolerance() {
             return a.unplaced < b.unplaced;
         }
         a.bins < b.bins
@@ -701,7 +744,8 @@ impl<'a> Problem<'a> {
                 .filter_map(|(position, placed)| placed.map(|placed| (position, placed)))
                 .filter(|(_, placed)| placed.bin == bin)
             {
-                let copy = self.copies[solution.order[position]];
+                let copy_index = solution.order[position];
+                let copy = self.copies[copy_index];
                 let orientation = &self.orientations[placed.shape];
                 let placement = Placement {
                     item: copy.item,
@@ -717,6 +761,10 @@ impl<'a> Problem<'a> {
                     .map(|point| point.x)
                     .fold(far_edge, f64::max);
                 area += item.area();
+                for guest in self.guest_placements(copy_index, &placement) {
+                    area += self.items[guest.item].area();
+                    placements.push(guest);
+                }
                 placements.push(placement);
             }
             placements.sort_by(|a, b| a.item.cmp(&b.item).then(a.copy.cmp(&b.copy)));
@@ -847,6 +895,12 @@ fn validate_outline(item: &NestItem) -> Result<(), NestError> {
 }
 
 fn rotation_error(item: &NestItem) -> NestError {
+    if let Some(degrees) = item.grain_degrees {
+        return NestError::InvalidGrain {
+            item: item.name.clone(),
+            degrees,
+        };
+    }
     match item.rotations {
         super::Rotations::Step(step) => NestError::InvalidRotationStep {
             item: item.name.clone(),
@@ -859,15 +913,15 @@ fn rotation_error(item: &NestItem) -> NestError {
 }
 
 /// The error for an item that fits in none of its orientations, reporting the smallest one.
-fn too_large(item: &NestItem, angles: &[f64], options: &NestOptions) -> NestError {
-    let (width, height) = angles
+fn too_large(item: &NestItem, poses: &[(f64, bool)], options: &NestOptions) -> NestError {
+    let (width, height) = poses
         .iter()
-        .map(|&rotation_degrees| {
+        .map(|&(rotation_degrees, mirrored)| {
             let pose = Placement {
                 item: 0,
                 copy: 0,
                 rotation_degrees,
-                mirrored: false,
+                mirrored,
                 translation: DVec2::ZERO,
             };
             let (min, max) = bounds(&pose.transform_ring(&item.outer));

@@ -11,7 +11,9 @@
 //! that round-off (and the f32 geometry of the engine, which keeps a wider margin) does not raise
 //! false alarms. Overlaps shallower than that tolerance are not reported.
 //!
-//! Parts are checked by their outer rings, as solids: nothing may lie in a hole.
+//! Parts are solids bounded by their outer rings, except that a part may lie inside a hole of
+//! another (no edge of the two rings properly crossing, every test point of the inner part inside
+//! the hole or on its edge); it must then be at least `gap` from the hole's ring.
 //! Pairs are found with a sweep over bounding boxes sorted by their left edge, so a few hundred
 //! parts take milliseconds.
 
@@ -160,10 +162,11 @@ impl fmt::Display for Violation {
     }
 }
 
-/// A placed ring with its bounding box.
+/// A placed ring with its bounding box and its holes.
 struct Placed {
     key: (usize, u32),
     ring: Vec<DVec2>,
+    holes: Vec<Vec<DVec2>>,
     min: DVec2,
     max: DVec2,
 }
@@ -201,7 +204,20 @@ pub fn verify(items: &[NestItem], layout: &NestLayout) -> Vec<Violation> {
                 if second.min.y > first.max.y + reach || first.min.y > second.max.y + reach {
                     continue;
                 }
-                if overlaps(&first.ring, &second.ring, tolerance) {
+                let hole = enclosing_hole(first, second, tolerance)
+                    .or_else(|| enclosing_hole(second, first, tolerance));
+                if let Some((hole, guest)) = hole {
+                    let distance = ring_distance(hole, guest);
+                    if layout.gap > 0.0 && distance < layout.gap - tolerance {
+                        violations.push(Violation::GapTooSmall {
+                            sheet: sheet_index,
+                            first: first.key,
+                            second: second.key,
+                            distance,
+                            gap: layout.gap,
+                        });
+                    }
+                } else if overlaps(&first.ring, &second.ring, tolerance) {
                     violations.push(Violation::Overlap {
                         sheet: sheet_index,
                         first: first.key,
@@ -252,9 +268,7 @@ fn check_copies(items: &[NestItem], layout: &NestLayout) -> Vec<Violation> {
             }
             *slot = true;
             let entry = &items[item];
-            if !entry.rotations.allows(placement.rotation_degrees)
-                || (placement.mirrored && !entry.mirror_allowed)
-            {
+            if !entry.allows(placement.rotation_degrees, placement.mirrored) {
                 violations.push(Violation::OrientationNotAllowed {
                     item,
                     copy,
@@ -287,9 +301,37 @@ fn place(items: &[NestItem], placement: &Placement) -> Option<Placed> {
     Some(Placed {
         key: (placement.item, placement.copy),
         ring,
+        holes: item
+            .holes
+            .iter()
+            .map(|hole| placement.transform_ring(hole))
+            .collect(),
         min,
         max,
     })
+}
+
+/// The hole of `host` that holds all of `guest` (no proper edge crossing, every test point of
+/// the guest inside the hole or within `tolerance` of its ring), with the guest's ring.
+fn enclosing_hole<'a>(
+    host: &'a Placed,
+    guest: &'a Placed,
+    tolerance: f64,
+) -> Option<(&'a [DVec2], &'a [DVec2])> {
+    host.holes
+        .iter()
+        .find(|hole| {
+            let crossing = edges(hole)
+                .any(|edge| edges(&guest.ring).any(|other| properly_cross(edge, other, tolerance)));
+            !crossing
+                && probes(&guest.ring).all(|point| {
+                    strictly_inside(point, hole, tolerance)
+                        || edges(hole).any(|(start, end)| {
+                            point_segment_distance(point, start, end) <= tolerance
+                        })
+                })
+        })
+        .map(|hole| (hole.as_slice(), guest.ring.as_slice()))
 }
 
 /// The edges of a ring as (start, end) pairs.
@@ -412,6 +454,7 @@ mod tests {
             quantity,
             rotations: Rotations::Fixed(vec![0.0]),
             mirror_allowed: false,
+            grain_degrees: None,
         }
     }
 
@@ -452,6 +495,54 @@ mod tests {
         let items = [square("a", 10.0, 2)];
         let placed = layout(0.0, vec![at(0, 0, 0.0, 0.0), at(0, 1, 10.0, 0.0)]);
         assert_eq!(verify(&items, &placed), Vec::new());
+    }
+
+    /// A 30 mm square frame with a 20 mm square hole, and a 5 mm square.
+    fn frame_and_square() -> [NestItem; 2] {
+        let mut frame = square("frame", 30.0, 1);
+        frame.holes = vec![vec![
+            DVec2::new(5.0, 5.0),
+            DVec2::new(5.0, 25.0),
+            DVec2::new(25.0, 25.0),
+            DVec2::new(25.0, 5.0),
+        ]];
+        [frame, square("small", 5.0, 1)]
+    }
+
+    #[test]
+    fn a_part_inside_a_hole_with_the_gap_passes() {
+        let items = frame_and_square();
+        let placed = layout(1.0, vec![at(0, 0, 1.0, 1.0), at(1, 0, 7.0, 7.0)]);
+        assert_eq!(verify(&items, &placed), Vec::new());
+    }
+
+    #[test]
+    fn a_part_too_close_to_the_hole_edge_or_across_it_is_caught() {
+        let items = frame_and_square();
+        let close = verify(
+            &items,
+            &layout(1.0, vec![at(0, 0, 1.0, 1.0), at(1, 0, 6.5, 12.0)]),
+        );
+        assert!(
+            matches!(close.as_slice(), [Violation::GapTooSmall { distance, .. }] if (distance - 0.5).abs() < 1e-9),
+            "{close:?}"
+        );
+        let across = verify(
+            &items,
+            &layout(0.0, vec![at(0, 0, 0.0, 0.0), at(1, 0, 3.0, 12.0)]),
+        );
+        assert!(
+            matches!(across.as_slice(), [Violation::Overlap { .. }]),
+            "{across:?}"
+        );
+        let in_the_material = verify(
+            &items,
+            &layout(0.0, vec![at(0, 0, 0.0, 0.0), at(1, 0, 10.0, 0.0)]),
+        );
+        assert!(
+            matches!(in_the_material.as_slice(), [Violation::Overlap { .. }]),
+            "a part inside the frame's material, not its hole: {in_the_material:?}"
+        );
     }
 
     #[test]

@@ -4,7 +4,7 @@
 use std::path::Path;
 use std::process::Command;
 
-use crate::util::{flatcut, read_report, sample, stderr};
+use crate::util::{flatcut, read_obj, read_report, sample, stderr};
 
 fn run_on_sheets(directory: &Path) {
     let output = flatcut(&[
@@ -84,4 +84,82 @@ fn check_every_dxf_with_ezdxf(directory: &Path) {
             stderr(&output)
         );
     }
+}
+
+/// Nests the cylinder panel (radius 150 mm, 120°, height 200 mm: a 314 × 200 mm rectangle once
+/// unrolled, whose 200 mm side follows the axis) with `grain` and any multiple of 30° allowed,
+/// and returns the extents along x and y of its pattern.obj turned (and mirrored) as reported.
+fn nested_cylinder_panel_extents(grain: &str) -> (f64, f64) {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let sample_text = std::fs::read_to_string(sample("cylinder_panel.toml")).expect("sample");
+    let part = directory.path().join("cylinder_panel.toml");
+    let text = sample_text.replace("grain = [0.0, 0.0, 1.0]", &format!("grain = {grain}"));
+    std::fs::write(&part, text).expect("part file written");
+    let output_directory = directory.path().join("out");
+    let output = flatcut(&[
+        "run",
+        part.to_str().expect("utf-8"),
+        "-o",
+        output_directory.to_str().expect("utf-8"),
+        "--sheet",
+        "1000x1000",
+        "--rotations",
+        "step:30",
+        "--time",
+        "1",
+        "--no-timings",
+    ]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let report = read_report(&output_directory);
+    let placement = &report["sheets"][0]["parts"][0];
+    let rotation = placement["rotation"]
+        .as_f64()
+        .expect("rotation")
+        .to_radians();
+    let (vertices, _) = read_obj(&output_directory.join("cylinder_panel.pattern.obj"));
+    let turned: Vec<(f64, f64)> = vertices
+        .iter()
+        .map(|v| {
+            let x = if placement["mirrored"] == true {
+                -v[0]
+            } else {
+                v[0]
+            };
+            (
+                x * rotation.cos() - v[1] * rotation.sin(),
+                x * rotation.sin() + v[1] * rotation.cos(),
+            )
+        })
+        .collect();
+    let extent = |coordinate: fn(&(f64, f64)) -> f64| {
+        let values = turned.iter().map(coordinate);
+        values.clone().fold(f64::NEG_INFINITY, f64::max) - values.fold(f64::INFINITY, f64::min)
+    };
+    (extent(|p| p.0), extent(|p| p.1))
+}
+
+/// The grain, mapped from 3D onto the pattern, ends up along the sheet's x axis: along the axis,
+/// the 200 mm side lies along x (what the shortest layout wants anyway); around the
+/// circumference, the 314 mm side must lie along x although the layout gets longer.
+#[test]
+fn a_part_with_grain_is_nested_with_the_grain_along_x() {
+    let circumference = 100.0 * std::f64::consts::PI;
+    let (along_x, along_y) = nested_cylinder_panel_extents("[0.0, 0.0, 1.0]");
+    assert!(
+        (along_x - 200.0).abs() < 1.0,
+        "axis grain: x extent {along_x}"
+    );
+    assert!(
+        (along_y - circumference).abs() < 1.0,
+        "axis grain: y extent {along_y}"
+    );
+    let (along_x, along_y) = nested_cylinder_panel_extents("[1.0, 0.0, 0.0]");
+    assert!(
+        (along_x - circumference).abs() < 1.0,
+        "circumferential grain: x extent {along_x}"
+    );
+    assert!(
+        (along_y - 200.0).abs() < 1.0,
+        "circumferential grain: y extent {along_y}"
+    );
 }
