@@ -384,8 +384,56 @@ impl<'a> Problem<'a> {
                 }
             }
         };
+        if shrinking {
+            self.pull_in_rightmost(&mut best, &mut work, &mut random);
+        }
         progress.finish();
         Ok(self.layout(&best, work, evaluations, stop_reason))
+    }
+
+    /// Final polish on a roll: the copy with the rightmost edge moves to the best position found
+    /// for it among the others (as in the construction) while that shortens the roll.
+    fn pull_in_rightmost(
+        &self,
+        best: &mut Solution<JaguaEngine>,
+        work: &mut u64,
+        random: &mut SplitMix64,
+    ) {
+        let tolerance = LENGTH_TOLERANCE_RELATIVE * self.scale;
+        loop {
+            let mut rights: Vec<(f64, usize)> = (best.placed.iter().enumerate())
+                .filter_map(|(position, placed)| placed.map(|placed| (placed.right, position)))
+                .collect();
+            rights.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+            let [(right, position), (front, _), ..] = rights[..] else {
+                return;
+            };
+            let copy = best.order[position];
+            let mut engine = best.bins[0].clone();
+            engine.remove(copy as u32);
+            let pass = Pass {
+                roll_length: right + self.library.inflation(),
+                allow_unplaced: true,
+            };
+            let queries_before = engine.queries();
+            let found =
+                self.best_position(&mut engine, self.copies[copy].item, front, pass, random);
+            *work += engine.queries() - queries_before;
+            let Some((shape, translation, moved_right)) = found else {
+                return;
+            };
+            if moved_right >= right - tolerance {
+                return;
+            }
+            engine.insert(copy as u32, shape, translation);
+            best.bins[0] = engine;
+            best.placed[position] = Some(Placed {
+                bin: 0,
+                shape,
+                translation,
+                right: moved_right,
+            });
+        }
     }
 
     /// A solution with nothing placed yet.
