@@ -269,7 +269,11 @@ mod tests {
         for t in &mesh.triangles {
             let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
             area += 0.5 * (b - a).cross(c - a).length();
-            worst = worst.min(angle_at(a, b, c).min(angle_at(b, c, a)).min(angle_at(c, a, b)));
+            worst = worst.min(
+                angle_at(a, b, c)
+                    .min(angle_at(b, c, a))
+                    .min(angle_at(c, a, b)),
+            );
         }
         assert!(worst >= 20.0, "worst angle {worst}");
         // Chords that span two or more wedges lie slightly inside the fan (1.3e-4 of its area
