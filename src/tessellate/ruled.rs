@@ -18,8 +18,12 @@ use std::f64::consts::TAU;
 use glam::{DVec2, DVec3};
 
 use super::face_mesh::FaceMesh;
+use super::fan::mesh_cone_fan;
+use super::patch::mesh_patch;
 use super::strip::stitch_rows;
-use super::surface::{Frame, RuledSurface, Section, pieces_for_arc, pieces_for_length};
+use super::surface::{
+    Frame, PatchGeometry, PatchSurface, RuledSurface, Section, pieces_for_arc, pieces_for_length,
+};
 
 /// Two edge directions closer than this (radians) are parallel: both sections advance together.
 pub const PARALLEL_ANGLE_TOLERANCE: f64 = 1e-9;
@@ -169,27 +173,31 @@ fn loft_rulings(
         let advance_upper = both || !advance_lower;
         let lower_edge = [lower_point(i), lower_point(i + 1)];
         let upper_edge = [upper_point(j), upper_point(j + 1)];
-        // A long side is split into pieces of at most the mesh size; two parallel sides are
-        // split alike so that every ruling stays in their common plane.
-        let mut pieces = 1;
-        if advance_lower {
-            pieces = pieces.max(pieces_for_length(
-                lower_edge[0].distance(lower_edge[1]),
-                mesh_size,
-            ));
-        }
-        if advance_upper {
-            pieces = pieces.max(pieces_for_length(
-                upper_edge[0].distance(upper_edge[1]),
-                mesh_size,
-            ));
-        }
-        for k in 1..=pieces {
-            let t = k as f64 / pieces as f64;
-            if advance_lower {
+        // A long side is split into pieces of at most the mesh size. Two parallel sides are split
+        // each to its own length, their points paired along a monotone path: every ruling
+        // between them stays in their common plane, which is meshed as one planar piece.
+        let count = |advance: bool, edge: [DVec3; 2]| {
+            if advance {
+                pieces_for_length(edge[0].distance(edge[1]), mesh_size)
+            } else {
+                0
+            }
+        };
+        let (lower_pieces, upper_pieces) = (
+            count(advance_lower, lower_edge),
+            count(advance_upper, upper_edge),
+        );
+        let steps = lower_pieces.max(upper_pieces);
+        let (mut lower_done, mut upper_done) = (0, 0);
+        for k in 1..=steps {
+            if lower_done < k * lower_pieces / steps {
+                lower_done += 1;
+                let t = lower_done as f64 / lower_pieces as f64;
                 rulings.bottom.push(lower_edge[0].lerp(lower_edge[1], t));
             }
-            if advance_upper {
+            if upper_done < k * upper_pieces / steps {
+                upper_done += 1;
+                let t = upper_done as f64 / upper_pieces as f64;
                 rulings.top.push(upper_edge[0].lerp(upper_edge[1], t));
             }
             rulings
@@ -202,28 +210,326 @@ fn loft_rulings(
     rulings
 }
 
-/// Meshes rulings: each ruling split into pieces of at most `mesh_size`, consecutive rulings
-/// stitched. Section points shared by consecutive rulings become shared vertices.
+/// How consecutive wedges (the pieces between two consecutive rulings) are meshed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Piece {
+    /// One wedge, its two rulings stitched.
+    Strip(usize),
+    /// Wedges `first..last` (rulings `first..=last`) in one plane: one planar polygon.
+    Plane(usize, usize),
+    /// Wedges `first..last` whose rulings all meet at one end (`bottom`: at the bottom section),
+    /// not in one plane: a cone fan.
+    Fan(usize, usize, bool),
+}
+
+/// Two wedge normals closer than this (sine of the angle) are parallel.
+const COPLANAR_TOLERANCE: f64 = 1e-9;
+
+/// Meshes rulings. Consecutive rulings in one plane are meshed together as a planar polygon
+/// (refined to well-shaped triangles, exact since the piece is flat), cone fans by
+/// [`super::fan`], every other wedge by splitting its two rulings to the mesh size and
+/// stitching them. Section points shared by consecutive rulings become shared vertices.
 pub fn mesh_rulings(rulings: &Rulings, mesh_size: f64) -> FaceMesh {
     let mut mesh = FaceMesh::default();
     let bottom: Vec<u32> = rulings.bottom.iter().map(|&p| mesh.add_vertex(p)).collect();
     let top: Vec<u32> = rulings.top.iter().map(|&p| mesh.add_vertex(p)).collect();
-    let mut previous: Option<Vec<u32>> = None;
-    for &[b, t] in &rulings.pairs {
-        let (start, end) = (rulings.bottom[b], rulings.top[t]);
-        let pieces = pieces_for_length(start.distance(end), mesh_size);
-        let mut row = vec![bottom[b]];
-        for k in 1..pieces {
-            row.push(mesh.add_vertex(start.lerp(end, k as f64 / pieces as f64)));
+    let pieces = pieces(rulings);
+    let mut on_ruling: Vec<Option<Vec<u32>>> = vec![None; rulings.pairs.len()];
+    for &piece in &pieces {
+        if let Piece::Fan(first, last, at_bottom) = piece {
+            let [b, t] = rulings.pairs[first];
+            let apex = if at_bottom { bottom[b] } else { top[t] };
+            let far: Vec<u32> = rulings.pairs[first..=last]
+                .iter()
+                .map(|&[b, t]| if at_bottom { top[t] } else { bottom[b] })
+                .collect();
+            let vertices = mesh_cone_fan(&mut mesh, apex, &far, at_bottom, mesh_size);
+            for (k, mut row) in vertices.into_iter().enumerate() {
+                if !at_bottom {
+                    row.reverse();
+                }
+                on_ruling[first + k] = Some(row);
+            }
         }
-        row.push(top[t]);
-        if let Some(left) = &previous {
-            stitch_rows(left, &row, &mesh.positions, &mut mesh.triangles);
+    }
+    let rows: Vec<Vec<u32>> = on_ruling
+        .into_iter()
+        .zip(&rulings.pairs)
+        .map(|(row, &[b, t])| {
+            row.unwrap_or_else(|| split_ruling(&mut mesh, bottom[b], top[t], mesh_size))
+        })
+        .collect();
+    for piece in pieces {
+        match piece {
+            Piece::Strip(wedge) => {
+                let (left, right) = (&rows[wedge], &rows[wedge + 1]);
+                stitch_rows(left, right, &mesh.positions, &mut mesh.triangles);
+            }
+            Piece::Plane(first, last) => {
+                let boundary = plane_boundary(rulings, &rows, &bottom, &top, first, last);
+                let boundary = graded_sides(&mut mesh, &boundary);
+                if !mesh_plane(&mut mesh, &boundary, mesh_size) {
+                    for wedge in first..last {
+                        let (left, right) = (&rows[wedge], &rows[wedge + 1]);
+                        stitch_rows(left, right, &mesh.positions, &mut mesh.triangles);
+                    }
+                }
+            }
+            Piece::Fan(..) => {}
         }
-        previous = Some(row);
     }
     mesh
 }
+
+/// The vertices of the ruling from `bottom` to `top`, split into pieces of at most `mesh_size`.
+fn split_ruling(mesh: &mut FaceMesh, bottom: u32, top: u32, mesh_size: f64) -> Vec<u32> {
+    let (start, end) = (
+        mesh.positions[bottom as usize],
+        mesh.positions[top as usize],
+    );
+    let pieces = pieces_for_length(start.distance(end), mesh_size);
+    let mut row = vec![bottom];
+    for k in 1..pieces {
+        row.push(mesh.add_vertex(start.lerp(end, k as f64 / pieces as f64)));
+    }
+    row.push(top);
+    row
+}
+
+/// The wedges grouped into pieces (see [`Piece`]).
+fn pieces(rulings: &Rulings) -> Vec<Piece> {
+    let wedges = rulings.pairs.len().saturating_sub(1);
+    let corners = |w: usize| {
+        let ([b0, t0], [b1, t1]) = (rulings.pairs[w], rulings.pairs[w + 1]);
+        [
+            rulings.bottom[b0],
+            rulings.bottom[b1],
+            rulings.top[t1],
+            rulings.top[t0],
+        ]
+    };
+    let normals: Vec<DVec3> = (0..wedges)
+        .map(|w| newell_normal(&corners(w)).normalize_or_zero())
+        .collect();
+    let size = rulings
+        .bottom
+        .iter()
+        .chain(&rulings.top)
+        .map(|p| p.distance(rulings.bottom[0]))
+        .fold(0.0, f64::max);
+    let coplanar = |w: usize| {
+        let (n, m) = (normals[w], normals[w + 1]);
+        n.cross(m).length() <= COPLANAR_TOLERANCE
+            && n.dot(m) > 0.0
+            && corners(w + 1)
+                .iter()
+                .all(|p| n.dot(*p - corners(w)[0]).abs() <= COPLANAR_TOLERANCE * size)
+    };
+    let apex = |w: usize| {
+        let ([b0, t0], [b1, t1]) = (rulings.pairs[w], rulings.pairs[w + 1]);
+        match (b0 == b1, t0 == t1) {
+            (true, false) => Some((true, b0)),
+            (false, true) => Some((false, t0)),
+            _ => None,
+        }
+    };
+    let mut pieces = Vec::new();
+    let mut w = 0;
+    while w < wedges {
+        let mut end = w;
+        while end + 1 < wedges && coplanar(end) {
+            end += 1;
+        }
+        if end > w || apex(w).is_some_and(|_| w + 1 >= wedges || apex(w + 1) != apex(w)) {
+            pieces.push(Piece::Plane(w, end + 1));
+            w = end + 1;
+            continue;
+        }
+        if let Some(shared) = apex(w) {
+            while end + 1 < wedges && apex(end + 1) == Some(shared) && !coplanar(end) {
+                end += 1;
+            }
+            pieces.push(Piece::Fan(w, end + 1, shared.0));
+            w = end + 1;
+            continue;
+        }
+        pieces.push(Piece::Strip(w));
+        w += 1;
+    }
+    pieces
+}
+
+fn newell_normal(points: &[DVec3]) -> DVec3 {
+    let count = points.len();
+    (0..count)
+        .map(|k| points[k].cross(points[(k + 1) % count]))
+        .sum()
+}
+
+/// The boundary of the planar piece of rulings `first..=last`, counter-clockwise in the chart
+/// (ruling index, height): along the bottom section, up the last ruling, back along the top
+/// section, down the first ruling. Each vertex comes with whether the edge leaving it lies on a
+/// section (true) or on a ruling shared with the next piece (false). Repeated vertices (an apex)
+/// appear once.
+fn plane_boundary(
+    rulings: &Rulings,
+    rows: &[Vec<u32>],
+    bottom: &[u32],
+    top: &[u32],
+    first: usize,
+    last: usize,
+) -> Vec<(u32, bool)> {
+    let [b0, t0] = rulings.pairs[first];
+    let [b1, t1] = rulings.pairs[last];
+    let chains: [(Vec<u32>, bool); 4] = [
+        (bottom[b0..=b1].to_vec(), true),
+        (rows[last].clone(), false),
+        (top[t0..=t1].iter().rev().copied().collect(), true),
+        (rows[first].iter().rev().copied().collect(), false),
+    ];
+    let mut boundary: Vec<(u32, bool)> = Vec::new();
+    for (chain, on_section) in chains {
+        let count = chain.len();
+        for (k, v) in chain.into_iter().enumerate() {
+            // A chain's last vertex starts the next chain: the next chain says where its edge is.
+            let leaving = on_section && k + 1 < count;
+            match boundary.last_mut() {
+                Some(previous) if previous.0 == v => previous.1 = leaving,
+                _ => boundary.push((v, leaving)),
+            }
+        }
+    }
+    if boundary.len() > 1 && boundary.first().map(|f| f.0) == boundary.last().map(|l| l.0) {
+        boundary.pop();
+    }
+    boundary
+}
+
+/// Ratio of consecutive lengths of the points added on a section side next to a much shorter
+/// boundary edge.
+const SIDE_GRADING: f64 = 1.2;
+
+/// Splits section sides of `boundary` next to a much shorter boundary edge (a fan's ruling
+/// graded towards its apex) geometrically, so that the corner can be meshed with well-shaped
+/// triangles. Ruling sides are shared with the neighbouring piece and are kept.
+fn graded_sides(mesh: &mut FaceMesh, boundary: &[(u32, bool)]) -> Vec<u32> {
+    let count = boundary.len();
+    let position = |v: u32, mesh: &FaceMesh| mesh.positions[v as usize];
+    let length = |k: usize, mesh: &FaceMesh| {
+        position(boundary[k].0, mesh).distance(position(boundary[(k + 1) % count].0, mesh))
+    };
+    let mut graded = Vec::with_capacity(count);
+    for k in 0..count {
+        let (from, on_section) = boundary[k];
+        graded.push(from);
+        if !on_section {
+            continue;
+        }
+        let to = boundary[(k + 1) % count].0;
+        let side = length(k, mesh);
+        let before = length((k + count - 1) % count, mesh);
+        let after = length((k + 1) % count, mesh);
+        // Distances from one end growing by SIDE_GRADING from the neighbour's length, up to the
+        // middle when both ends are graded, else until the last gap matches the one before.
+        let graded_end = |neighbour: f64| neighbour * SIDE_GRADING < side;
+        let both = graded_end(before) && graded_end(after);
+        let reach = if both { side / 2.0 } else { side };
+        let distances_from = |neighbour: f64| {
+            let mut distances = Vec::new();
+            let (mut previous, mut d) = (0.0, neighbour * SIDE_GRADING);
+            while graded_end(neighbour) && reach - d > (d - previous) * SIDE_GRADING {
+                distances.push(d);
+                previous = d;
+                d *= SIDE_GRADING;
+            }
+            distances
+        };
+        let (a, b) = (position(from, mesh), position(to, mesh));
+        let mut fractions: Vec<f64> = distances_from(before).iter().map(|d| d / side).collect();
+        fractions.extend(distances_from(after).iter().rev().map(|d| 1.0 - d / side));
+        for t in fractions {
+            graded.push(mesh.add_vertex(a.lerp(b, t)));
+        }
+    }
+    graded
+}
+
+/// Meshes the planar polygon `boundary` (vertices of `mesh`, counter-clockwise seen from the side
+/// the ruled meshes' normals point to) by the patch mesher on its plane, keeping the boundary's
+/// vertices (nothing is added on the boundary, so neighbouring pieces stay conforming). False when
+/// the polygon has no plane or the patch mesher refuses it (the caller stitches it instead).
+fn mesh_plane(mesh: &mut FaceMesh, boundary: &[u32], mesh_size: f64) -> bool {
+    let points: Vec<DVec3> = boundary
+        .iter()
+        .map(|&v| mesh.positions[v as usize])
+        .collect();
+    let normal = newell_normal(&points);
+    let longest_side = (0..points.len())
+        .map(|k| points[k].distance(points[(k + 1) % points.len()]))
+        .fold(0.0, f64::max);
+    let Some(frame) = Frame::new(points[0], normal, points[1] - points[0]) else {
+        return false;
+    };
+    let local = |p: DVec3| {
+        DVec2::new(
+            (p - frame.origin).dot(frame.x),
+            (p - frame.origin).dot(frame.y),
+        )
+    };
+    let outer: Vec<DVec2> = points.iter().map(|&p| local(p)).collect();
+    let patch = PatchSurface {
+        geometry: PatchGeometry::Plane(frame),
+        outer: outer.clone(),
+        holes: Vec::new(),
+    };
+    // Sides are at most the mesh size already: the patch mesher must not split them again.
+    let split_above = longest_side.max(mesh_size) * (1.0 + PLANE_SIDE_MARGIN);
+    let Ok(plane) = mesh_patch(&patch, &[], split_above, f64::INFINITY) else {
+        return false;
+    };
+    let tolerance = PLANE_MATCH_RATIO * longest_side;
+    let mut index: Vec<Option<u32>> = vec![None; plane.positions.len()];
+    for triangle in plane
+        .triangles
+        .iter()
+        .filter(|t| !is_sliver(t, &plane.positions))
+    {
+        let corners = triangle.map(|v| {
+            let v = v as usize;
+            *index[v].get_or_insert_with(|| {
+                match outer
+                    .iter()
+                    .position(|corner| corner.distance(plane.parameters[v]) <= tolerance)
+                {
+                    Some(k) => boundary[k],
+                    None => mesh.add_vertex(plane.positions[v]),
+                }
+            })
+        });
+        mesh.triangles.push(corners);
+    }
+    true
+}
+
+/// A triangle whose area is below this fraction of its longest edge squared is a sliver.
+const SLIVER_AREA_RATIO: f64 = 1e-10;
+
+/// True for a sliver the planar mesher leaves between nearly collinear points of a straight
+/// side (outside the piece, between the side and its convex hull; interior triangles are
+/// refined to the minimum angle and are never this thin).
+fn is_sliver(triangle: &[u32; 3], positions: &[DVec3]) -> bool {
+    let [a, b, c] = triangle.map(|v| positions[v as usize]);
+    let longest = a
+        .distance_squared(b)
+        .max(b.distance_squared(c))
+        .max(c.distance_squared(a));
+    0.5 * (b - a).cross(c - a).length() < SLIVER_AREA_RATIO * longest
+}
+
+/// Relative margin on the longest side of a planar piece, so that the patch mesher splits none.
+const PLANE_SIDE_MARGIN: f64 = 1e-6;
+/// A patch vertex this close to a boundary corner (fraction of the longest side) is that corner.
+const PLANE_MATCH_RATIO: f64 = 1e-9;
 
 #[cfg(test)]
 mod tests {
