@@ -236,17 +236,21 @@ fn convert_shells(
 
 /// The face entities a shell statement lists, in order.
 fn shell_faces(statements: &Statements, shell: u64) -> Vec<u64> {
-    statements.get(&shell).map_or(Vec::new(), |(_, references)| {
-        references
-            .iter()
-            .copied()
-            .filter(|r| {
-                statements.get(r).is_some_and(|(names, _)| {
-                    names.iter().any(|name| FACE_ENTITIES.contains(&name.as_str()))
+    statements
+        .get(&shell)
+        .map_or(Vec::new(), |(_, references)| {
+            references
+                .iter()
+                .copied()
+                .filter(|r| {
+                    statements.get(r).is_some_and(|(names, _)| {
+                        names
+                            .iter()
+                            .any(|name| FACE_ENTITIES.contains(&name.as_str()))
+                    })
                 })
-            })
-            .collect()
-    })
+                .collect()
+        })
 }
 
 /// A face's surface entity `(id, names)` (through an oriented face).

@@ -7,9 +7,13 @@
 //! surface where faces share edges.
 //!
 //! Method:
-//! 1. Every edge is sampled once ([`sample_edge`]): equal parameter steps, as many as keep each
-//!    piece shorter than [`EDGE_PIECE_RATIO`] of the mesh size and within the chord tolerance of
-//!    the curve, the ends exactly at the edge's vertices.
+//! 1. Each face gets a mesh size: the target, or less where the face curves so much that the
+//!    chord tolerance needs smaller triangles ([`face_mesh_sizes`]: `√(6 chord / κ)` for the
+//!    face's largest principal curvature `κ`), so the refinement reaches the chord without
+//!    late Steiner points near the boundary. Every edge is then sampled once ([`sample_edge`]):
+//!    equal parameter steps, as many as keep each piece shorter than [`EDGE_PIECE_RATIO`] of the
+//!    smaller mesh size of its faces and within the chord tolerance of the curve, the ends
+//!    exactly at the edge's vertices.
 //! 2. Each face's boundary loops (its edges' samples, in loop order) are mapped into a domain in
 //!    which lengths approximate surface lengths ([`super::face_domain`]: cones developed,
 //!    cylinders unrolled, other surfaces in their own parameters, periodic parameters unwrapped).
@@ -96,17 +100,31 @@ pub fn mesh_shell(
     chord: f64,
     size: f64,
 ) -> Result<(), FaceError> {
-    let edges: Vec<Vec<DVec3>> = shell
-        .edges
-        .iter()
-        .map(|edge| {
-            let ends = (
-                to_dvec(shell.vertices[edge.vertices.0]),
-                to_dvec(shell.vertices[edge.vertices.1]),
-            );
-            sample_edge(&edge.curve, ends, mesh_size, chord)
-        })
-        .collect();
+    let vertices = |edge: usize| {
+        let (a, b) = shell.edges[edge].vertices;
+        (to_dvec(shell.vertices[a]), to_dvec(shell.vertices[b]))
+    };
+    let sample_all = |sizes: &[f64]| -> Vec<Vec<DVec3>> {
+        (0..shell.edges.len())
+            .map(|e| sample_edge(&shell.edges[e].curve, vertices(e), sizes[e], chord))
+            .collect()
+    };
+    let face_sizes = face_mesh_sizes(
+        shell,
+        &sample_all(&vec![mesh_size; shell.edges.len()]),
+        mesh_size,
+        chord,
+        size,
+    );
+    let mut edge_sizes = vec![mesh_size; shell.edges.len()];
+    for (face, &face_size) in shell.faces.iter().zip(&face_sizes) {
+        for edge in face.boundaries.iter().flatten() {
+            if let Some(edge_size) = edge_sizes.get_mut(edge.index) {
+                *edge_size = edge_size.min(face_size);
+            }
+        }
+    }
+    let edges = sample_all(&edge_sizes);
     for (index, face) in shell.faces.iter().enumerate() {
         let error = |message: String| FaceError {
             face: index,
@@ -114,13 +132,48 @@ pub fn mesh_shell(
         };
         let loops = face_loops(face, &edges, size).map_err(error)?;
         let face_mesh = catch_unwind(AssertUnwindSafe(|| {
-            mesh_face(face, &loops, mesh_size, chord, size)
+            mesh_face(face, &loops, face_sizes[index], chord, size)
         }))
         .map_err(|_| error("the face could not be tessellated".into()))?
         .map_err(error)?;
         append_face(soup, &face_mesh, first_source + index as u32);
     }
     Ok(())
+}
+
+/// Each face's mesh size: the mesh size, or less where the face curves so much that triangles of
+/// the mesh size would stray farther than the chord from it (a triangle of side `h` on a surface
+/// of curvature `κ` strays about `κ h² / 6` at its centre). `edges` are coarse edge samples
+/// (for the faces' domains only); a face whose domain cannot be built keeps the mesh size (its
+/// error is reported when it is meshed).
+fn face_mesh_sizes(
+    shell: &StepShell,
+    edges: &[Vec<DVec3>],
+    mesh_size: f64,
+    chord: f64,
+    size: f64,
+) -> Vec<f64> {
+    shell
+        .faces
+        .iter()
+        .map(|face| {
+            let curvature = face_loops(face, edges, size)
+                .ok()
+                .and_then(|loops| {
+                    catch_unwind(AssertUnwindSafe(|| {
+                        face_domain(&face.surface, &loops, size)
+                    }))
+                    .ok()?
+                    .ok()
+                })
+                .map_or(0.0, |domain| domain.curvature);
+            if curvature > 0.0 {
+                mesh_size.min((6.0 * chord / curvature).sqrt())
+            } else {
+                mesh_size
+            }
+        })
+        .collect()
 }
 
 /// Welds vertices at exactly the same position (shared edge samples, both sides of a seam) and
@@ -244,9 +297,11 @@ fn face_loops(
             };
             if let Some(&last) = points.last() {
                 if last.distance(oriented[0]) > gap_tolerance {
-                    return Err("its boundary loop is not closed (an edge could not be read or \
+                    return Err(
+                        "its boundary loop is not closed (an edge could not be read or \
                                 the edges are out of order)"
-                        .into());
+                            .into(),
+                    );
                 }
                 points.pop();
             }
@@ -299,7 +354,13 @@ fn mesh_face(
     }
     let positions = snap_to_samples(&mesh.positions, &mesh.parameters, &samples);
     let mut triangles = mesh.triangles;
-    if !follows_face_normal(face, &domain.surface, &positions, &mesh.parameters, &triangles) {
+    if !follows_face_normal(
+        face,
+        &domain.surface,
+        &positions,
+        &mesh.parameters,
+        &triangles,
+    ) {
         for triangle in &mut triangles {
             triangle.swap(1, 2);
         }

@@ -26,6 +26,8 @@ use truck_stepio::r#in::alias::{ElementarySurface, Surface as StepSurface};
 
 use super::surface::MappedSurface;
 
+/// Grid intervals per parameter on which a face's curvature is sampled.
+const CURVATURE_SAMPLES: usize = 6;
 /// Gauss-Newton steps of a point inversion.
 const INVERSION_STEPS: usize = 12;
 /// Grid samples per parameter of the fallback search of a point inversion.
@@ -95,8 +97,8 @@ impl Axis {
 }
 
 impl DomainMap {
-    fn to_domain(&self, native: DVec2) -> DVec2 {
-        match *self {
+    fn domain_of(self, native: DVec2) -> DVec2 {
+        match self {
             DomainMap::Native => native,
             DomainMap::Unrolled {
                 angular,
@@ -120,8 +122,8 @@ impl DomainMap {
         }
     }
 
-    fn to_native(&self, domain: DVec2) -> DVec2 {
-        match *self {
+    fn native_of(self, domain: DVec2) -> DVec2 {
+        match self {
             DomainMap::Native => domain,
             DomainMap::Unrolled {
                 angular,
@@ -180,7 +182,7 @@ pub struct FaceSurface {
 impl FaceSurface {
     /// The surface's parameters at domain coordinates.
     pub fn native(&self, domain: DVec2) -> DVec2 {
-        self.map.to_native(domain)
+        self.map.native_of(domain)
     }
 
     /// The surface's normal `∂S/∂u × ∂S/∂v` at its parameters (not normalised).
@@ -192,11 +194,11 @@ impl FaceSurface {
 
 impl MappedSurface for FaceSurface {
     fn point(&self, parameters: DVec2) -> DVec3 {
-        native_point(&self.surface, self.map.to_native(parameters))
+        native_point(&self.surface, self.map.native_of(parameters))
     }
 
     fn derivatives(&self, parameters: DVec2) -> (DVec3, DVec3) {
-        let native = self.map.to_native(parameters);
+        let native = self.map.native_of(parameters);
         let (su, sv) = native_derivatives(&self.surface, native);
         let (dx, dy) = self.map.native_derivatives(parameters);
         (su * dx.x + sv * dx.y, su * dy.x + sv * dy.y)
@@ -236,6 +238,8 @@ pub struct FaceDomain {
     pub surface: FaceSurface,
     /// The boundary loops (as given, one domain point per boundary point).
     pub loops: Vec<Vec<DVec2>>,
+    /// The largest principal curvature over the face's parameter box (sampled), 1 / length.
+    pub curvature: f64,
 }
 
 /// Maps a face's boundary loops (points on `surface`) into its meshing domain; `size` is the
@@ -255,9 +259,10 @@ pub fn face_domain(
         native_loops.push(native);
     }
     let map = domain_map(surface, &native_loops, periods);
+    let curvature = largest_curvature(surface, &native_loops);
     let loops = native_loops
         .iter()
-        .map(|native| native.iter().map(|&p| map.to_domain(p)).collect())
+        .map(|native| native.iter().map(|&p| map.domain_of(p)).collect())
         .collect();
     Ok(FaceDomain {
         surface: FaceSurface {
@@ -265,7 +270,49 @@ pub fn face_domain(
             map,
         },
         loops,
+        curvature,
     })
+}
+
+/// The largest principal curvature `|H| + √(H² − K)` on a grid over the loops' parameter box.
+fn largest_curvature(surface: &StepSurface, native_loops: &[Vec<DVec2>]) -> f64 {
+    let (low, high) = native_loops
+        .iter()
+        .flatten()
+        .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(low, high), &p| {
+            (low.min(p), high.max(p))
+        });
+    if !(low.is_finite() && high.is_finite()) {
+        return 0.0;
+    }
+    let mut largest = 0.0_f64;
+    for i in 0..=CURVATURE_SAMPLES {
+        for j in 0..=CURVATURE_SAMPLES {
+            let t = DVec2::new(i as f64, j as f64) / CURVATURE_SAMPLES as f64;
+            let p = low + (high - low) * t;
+            let vector = |v: Vector3| DVec3::new(v.x, v.y, v.z);
+            let (su, sv) = native_derivatives(surface, p);
+            let (suu, suv, svv) = (
+                vector(surface.uuder(p.x, p.y)),
+                vector(surface.uvder(p.x, p.y)),
+                vector(surface.vvder(p.x, p.y)),
+            );
+            let normal = su.cross(sv).normalize_or_zero();
+            let (e, f, g) = (su.dot(su), su.dot(sv), sv.dot(sv));
+            let (l, m, n) = (suu.dot(normal), suv.dot(normal), svv.dot(normal));
+            let area = e * g - f * f;
+            if area.partial_cmp(&(f64::EPSILON * e * g)) != Some(std::cmp::Ordering::Greater) {
+                continue;
+            }
+            let mean = (e * n + g * l - 2.0 * f * m) / (2.0 * area);
+            let gauss = (l * n - m * m) / area;
+            let curvature = mean.abs() + (mean * mean - gauss).max(0.0).sqrt();
+            if curvature.is_finite() {
+                largest = largest.max(curvature);
+            }
+        }
+    }
+    largest
 }
 
 /// Each parameter's range where evaluation must stay inside it (B-spline and NURBS surfaces, not
@@ -357,19 +404,23 @@ fn check_closed(native: &[DVec2], periods: [Option<f64>; 2]) -> Result<(), Domai
 /// first point (edges in loop order, so a run of such edges shares one value).
 fn straighten_iso_edges(native: &mut [DVec2], edge_starts: &[usize]) {
     let count = native.len();
-    let (low, high) = native.iter().fold(
-        (DVec2::INFINITY, DVec2::NEG_INFINITY),
-        |(low, high), &p| (low.min(p), high.max(p)),
-    );
+    let (low, high) = native
+        .iter()
+        .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(low, high), &p| {
+            (low.min(p), high.max(p))
+        });
     let tolerance = ISO_LINE_RATIO * (high - low).max_element().max(f64::MIN_POSITIVE);
     for (k, &start) in edge_starts.iter().enumerate() {
         let end = edge_starts.get(k + 1).copied().unwrap_or(count);
         // The edge runs from its first point to the next edge's first point (inclusive).
         let indices: Vec<usize> = (start..=end).map(|i| i % count).collect();
+        #[allow(clippy::needless_range_loop)] // `axis` indexes each point's two parameters
         for axis in 0..2 {
-            let (min, max) = indices.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &i| {
-                (a.min(native[i][axis]), b.max(native[i][axis]))
-            });
+            let (min, max) = indices
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &i| {
+                    (a.min(native[i][axis]), b.max(native[i][axis]))
+                });
             if max - min <= tolerance {
                 let value = native[start % count][axis];
                 for &i in &indices {
@@ -439,7 +490,7 @@ fn refine_inversion(
         let (su, sv) = native_derivatives(surface, p);
         let (a, b, c) = (su.dot(su), su.dot(sv), sv.dot(sv));
         let determinant = a * c - b * b;
-        if !(determinant.abs() > f64::MIN_POSITIVE) {
+        if determinant.abs().partial_cmp(&f64::MIN_POSITIVE) != Some(std::cmp::Ordering::Greater) {
             break;
         }
         let (ru, rv) = (su.dot(residual), sv.dot(residual));
@@ -532,7 +583,7 @@ mod tests {
             reference: 190.0,
         };
         for native in [DVec2::new(0.0, 0.1), DVec2::new(60.0, 6.0)] {
-            let back = map.to_native(map.to_domain(native));
+            let back = map.native_of(map.domain_of(native));
             assert!(back.distance(native) < 1e-9, "{native} -> {back}");
         }
     }
