@@ -145,9 +145,9 @@ pub fn read_step(
     } else {
         let shells = convert_shells(&table, &shell_ids, &statements)
             .map_err(|message| error(format!("{message}{}", unsupported_note())))?;
-        let (mesh_size, chord) = sizes_for_diagonal(shells_size(&shells), &file_units)
-            .map_err(|e| error(e.to_string()))?;
         let size = shells_size(&shells);
+        let (mesh_size, chord) =
+            sizes_for_diagonal(size, &file_units).map_err(|e| error(e.to_string()))?;
         for (shell_id, shell) in shell_ids.iter().zip(&shells) {
             let first_source = soup.face_sources.last().map_or(0, |s| s + 1);
             mesh_shell(&mut soup, shell, first_source, mesh_size, chord, size).map_err(|e| {

@@ -1,16 +1,18 @@
-//! The domain a STEP face is meshed in: its surface's parameters mapped so that lengths in the
-//! domain approximate lengths on the surface (the patch mesher's angle and size bounds then hold
-//! on the surface, not only in the parameter plane).
+//! The domain a STEP face is meshed in: its surface's parameters mapped so that the domain has
+//! (nearly) the surface's own metric, so the patch mesher's angle and size bounds hold on the
+//! surface, not only in the parameter plane.
 //!
 //! Input: a face's surface (truck-stepio's [`StepSurface`]) and its boundary loops as points on
 //! the surface. Output: the loops in the domain ([`FaceDomain::loops`]) and a [`MappedSurface`]
 //! that evaluates the surface at domain coordinates, for [`super::patch::mesh_patch`].
 //!
-//! - Cones are mapped onto their development (polar coordinates: distance from the apex along a
-//!   ruling, angle about the axis times the sine of the half-angle) and cylinders are unrolled
-//!   (arc length, height): both maps are isometries, so the domain *is* the flat surface and a
-//!   closed side face becomes an annular sector or a rectangle whose two seam sides are sampled
-//!   alike.
+//! - Cylinders are unrolled (arc length, height): an isometry, so the domain *is* the flat
+//!   surface and a closed side face becomes a rectangle whose two seam sides are sampled alike.
+//! - Cones are developed in log-polar coordinates (angle about the apex in the development, log of
+//!   the distance from the apex): a conformal map, so angles are the surface's and lengths scale
+//!   smoothly; rulings and circles are straight lines along the axes (a polar development would
+//!   put a ruling's points off one line by round-off, and the mesher would make slivers there).
+//!   Faces that reach their apex keep their own parameters.
 //! - Other surfaces (planes, B-splines, NURBS, spheres, tori, swept curves) keep their own
 //!   parameters; the patch mesher scales them by the mean surface speeds.
 //!
