@@ -95,7 +95,12 @@ pub fn load_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Err
             split_parts(path, &mesh.soup, template, |_, _| {})
         }
         Input::Step(step) => {
-            let template = template(step.name, Units::Millimetres);
+            let mut template = template(step.name, Units::Millimetres);
+            template.tessellation = Some(TessellationFigures {
+                mesh_size: step.mesh_size,
+                chord: step.chord,
+                minimum_angle: step.minimum_angle,
+            });
             split_parts(path, &step.soup, template, |_, _| {})
         }
         Input::Part(part) => load_part_file(path, &part, &options.tessellate),

@@ -273,7 +273,12 @@ fn a_stiff_fold_line_keeps_its_length_better_than_a_uniform_one() {
 
 #[test]
 fn step_samples_ingest_tessellate_and_flatten() {
-    for name in ["cone_frustum_half.step", "bspline_patch.step"] {
+    for name in [
+        "cone_frustum_half.step",
+        "bspline_patch.step",
+        "cone_frustum_freecad.step",
+        "bspline_loft_freecad.step",
+    ] {
         let results = flatten_sample(name);
         assert!(!results.is_empty(), "{name}");
         for result in &results {
@@ -307,7 +312,152 @@ fn unsupported_step_content_is_named() {
         &RunOptions::default(),
     )
     .expect_err("an offset surface cannot be read");
-    assert!(error.to_string().contains("OFFSET_SURFACE"), "{error}");
+    assert!(
+        error
+            .to_string()
+            .contains("ADVANCED_FACE #46 on OFFSET_SURFACE (#5)"),
+        "{error}"
+    );
+}
+
+/// Writes `text` as a STEP file in a temporary directory and flattens it with the CLI.
+fn flatten_step_text(text: &str) -> std::process::Output {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let path = directory.path().join("part.step");
+    std::fs::write(&path, text).expect("writes");
+    flatcut(&[
+        "flatten",
+        path.to_str().expect("utf-8"),
+        "-o",
+        directory.path().join("out").to_str().expect("utf-8"),
+    ])
+}
+
+#[test]
+fn a_face_on_an_unsupported_surface_and_a_file_without_surfaces_exit_1_naming_why() {
+    let cone = std::fs::read_to_string(sample("cone_frustum_half.step")).expect("sample");
+    let trimmed = cone.replace(
+        "#5 = CONICAL_SURFACE(",
+        "#5 = RECTANGULAR_TRIMMED_SURFACE('',#6,0.,6.28,0.,4.,.T.,.T.);\n#6 = CONICAL_SURFACE(",
+    );
+    assert_ne!(trimmed, cone);
+    let output = flatten_step_text(&trimmed);
+    assert_eq!(output.status.code(), Some(1));
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        message.contains("ADVANCED_FACE #46 on RECTANGULAR_TRIMMED_SURFACE (#5)"),
+        "{message}"
+    );
+    let points_only = "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('points'),'2;1');\n\
+        FILE_NAME('p.step','2026-11-22T00:00:00',(''),(''),'','','');\n\
+        FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n\
+        #1 = CARTESIAN_POINT('',(0.,0.,0.));\nENDSEC;\nEND-ISO-10303-21;\n";
+    let output = flatten_step_text(points_only);
+    assert_eq!(output.status.code(), Some(1));
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        message.contains("no shell, face or B-spline surface"),
+        "{message}"
+    );
+}
+
+/// Smallest triangle angle STEP faces must keep where their domains allow it, degrees.
+const STEP_MINIMUM_ANGLE: f64 = 20.0;
+
+/// STEP samples FreeCAD 0.20 (Open CASCADE) wrote, with the areas Open CASCADE integrates for
+/// them (printed by `samples/step-sources/freecad_samples.py`), mm².
+const FREECAD_SAMPLES: [(&str, f64); 3] = [
+    ("cone_frustum_freecad.step", 44456.588728),
+    ("bspline_loft_freecad.step", 32767.552169),
+    ("box_fillet_pocket_inch.step", 34952.113572),
+];
+
+#[test]
+fn freecad_step_faces_keep_their_area_and_angles() {
+    for (name, reference) in FREECAD_SAMPLES {
+        let jobs = load_parts(&sample(name), &RunOptions::default()).expect("loads");
+        assert_eq!(jobs.len(), 1, "{name}: one connected part");
+        let job = &jobs[0];
+        let area = job.model.area();
+        assert!(
+            (area - reference).abs() / reference <= AREA_TOLERANCE,
+            "{name}: area {area} vs {reference}"
+        );
+        let angle = job.tessellation.expect("figures").minimum_angle;
+        assert!(angle >= STEP_MINIMUM_ANGLE, "{name}: worst angle {angle}");
+    }
+}
+
+#[test]
+fn a_closed_cone_side_face_becomes_a_ring_and_flattens_to_its_area() {
+    let jobs =
+        load_parts(&sample("cone_frustum_freecad.step"), &RunOptions::default()).expect("loads");
+    let model = &jobs[0].model;
+    // The seam edge is welded: the side face is a ring with its two rims as boundaries.
+    assert_eq!(model.boundary_loops().len(), 2);
+    let (bottom, top, height) = (100.0_f64, 50.0_f64, 80.0_f64);
+    let slant = ((bottom - top).powi(2) + height * height).sqrt();
+    let analytic = PI * (bottom + top) * slant;
+    let results = flatten_sample("cone_frustum_freecad.step");
+    let result = &results[0];
+    assert_eq!(
+        result.seams.len(),
+        1,
+        "the automatic seam opens the ring once"
+    );
+    assert_area(result, analytic);
+    let accuracy = result.flattened.stats.accuracy;
+    assert!(
+        accuracy.area_error < 1e-3 && accuracy.shape_error < 1e-3,
+        "{accuracy:?}"
+    );
+}
+
+#[test]
+fn a_solid_in_inches_is_a_closed_surface_in_millimetres() {
+    let jobs = load_parts(
+        &sample("box_fillet_pocket_inch.step"),
+        &RunOptions::default(),
+    )
+    .expect("loads");
+    let model = &jobs[0].model;
+    assert!(
+        model.is_closed(),
+        "the solid's faces weld into a closed surface"
+    );
+    let (low, high) = model.positions().iter().fold(
+        (glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY),
+        |(low, high), &p| (low.min(p), high.max(p)),
+    );
+    // A 4 x 3 x 2 in box.
+    let extent = high - low;
+    for (measured, inches) in [(extent.x, 4.0), (extent.y, 3.0), (extent.z, 2.0)] {
+        assert!((measured - 25.4 * inches).abs() < 1e-6, "{extent}");
+    }
+}
+
+#[test]
+fn the_mesh_size_applies_to_step_faces() {
+    let mean_edge = |mesh_size: f64| {
+        let mut options = RunOptions::default();
+        options.tessellate.mesh_size = Some(mesh_size);
+        options.tessellate.chord = Some(0.5);
+        let jobs = load_parts(&sample("cone_frustum_freecad.step"), &options).expect("loads");
+        let model = &jobs[0].model;
+        let total: f64 = model
+            .edges()
+            .iter()
+            .map(|e| model.positions()[e[0] as usize].distance(model.positions()[e[1] as usize]))
+            .sum();
+        total / model.edges().len() as f64
+    };
+    for mesh_size in [5.0, 10.0] {
+        let mean = mean_edge(mesh_size);
+        assert!(
+            mean > 0.6 * mesh_size && mean < 1.2 * mesh_size,
+            "mesh size {mesh_size}: mean edge {mean}"
+        );
+    }
 }
 
 #[test]

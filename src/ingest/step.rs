@@ -1,22 +1,23 @@
-//! STEP files (AP203/AP214) through truck-stepio: every shell's faces (advanced faces of solids
-//! and open shells) tessellated with truck-meshalgo into one triangle soup in millimetres.
+//! STEP files (AP203/AP214) read through truck-stepio: every shell's faces (advanced faces of
+//! solids and open shells) tessellated by flatcut's own B-rep mesher into one welded triangle
+//! soup in millimetres.
 //!
-//! Input: the file's bytes and [`TessellateOptions`] (its chord tolerance bounds the distance
-//! between faces and triangles; truck-meshalgo does not take a target edge length, so the mesh
-//! size is not applied to STEP faces). Output: a [`StepInput`]. The length unit declared in the
-//! file (`SI_UNIT` with its prefix, or a `CONVERSION_BASED_UNIT` of inch or foot) is applied:
-//! the reader does not apply it. Each shell is converted and meshed under `catch_unwind`, so a
-//! file that makes truck panic gives an error naming the shell entity and the geometric entities
-//! of the file truck cannot read, never a crash. Vertices of one shell's faces are welded
-//! (truck-meshalgo meshes each face on its own), so a closed face's seam is welded shut too.
-//! A file with no shell (a surface-only export) has its loose B-spline and NURBS surfaces meshed
-//! over their whole parameter domains by flatcut's own patch mesher (the mesh size applies).
+//! Input: the file's bytes and [`TessellateOptions`] (mesh size and chord tolerance in
+//! millimetres, defaults from the part's size). Output: a [`StepInput`]. The length unit declared
+//! in the file (`SI_UNIT` with its prefix, or a `CONVERSION_BASED_UNIT` of inch or foot) is
+//! applied: the reader does not apply it. Each shell is converted and meshed under
+//! `catch_unwind`, so a file that makes truck panic gives an error naming the shell, never a
+//! crash; a face truck-stepio drops (its surface is of a kind it cannot read) is an error naming
+//! the face and its surface entity. Faces are meshed by [`crate::tessellate::brep`] (each edge
+//! sampled once, each face's trimmed domain refined by spade, shared edges and seams welded). A
+//! file with no shell (a surface-only export) has its loose B-spline and NURBS surfaces meshed
+//! over their whole parameter domains by the patch mesher.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::Path;
 
-use glam::{DVec2, DVec3};
+use glam::DVec2;
 use truck_meshalgo::prelude::*;
 use truck_modeling::{BSplineSurface, NurbsSurface, Vector4};
 use truck_stepio::r#in::Table;
@@ -24,17 +25,15 @@ use truck_stepio::r#in::ruststep::tables::IntoOwned;
 
 use super::IngestError;
 use crate::mesh::TriangleSoup;
+use crate::tessellate::brep::{StepShell, mesh_shell, shells_size, weld_coincident};
 use crate::tessellate::patch::mesh_patch;
 use crate::tessellate::surface::{PatchGeometry, PatchSurface, Surface};
-use crate::tessellate::{CadPart, DEFAULT_CHORD_RATIO, TessellateOptions, resolve_sizes};
+use crate::tessellate::{
+    CadPart, TessellateOptions, minimum_angle, resolve_sizes, sizes_for_diagonal,
+};
 
-/// Options of STEP ingest: the tessellation options (chord tolerance).
+/// Options of STEP ingest: the tessellation options (mesh size and chord, millimetres).
 pub type StepOptions = TessellateOptions;
-
-/// truck-meshalgo panics on a tolerance below this (file units).
-pub const MINIMUM_MESHALGO_TOLERANCE: f64 = 1e-5;
-/// Weld distance of face-boundary vertices, as a fraction of the shell's size.
-pub const STEP_WELD_RATIO: f64 = 1e-7;
 
 /// Geometric entities truck-stepio converts; other `*_SURFACE` and `*_CURVE` entities are not.
 const SUPPORTED_GEOMETRY: &[&str] = &[
@@ -71,15 +70,25 @@ const SUPPORTED_GEOMETRY: &[&str] = &[
     "SURFACE_OF_REVOLUTION",
 ];
 
+/// Face entities a shell lists.
+const FACE_ENTITIES: &[&str] = &["ADVANCED_FACE", "FACE_SURFACE", "ORIENTED_FACE"];
+
 /// A STEP file's faces as a triangle soup.
 #[derive(Debug, Clone)]
 pub struct StepInput {
     /// Part name: the file stem.
     pub name: String,
-    /// The faces, in millimetres; face sources number the shells' faces in file order.
+    /// The faces, in millimetres; face sources number the shells' faces in file order (a face
+    /// boundary is an edge between triangles of different sources).
     pub soup: TriangleSoup,
     /// Millimetres per file unit that were applied.
     pub unit_millimetres: f64,
+    /// Target edge length used, millimetres.
+    pub mesh_size: f64,
+    /// Chord tolerance used, millimetres.
+    pub chord: f64,
+    /// Smallest triangle angle, degrees.
+    pub minimum_angle: f64,
 }
 
 /// Reads a STEP file (see the module documentation).
@@ -95,7 +104,8 @@ pub fn read_step(
     let text =
         std::str::from_utf8(bytes).map_err(|e| error(format!("not a text STEP file: {e}")))?;
     let unit_millimetres = length_unit_millimetres(text).map_err(error)?;
-    let unsupported = unsupported_entities(text);
+    let statements = statements(text);
+    let unsupported = unsupported_entities(&statements);
     let unsupported_note = || {
         if unsupported.is_empty() {
             String::new()
@@ -110,14 +120,19 @@ pub fn read_step(
             )
         }
     };
+    let text = &prefer_3d_curves(text);
     let table = catch_unwind(|| Table::from_step(text))
         .ok()
         .flatten()
         .ok_or_else(|| error("not a valid STEP exchange structure (ISO 10303-21); export it again from the CAD system".into()))?;
+    let file_units = TessellateOptions {
+        mesh_size: options.mesh_size.map(|m| m / unit_millimetres),
+        chord: options.chord.map(|c| c / unit_millimetres),
+    };
     let mut shell_ids: Vec<u64> = table.shell.keys().copied().collect();
     shell_ids.sort_unstable();
     let mut soup = TriangleSoup::default();
-    if shell_ids.is_empty() {
+    let (mesh_size, chord) = if shell_ids.is_empty() {
         let surfaces = loose_surfaces(&table)
             .map_err(|message| error(format!("{message}{}", unsupported_note())))?;
         if surfaces.is_empty() {
@@ -126,47 +141,34 @@ pub fn read_step(
                 unsupported_note()
             )));
         }
-        append_loose_surfaces(&mut soup, &surfaces, options, unit_millimetres).map_err(error)?;
-    }
-    for id in shell_ids {
-        let shell = &table.shell[&id];
-        let converted = catch_unwind(AssertUnwindSafe(|| table.to_compressed_shell(shell)))
-            .map_err(|_| {
-                error(format!(
-                    "shell #{id}: truck-stepio failed on it{}",
-                    unsupported_note()
-                ))
-            })?
-            .map_err(|e| error(format!("shell #{id}: {e}{}", unsupported_note())))?;
-        let size = shell_size(&converted);
-        let chord_in_file_units = options
-            .chord
-            .map_or(size * DEFAULT_CHORD_RATIO, |chord| chord / unit_millimetres);
-        let tolerance = chord_in_file_units.clamp(
-            MINIMUM_MESHALGO_TOLERANCE,
-            size.max(MINIMUM_MESHALGO_TOLERANCE),
-        );
-        let polygon = catch_unwind(AssertUnwindSafe(|| {
-            let mut polygon = converted.robust_triangulation(tolerance).to_polygon();
-            polygon
-                .put_together_same_attrs(size * STEP_WELD_RATIO)
-                .remove_degenerate_faces()
-                .remove_unused_attrs();
-            polygon
-        }))
-        .map_err(|_| {
-            error(format!(
-                "shell #{id}: truck-meshalgo failed to tessellate it{}",
-                unsupported_note()
-            ))
-        })?;
-        append_polygon(&mut soup, &polygon, unit_millimetres);
-    }
+        append_loose_surfaces(&mut soup, &surfaces, &file_units).map_err(error)?
+    } else {
+        let shells = convert_shells(&table, &shell_ids, &statements)
+            .map_err(|message| error(format!("{message}{}", unsupported_note())))?;
+        let size = shells_size(&shells);
+        let (mesh_size, chord) =
+            sizes_for_diagonal(size, &file_units).map_err(|e| error(e.to_string()))?;
+        for (shell_id, shell) in shell_ids.iter().zip(&shells) {
+            let first_source = soup.face_sources.last().map_or(0, |s| s + 1);
+            mesh_shell(&mut soup, shell, first_source, mesh_size, chord, size).map_err(|e| {
+                let faces = shell_faces(&statements, *shell_id);
+                let face = <[u64]>::get(&faces, e.face)
+                    .map(|&id| describe_face(&statements, id))
+                    .unwrap_or_else(|| format!("face {}", e.face + 1));
+                error(format!("shell #{shell_id}, {face}: {}", e.message))
+            })?;
+        }
+        weld_coincident(&mut soup);
+        (mesh_size, chord)
+    };
     if soup.triangles.is_empty() {
         return Err(error(format!(
             "no face could be tessellated{}",
             unsupported_note()
         )));
+    }
+    for p in &mut soup.positions {
+        *p *= unit_millimetres;
     }
     let name = path
         .file_stem()
@@ -175,9 +177,104 @@ pub fn read_step(
         .to_string();
     Ok(StepInput {
         name,
+        minimum_angle: minimum_angle(&soup),
         soup,
         unit_millimetres,
+        mesh_size: mesh_size * unit_millimetres,
+        chord: chord * unit_millimetres,
     })
+}
+
+/// The file with every surface curve's 3D curve preferred to its parameter-space curves
+/// (`.PCURVE_S1.` and `.PCURVE_S2.` become `.CURVE_3D.`). The representations are equivalent by
+/// the standard; truck-stepio trims a closed parameter-space curve (Open CASCADE writes circles
+/// as closed 2D B-splines) the long way round, but trims 3D circles and lines correctly.
+fn prefer_3d_curves(text: &str) -> String {
+    text.replace(".PCURVE_S1.", ".CURVE_3D.")
+        .replace(".PCURVE_S2.", ".CURVE_3D.")
+}
+
+/// Converts the shells with truck-stepio; a face it drops (an unreadable surface) is an error
+/// naming the face.
+fn convert_shells(
+    table: &Table,
+    shell_ids: &[u64],
+    statements: &Statements,
+) -> Result<Vec<StepShell>, String> {
+    let mut shells = Vec::with_capacity(shell_ids.len());
+    for &id in shell_ids {
+        let shell = &table.shell[&id];
+        let converted = catch_unwind(AssertUnwindSafe(|| table.to_compressed_shell(shell)))
+            .map_err(|_| format!("shell #{id}: truck-stepio failed on it"))?
+            .map_err(|e| format!("shell #{id}: {e}"))?;
+        let declared = shell_faces(statements, id);
+        if converted.faces.len() < declared.len() {
+            let unreadable: Vec<String> = declared
+                .iter()
+                .filter(|&&face| {
+                    face_surface(statements, face).is_none_or(|(_, names)| {
+                        names.iter().any(|name| is_unsupported_geometry(name))
+                    })
+                })
+                .map(|&face| describe_face(statements, face))
+                .collect();
+            return Err(format!(
+                "shell #{id}: {} of its {} faces cannot be read{}",
+                declared.len() - converted.faces.len(),
+                declared.len(),
+                if unreadable.is_empty() {
+                    String::new()
+                } else {
+                    format!(" ({})", unreadable.join(", "))
+                }
+            ));
+        }
+        shells.push(converted);
+    }
+    Ok(shells)
+}
+
+/// The face entities a shell statement lists, in order.
+fn shell_faces(statements: &Statements, shell: u64) -> Vec<u64> {
+    statements
+        .get(&shell)
+        .map_or(Vec::new(), |(_, references)| {
+            references
+                .iter()
+                .copied()
+                .filter(|r| {
+                    statements.get(r).is_some_and(|(names, _)| {
+                        names
+                            .iter()
+                            .any(|name| FACE_ENTITIES.contains(&name.as_str()))
+                    })
+                })
+                .collect()
+        })
+}
+
+/// A face's surface entity `(id, names)` (through an oriented face).
+fn face_surface(statements: &Statements, face: u64) -> Option<(u64, Vec<String>)> {
+    let (names, references) = statements.get(&face)?;
+    if names.iter().any(|name| name == "ORIENTED_FACE") {
+        return face_surface(statements, *references.last()?);
+    }
+    let surface = *references.last()?;
+    statements
+        .get(&surface)
+        .map(|(names, _)| (surface, names.clone()))
+}
+
+/// `ADVANCED_FACE #17 on CONICAL_SURFACE #31`.
+fn describe_face(statements: &Statements, face: u64) -> String {
+    let name = statements
+        .get(&face)
+        .and_then(|(names, _)| names.first())
+        .map_or("face", String::as_str);
+    match face_surface(statements, face) {
+        Some((id, surface)) => format!("{name} #{face} on {} (#{id})", surface.join(" ")),
+        None => format!("{name} #{face}"),
+    }
 }
 
 /// The B-spline and NURBS surfaces of a file with no shell (a surface-only export), each with
@@ -225,13 +322,14 @@ fn loose_surfaces(table: &Table) -> Result<Vec<(u64, PatchGeometry)>, String> {
     Ok(surfaces)
 }
 
-/// Meshes loose surfaces over their whole parameter domains with the patch mesher.
+/// Meshes loose surfaces over their whole parameter domains with the patch mesher (file units);
+/// returns the mesh size and chord of the last surface.
 fn append_loose_surfaces(
     soup: &mut TriangleSoup,
     surfaces: &[(u64, PatchGeometry)],
-    options: &StepOptions,
-    unit_millimetres: f64,
-) -> Result<(), String> {
+    file_units: &TessellateOptions,
+) -> Result<(f64, f64), String> {
+    let mut sizes = (0.0, 0.0);
     for (index, (id, geometry)) in surfaces.iter().enumerate() {
         let PatchGeometry::Nurbs(nurbs) = geometry else {
             continue;
@@ -258,63 +356,31 @@ fn append_loose_surfaces(
             fold_lines: Vec::new(),
             weld: true,
         };
-        let file_units = TessellateOptions {
-            mesh_size: options.mesh_size.map(|m| m / unit_millimetres),
-            chord: options.chord.map(|c| c / unit_millimetres),
-        };
         let (mesh_size, chord) =
-            resolve_sizes(&part, &file_units).map_err(|e| format!("surface #{id}: {e}"))?;
+            resolve_sizes(&part, file_units).map_err(|e| format!("surface #{id}: {e}"))?;
+        sizes = (mesh_size, chord);
         let mesh = catch_unwind(AssertUnwindSafe(|| {
             mesh_patch(&patch, &[], mesh_size, chord)
         }))
         .map_err(|_| format!("surface #{id}: the surface could not be tessellated"))?
         .map_err(|e| format!("surface #{id}: {e}"))?;
         let offset = soup.positions.len() as u32;
-        soup.positions
-            .extend(mesh.positions.iter().map(|&p| p * unit_millimetres));
+        soup.positions.extend_from_slice(&mesh.positions);
         soup.triangles
             .extend(mesh.triangles.iter().map(|t| t.map(|v| v + offset)));
         soup.face_sources
             .extend(std::iter::repeat_n(index as u32, mesh.triangles.len()));
     }
-    Ok(())
+    Ok(sizes)
 }
 
-fn shell_size<C, S>(shell: &truck_topology::compress::CompressedShell<Point3, C, S>) -> f64 {
-    let mut low = DVec3::splat(f64::INFINITY);
-    let mut high = DVec3::splat(f64::NEG_INFINITY);
-    for p in &shell.vertices {
-        let p = DVec3::new(p.x, p.y, p.z);
-        low = low.min(p);
-        high = high.max(p);
-    }
-    let size = (high - low).length();
-    if size.is_finite() { size } else { 0.0 }
-}
+/// Each entity instance of the data section: its names (several for a complex instance) and
+/// the instances it refers to, in order.
+type Statements = BTreeMap<u64, (Vec<String>, Vec<u64>)>;
 
-fn append_polygon(soup: &mut TriangleSoup, polygon: &PolygonMesh, scale: f64) {
-    let offset = soup.positions.len() as u32;
-    soup.positions.extend(
-        polygon
-            .positions()
-            .iter()
-            .map(|p| DVec3::new(p.x, p.y, p.z) * scale),
-    );
-    let source = soup.face_sources.last().map_or(0, |s| s + 1);
-    for triangle in polygon.faces().triangle_iter() {
-        soup.triangles.push([
-            offset + triangle[0].pos as u32,
-            offset + triangle[1].pos as u32,
-            offset + triangle[2].pos as u32,
-        ]);
-        soup.face_sources.push(source);
-    }
-}
-
-/// Entity instances `#id = NAME(...)` of the data section, with complex instances'
-/// constituent names, in file order.
-fn entity_names(text: &str) -> Vec<(u64, String)> {
-    let mut names = Vec::new();
+/// Entity instances `#id = NAME(...)` of the data section (see [`Statements`]).
+fn statements(text: &str) -> Statements {
+    let mut statements = Statements::new();
     for statement in text.split(';') {
         let statement = statement.trim();
         let Some(rest) = statement.strip_prefix('#') else {
@@ -327,6 +393,7 @@ fn entity_names(text: &str) -> Vec<(u64, String)> {
             continue;
         };
         let body = body.trim();
+        let mut names = Vec::new();
         if let Some(complex) = body.strip_prefix('(') {
             let mut depth = 0usize;
             let mut word = String::new();
@@ -334,7 +401,7 @@ fn entity_names(text: &str) -> Vec<(u64, String)> {
                 match c {
                     '(' => {
                         if depth == 0 && !word.trim().is_empty() {
-                            names.push((id, word.trim().to_string()));
+                            names.push(word.trim().to_string());
                         }
                         word.clear();
                         depth += 1;
@@ -345,20 +412,40 @@ fn entity_names(text: &str) -> Vec<(u64, String)> {
                 }
             }
         } else if let Some((name, _)) = body.split_once('(') {
-            names.push((id, name.trim().to_string()));
+            names.push(name.trim().to_string());
         }
+        statements.insert(id, (names, references(body)));
     }
-    names
+    statements
 }
 
-/// Geometric entities (`*_SURFACE`, `*_CURVE`) truck-stepio does not convert.
-fn unsupported_entities(text: &str) -> BTreeSet<(u64, String)> {
-    entity_names(text)
-        .into_iter()
-        .filter(|(_, name)| {
-            (name.ends_with("_SURFACE") || name.ends_with("_CURVE") || name.ends_with("_CURVE_3D"))
-                && !name.contains("STYLE")
-                && !SUPPORTED_GEOMETRY.contains(&name.as_str())
+/// The `#id` references of a statement's body, in order.
+fn references(body: &str) -> Vec<u64> {
+    body.split('#')
+        .skip(1)
+        .filter_map(|rest| {
+            let digits: String = rest.chars().take_while(char::is_ascii_digit).collect();
+            digits.parse().ok()
+        })
+        .collect()
+}
+
+/// Whether a name is a geometric entity (`*_SURFACE`, `*_CURVE`) truck-stepio does not convert.
+fn is_unsupported_geometry(name: &str) -> bool {
+    (name.ends_with("_SURFACE") || name.ends_with("_CURVE") || name.ends_with("_CURVE_3D"))
+        && !name.contains("STYLE")
+        && !SUPPORTED_GEOMETRY.contains(&name)
+}
+
+/// Geometric entities truck-stepio does not convert, `(id, name)`.
+fn unsupported_entities(statements: &Statements) -> BTreeSet<(u64, String)> {
+    statements
+        .iter()
+        .flat_map(|(id, (names, _))| {
+            names
+                .iter()
+                .filter(|name| is_unsupported_geometry(name))
+                .map(|name| (*id, name.clone()))
         })
         .collect()
 }
@@ -421,7 +508,7 @@ mod tests {
     #[test]
     fn unsupported_geometry_is_named() {
         let text = "#10=OFFSET_SURFACE('',#11,2.,.F.);\n#11=PLANE('',#12);\n#12=SURFACE_STYLE_USAGE(.BOTH.,#13);";
-        let found = unsupported_entities(text);
+        let found = unsupported_entities(&statements(text));
         assert_eq!(
             found.into_iter().collect::<Vec<_>>(),
             vec![(10, "OFFSET_SURFACE".to_string())]

@@ -11,6 +11,8 @@
 //! [`DEFAULT_DIVISIONS`] edges along the diagonal, a chord of [`DEFAULT_SURFACE_CHORD_RATIO`] of
 //! it.
 
+pub mod brep;
+pub mod face_domain;
 pub mod face_mesh;
 pub mod fan;
 pub mod patch;
@@ -209,7 +211,15 @@ pub fn resolve_sizes(
     part: &CadPart,
     options: &TessellateOptions,
 ) -> Result<(f64, f64), TessellateError> {
-    let size = part.size();
+    sizes_for_diagonal(part.size(), options)
+}
+
+/// The mesh size and chord tolerance for a part whose bounding diagonal is `size`, defaults
+/// filled in and checked.
+pub fn sizes_for_diagonal(
+    size: f64,
+    options: &TessellateOptions,
+) -> Result<(f64, f64), TessellateError> {
     let mesh_size = options.mesh_size.unwrap_or(size / DEFAULT_DIVISIONS);
     let chord = options.chord.unwrap_or(size * DEFAULT_SURFACE_CHORD_RATIO);
     let minimum = size * MINIMUM_MESH_SIZE_RATIO;

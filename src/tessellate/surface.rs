@@ -250,6 +250,18 @@ pub enum PatchGeometry {
     Plane(Frame),
     /// A NURBS patch (a B-spline patch has all weights 1), truck-geometry.
     Nurbs(NurbsSurface<Vector4>),
+    /// Any other parametric surface, evaluated in a domain of its own (a STEP face in a domain
+    /// mapped from its surface's parameters, see [`super::face_domain`]).
+    Mapped(std::sync::Arc<dyn MappedSurface>),
+}
+
+/// A parametric surface evaluated through a trait object: a point and its two partial derivatives
+/// at domain coordinates.
+pub trait MappedSurface: std::fmt::Debug + Send + Sync {
+    /// The point at domain coordinates `parameters`.
+    fn point(&self, parameters: DVec2) -> DVec3;
+    /// The partial derivatives along the two domain coordinates.
+    fn derivatives(&self, parameters: DVec2) -> (DVec3, DVec3);
 }
 
 impl PatchGeometry {
@@ -266,6 +278,7 @@ impl PatchGeometry {
                 let point = surface.subs(parameters.x, parameters.y);
                 DVec3::new(point.x, point.y, point.z)
             }
+            PatchGeometry::Mapped(surface) => surface.point(parameters),
         }
     }
 
@@ -278,6 +291,7 @@ impl PatchGeometry {
                 let v = surface.vder(parameters.x, parameters.y);
                 (DVec3::new(u.x, u.y, u.z), DVec3::new(v.x, v.y, v.z))
             }
+            PatchGeometry::Mapped(surface) => surface.derivatives(parameters),
         }
     }
 }

@@ -112,4 +112,6 @@ golden! {
     golden_cone_frustum_half_step: "cone_frustum_half.step",
     golden_bspline_patch_step: "bspline_patch.step",
     golden_loose_hypar_metres_step: "loose_hypar_metres.step",
+    golden_cone_frustum_freecad_step: "cone_frustum_freecad.step",
+    golden_bspline_loft_freecad_step: "bspline_loft_freecad.step",
 }

@@ -1,0 +1,97 @@
+"""Sample generator (not part of the build or the tests): writes flatcut's STEP samples with
+FreeCAD's Part workbench, i.e. the OpenCASCADE STEP writer, so that flatcut is checked against
+files another CAD system wrote.
+
+Run from the repository root, headless:
+
+    freecadcmd samples/step-sources/freecad_samples.py
+
+(FreeCAD 0.20, OpenCASCADE 7.6). It writes, in samples/:
+
+- cone_frustum_freecad.step: the full closed side face of a cone frustum (bottom radius 100 mm,
+  top radius 50 mm, height 80 mm), one ADVANCED_FACE on a CONICAL_SURFACE with a seam edge,
+  AP214, millimetres.
+- bspline_loft_freecad.step: a doubly curved B-spline face interpolated through a 5 x 4 grid of
+  points (200 x 150 mm), B_SPLINE_SURFACE_WITH_KNOTS, AP214, millimetres.
+- box_fillet_pocket_inch.step: a solid box 4 x 3 x 2 in with one edge filleted (radius 0.5 in)
+  and a blind hole (diameter 1 in, depth 1 in) in its top face: MANIFOLD_SOLID_BREP with planes,
+  cylinders and a face with an inner loop, AP214, inches.
+
+It prints each shape's area (OpenCASCADE's own integration) in mm^2: flatcut's tests compare
+its tessellated areas with these figures.
+"""
+
+import math
+import os
+import shutil
+import subprocess
+
+import FreeCAD
+
+# FreeCAD's Part module reads the STEP export unit (0 millimetres, 1 metres, 2 inches) and the
+# schema from these preferences once, when it is imported: one process writes one unit, so the
+# inch sample is written by a second run of this script with FLATCUT_SAMPLE_UNIT=in.
+UNIT = os.environ.get("FLATCUT_SAMPLE_UNIT", "mm")
+for group in ("Mod/Part/STEP", "Mod/Import/hSTEP"):
+    STEP_PREFERENCES = FreeCAD.ParamGet("User parameter:BaseApp/Preferences/" + group)
+    STEP_PREFERENCES.SetInt("Unit", {"mm": 0, "in": 2}[UNIT])
+    STEP_PREFERENCES.SetString("Scheme", "AP214IS")
+
+import Part  # noqa: E402  (after the preferences, see above)
+
+SCRIPT = os.path.abspath(__file__) if "__file__" in globals() else \
+    os.path.abspath("samples/step-sources/freecad_samples.py")
+SAMPLES = os.path.normpath(os.path.join(os.path.dirname(SCRIPT), ".."))
+
+
+def export(shape, name):
+    path = os.path.join(SAMPLES, name)
+    shape.exportStep(path)
+    print("%s: %d faces, area %.6f mm^2" % (name, len(shape.Faces), shape.Area))
+
+
+def cone_frustum_side():
+    cone = Part.makeCone(100.0, 50.0, 80.0)
+    side = [f for f in cone.Faces if f.Surface.__class__.__name__ == "Cone"][0]
+    return Part.Shell([side])
+
+
+def bspline_loft():
+    rows = []
+    for j in range(4):
+        y = 150.0 * j / 3.0
+        row = []
+        for i in range(5):
+            x = 200.0 * i / 4.0
+            z = 30.0 * math.sin(math.pi * x / 200.0) + 20.0 * math.cos(math.pi * y / 150.0) \
+                + 0.0005 * (x - 100.0) * (y - 75.0)
+            row.append(FreeCAD.Vector(x, y, z))
+        rows.append(row)
+    surface = Part.BSplineSurface()
+    surface.interpolate(rows)
+    return Part.Shell([surface.toShape()])
+
+
+def box_fillet_pocket():
+    inch = 25.4
+    box = Part.makeBox(4 * inch, 3 * inch, 2 * inch)
+    edge = [e for e in box.Edges
+            if abs(e.BoundBox.ZMin - 2 * inch) < 1e-9 and abs(e.BoundBox.ZMax - 2 * inch) < 1e-9
+            and abs(e.BoundBox.YMin) < 1e-9 and abs(e.BoundBox.YMax) < 1e-9][0]
+    filleted = box.makeFillet(0.5 * inch, [edge])
+    hole = Part.makeCylinder(0.5 * inch, 1 * inch + 1.0,
+                             FreeCAD.Vector(2.5 * inch, 1.75 * inch, 1 * inch))
+    return filleted.cut(hole)
+
+
+def main():
+    if UNIT == "mm":
+        export(cone_frustum_side(), "cone_frustum_freecad.step")
+        export(bspline_loft(), "bspline_loft_freecad.step")
+        environment = dict(os.environ, FLATCUT_SAMPLE_UNIT="in")
+        subprocess.run([shutil.which("freecadcmd"), SCRIPT], env=environment, check=True)
+    else:
+        export(box_fillet_pocket(), "box_fillet_pocket_inch.step")
+
+
+main()

@@ -1,0 +1,475 @@
+//! The faces of boundary-representation shells (STEP solids and open shells) meshed into one
+//! welded triangle soup.
+//!
+//! Input: truck-stepio's compressed shells (file units) and the target edge length and chord
+//! tolerance (file units). Output: a [`TriangleSoup`] whose `face_sources` number the faces in
+//! order (so face boundaries are the edges between triangles of different sources), one manifold
+//! surface where faces share edges.
+//!
+//! Method:
+//! 1. Each face gets a mesh size: the target, or less where the face curves so much that the
+//!    chord tolerance needs smaller triangles ([`face_mesh_sizes`]: `√(6 chord / κ)` for the
+//!    face's largest principal curvature `κ`), so the refinement reaches the chord without
+//!    late Steiner points near the boundary. Every edge is then sampled once ([`sample_edge`]):
+//!    equal parameter steps, as many as keep each piece shorter than [`EDGE_PIECE_RATIO`] of the
+//!    smaller mesh size of its faces and within the chord tolerance of the curve, the ends
+//!    exactly at the edge's vertices.
+//! 2. Each face's boundary loops (its edges' samples, in loop order) are mapped into a domain in
+//!    which lengths approximate surface lengths ([`super::face_domain`]: cones developed,
+//!    cylinders unrolled, other surfaces in their own parameters, periodic parameters unwrapped).
+//! 3. The trimmed domain is meshed by the patch mesher ([`super::patch::mesh_patch`]: spade's
+//!    constrained Delaunay refinement to the mesh size, the chord and a 25° minimum angle, the
+//!    boundary samples kept as constraint edges).
+//! 4. Boundary vertices are snapped to their edge samples, so vertices of a shared edge are the
+//!    same points on both faces (and on both sides of a closed face's seam), and vertices at the
+//!    same position are welded: a closed cone's side face becomes a ring.
+//! 5. Each face's triangles are oriented along the face's normal (its surface's normal, reversed
+//!    when the face is), so a consistently oriented shell gives a consistently oriented soup.
+
+use std::collections::BTreeMap;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::Arc;
+
+use glam::{DVec2, DVec3};
+use truck_meshalgo::prelude::*;
+use truck_stepio::r#in::alias::{Curve3D, Surface as StepSurface};
+use truck_topology::compress::{CompressedFace, CompressedShell};
+
+use super::face_domain::{BoundaryLoop, FaceSurface, face_domain};
+use super::patch::mesh_patch;
+use super::surface::{PatchGeometry, PatchSurface};
+use crate::mesh::TriangleSoup;
+
+/// A shell as truck-stepio converts it.
+pub type StepShell = CompressedShell<Point3, Curve3D, StepSurface>;
+
+/// Edge pieces are at most this fraction of the mesh size, so the patch mesher never splits a
+/// boundary piece again (its length on the surface stays under the mesh size).
+pub const EDGE_PIECE_RATIO: f64 = 0.8;
+/// Probe samples per edge when the shells' size is measured.
+const SIZE_SAMPLES: usize = 16;
+/// At most this many pieces per edge (a runaway count means a broken curve).
+const MAX_EDGE_PIECES: usize = 200_000;
+/// Rounds of the edge piece count search.
+const EDGE_ROUNDS: usize = 12;
+/// Boundary vertices within this fraction of the face's domain size of a boundary sample are
+/// that sample.
+const SNAP_RATIO: f64 = 1e-9;
+
+/// A face that could not be meshed: its index in the shell and why.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FaceError {
+    /// Index of the face in its shell.
+    pub face: usize,
+    /// What went wrong.
+    pub message: String,
+}
+
+/// The bounding diagonal of the shells' edges (probe samples): the part's size.
+pub fn shells_size(shells: &[StepShell]) -> f64 {
+    let mut low = DVec3::splat(f64::INFINITY);
+    let mut high = DVec3::splat(f64::NEG_INFINITY);
+    for shell in shells {
+        for p in &shell.vertices {
+            low = low.min(to_dvec(*p));
+            high = high.max(to_dvec(*p));
+        }
+        for edge in &shell.edges {
+            let (start, end) = edge.curve.range_tuple();
+            for k in 0..=SIZE_SAMPLES {
+                let t = start + (end - start) * k as f64 / SIZE_SAMPLES as f64;
+                let p = to_dvec(edge.curve.subs(t));
+                if p.is_finite() {
+                    low = low.min(p);
+                    high = high.max(p);
+                }
+            }
+        }
+    }
+    let size = (high - low).length();
+    if size.is_finite() { size } else { 0.0 }
+}
+
+/// Meshes every face of `shell` (see the module documentation) and appends them to `soup`, face
+/// sources continuing from `first_source`; `size` is the part's size.
+pub fn mesh_shell(
+    soup: &mut TriangleSoup,
+    shell: &StepShell,
+    first_source: u32,
+    mesh_size: f64,
+    chord: f64,
+    size: f64,
+) -> Result<(), FaceError> {
+    let vertices = |edge: usize| {
+        let (a, b) = shell.edges[edge].vertices;
+        (to_dvec(shell.vertices[a]), to_dvec(shell.vertices[b]))
+    };
+    let sample_all = |sizes: &[f64]| -> Vec<Vec<DVec3>> {
+        (0..shell.edges.len())
+            .map(|e| sample_edge(&shell.edges[e].curve, vertices(e), sizes[e], chord))
+            .collect()
+    };
+    let face_sizes = face_mesh_sizes(
+        shell,
+        &sample_all(&vec![mesh_size; shell.edges.len()]),
+        mesh_size,
+        chord,
+        size,
+    );
+    let mut edge_sizes = vec![mesh_size; shell.edges.len()];
+    for (face, &face_size) in shell.faces.iter().zip(&face_sizes) {
+        for edge in face.boundaries.iter().flatten() {
+            if let Some(edge_size) = edge_sizes.get_mut(edge.index) {
+                *edge_size = edge_size.min(face_size);
+            }
+        }
+    }
+    let edges = sample_all(&edge_sizes);
+    for (index, face) in shell.faces.iter().enumerate() {
+        let error = |message: String| FaceError {
+            face: index,
+            message,
+        };
+        let loops = face_loops(face, &edges, size).map_err(error)?;
+        let face_mesh = catch_unwind(AssertUnwindSafe(|| {
+            mesh_face(face, &loops, face_sizes[index], chord, size)
+        }))
+        .map_err(|_| error("the face could not be tessellated".into()))?
+        .map_err(error)?;
+        append_face(soup, &face_mesh, first_source + index as u32);
+    }
+    Ok(())
+}
+
+/// Each face's mesh size: the mesh size, or less where the face curves so much that triangles of
+/// the mesh size would stray farther than the chord from it (a triangle of side `h` on a surface
+/// of curvature `κ` strays about `κ h² / 6` at its centre). `edges` are coarse edge samples
+/// (for the faces' domains only); a face whose domain cannot be built keeps the mesh size (its
+/// error is reported when it is meshed).
+fn face_mesh_sizes(
+    shell: &StepShell,
+    edges: &[Vec<DVec3>],
+    mesh_size: f64,
+    chord: f64,
+    size: f64,
+) -> Vec<f64> {
+    shell
+        .faces
+        .iter()
+        .map(|face| {
+            let curvature = face_loops(face, edges, size)
+                .ok()
+                .and_then(|loops| {
+                    catch_unwind(AssertUnwindSafe(|| {
+                        face_domain(&face.surface, &loops, size)
+                    }))
+                    .ok()?
+                    .ok()
+                })
+                .map_or(0.0, |domain| domain.curvature);
+            if curvature > 0.0 {
+                mesh_size.min((6.0 * chord / curvature).sqrt())
+            } else {
+                mesh_size
+            }
+        })
+        .collect()
+}
+
+/// Welds vertices at exactly the same position (shared edge samples, both sides of a seam) and
+/// drops the triangles that collapse.
+pub fn weld_coincident(soup: &mut TriangleSoup) {
+    let mut index_of: BTreeMap<[u64; 3], u32> = BTreeMap::new();
+    let mut positions = Vec::new();
+    let remap: Vec<u32> = soup
+        .positions
+        .iter()
+        .map(|p| {
+            *index_of
+                .entry([p.x, p.y, p.z].map(|c| (c + 0.0).to_bits()))
+                .or_insert_with(|| {
+                    positions.push(*p);
+                    (positions.len() - 1) as u32
+                })
+        })
+        .collect();
+    let mut triangles = Vec::with_capacity(soup.triangles.len());
+    let mut face_sources = Vec::with_capacity(soup.triangles.len());
+    for (triangle, source) in soup.triangles.iter().zip(&soup.face_sources) {
+        let [a, b, c] = triangle.map(|v| remap[v as usize]);
+        if a != b && b != c && c != a {
+            triangles.push([a, b, c]);
+            face_sources.push(*source);
+        }
+    }
+    soup.positions = positions;
+    soup.triangles = triangles;
+    soup.face_sources = face_sources;
+}
+
+/// A face's mesh: positions (boundary vertices exactly on their edge samples) and triangles.
+struct MeshedFace {
+    positions: Vec<DVec3>,
+    triangles: Vec<[u32; 3]>,
+}
+
+fn append_face(soup: &mut TriangleSoup, face: &MeshedFace, source: u32) {
+    let offset = soup.positions.len() as u32;
+    soup.positions.extend_from_slice(&face.positions);
+    soup.triangles
+        .extend(face.triangles.iter().map(|t| t.map(|v| v + offset)));
+    soup.face_sources
+        .extend(std::iter::repeat_n(source, face.triangles.len()));
+}
+
+/// Samples an edge's curve from `ends.0` to `ends.1` (see the module documentation).
+fn sample_edge(curve: &Curve3D, ends: (DVec3, DVec3), mesh_size: f64, chord: f64) -> Vec<DVec3> {
+    let point = |t: f64| to_dvec(curve.subs(t));
+    let (start, end) = edge_range(curve, ends, mesh_size);
+    let closed = ends.0.distance(ends.1) <= f64::EPSILON * ends.0.length().max(1.0);
+    let minimum = if closed { 3 } else { 1 };
+    let longest = EDGE_PIECE_RATIO * mesh_size;
+    let mut pieces = minimum;
+    for _ in 0..EDGE_ROUNDS {
+        let parameter = |k: f64| start + (end - start) * k / pieces as f64;
+        let (mut length_ratio, mut chord_ratio) = (0.0_f64, 0.0_f64);
+        for k in 0..pieces {
+            let (a, b) = (point(parameter(k as f64)), point(parameter(k as f64 + 1.0)));
+            let middle = point(parameter(k as f64 + 0.5));
+            length_ratio = length_ratio.max(a.distance(b) / longest);
+            chord_ratio = chord_ratio.max(middle.distance((a + b) * 0.5) / chord);
+        }
+        if length_ratio <= 1.0 && chord_ratio <= 1.0 {
+            break;
+        }
+        let wanted = pieces as f64 * length_ratio.max(chord_ratio.sqrt()).max(1.0);
+        let next = (wanted.ceil() as usize + 1).max(pieces + 1);
+        if next > MAX_EDGE_PIECES {
+            break;
+        }
+        pieces = next;
+    }
+    let mut points: Vec<DVec3> = (0..=pieces)
+        .map(|k| point(start + (end - start) * k as f64 / pieces as f64))
+        .collect();
+    points[0] = ends.0;
+    points[pieces] = ends.1;
+    points
+}
+
+/// The curve's parameter range between the edge's vertices: its own range when its ends are the
+/// vertices, else the parameters nearest the vertices (a vertex within a fraction of the mesh
+/// size of the curve's end is that end).
+fn edge_range(curve: &Curve3D, ends: (DVec3, DVec3), mesh_size: f64) -> (f64, f64) {
+    let (start, end) = curve.range_tuple();
+    let tolerance = 1e-6 * mesh_size;
+    let nearest = |vertex: DVec3, own: f64| {
+        if to_dvec(curve.subs(own)).distance(vertex) <= tolerance {
+            return own;
+        }
+        curve
+            .search_nearest_parameter(Point3::new(vertex.x, vertex.y, vertex.z), None, 100)
+            .unwrap_or(own)
+    };
+    (nearest(ends.0, start), nearest(ends.1, end))
+}
+
+/// The face's boundary loops as points on the surface, each point once (a loop does not repeat
+/// its first point).
+fn face_loops(
+    face: &CompressedFace<StepSurface>,
+    edges: &[Vec<DVec3>],
+    size: f64,
+) -> Result<Vec<BoundaryLoop>, String> {
+    let gap_tolerance = 1e-6 * size.max(f64::MIN_POSITIVE);
+    let mut loops = Vec::with_capacity(face.boundaries.len());
+    for boundary in &face.boundaries {
+        let mut points: Vec<DVec3> = Vec::new();
+        let mut edge_starts = Vec::with_capacity(boundary.len());
+        for edge in boundary {
+            let samples = edges
+                .get(edge.index)
+                .ok_or_else(|| "a boundary edge could not be read".to_string())?;
+            let oriented: Vec<DVec3> = if edge.orientation {
+                samples.clone()
+            } else {
+                samples.iter().rev().copied().collect()
+            };
+            if let Some(&last) = points.last() {
+                if last.distance(oriented[0]) > gap_tolerance {
+                    return Err(
+                        "its boundary loop is not closed (an edge could not be read or \
+                                the edges are out of order)"
+                            .into(),
+                    );
+                }
+                points.pop();
+            }
+            edge_starts.push(points.len());
+            points.extend(oriented);
+        }
+        if points.len() > 1 && points[0].distance(points[points.len() - 1]) <= gap_tolerance {
+            points.pop();
+        } else if points.len() > 1 {
+            return Err("its boundary loop is not closed".into());
+        }
+        if points.len() >= 2 {
+            loops.push(BoundaryLoop {
+                points,
+                edge_starts,
+            });
+        }
+    }
+    if loops.is_empty() {
+        return Err("it has no boundary loop".into());
+    }
+    Ok(loops)
+}
+
+fn mesh_face(
+    face: &CompressedFace<StepSurface>,
+    loops: &[BoundaryLoop],
+    mesh_size: f64,
+    chord: f64,
+    size: f64,
+) -> Result<MeshedFace, String> {
+    let domain = face_domain(&face.surface, loops, size).map_err(|e| e.0)?;
+    let (boundary, samples) = domain_boundary(&domain.loops, loops);
+    let (outer, holes) = outer_and_holes(boundary);
+    let patch = PatchSurface {
+        geometry: PatchGeometry::Mapped(Arc::new(domain.surface.clone())),
+        outer,
+        holes,
+    };
+    let mesh = mesh_patch(&patch, &[], mesh_size, chord).map_err(|e| e.to_string())?;
+    if std::env::var_os("FLATCUT_DEBUG_BREP").is_some() {
+        eprintln!("outer {:?}", patch.outer);
+        for t in &mesh.triangles {
+            let [a, b, c] = t.map(|v| mesh.parameters[v as usize]);
+            let area = 0.5 * (b - a).perp_dot(c - a);
+            if area.abs() < 1e-6 {
+                eprintln!("sliver {t:?} {a} {b} {c} area {area}");
+            }
+        }
+    }
+    let positions = snap_to_samples(&mesh.positions, &mesh.parameters, &samples);
+    let mut triangles = mesh.triangles;
+    if !follows_face_normal(
+        face,
+        &domain.surface,
+        &positions,
+        &mesh.parameters,
+        &triangles,
+    ) {
+        for triangle in &mut triangles {
+            triangle.swap(1, 2);
+        }
+    }
+    Ok(MeshedFace {
+        positions,
+        triangles,
+    })
+}
+
+/// Domain loops without repeated consecutive points, and every boundary sample as
+/// `(domain point, 3D point)`.
+#[allow(clippy::type_complexity)]
+fn domain_boundary(
+    domain_loops: &[Vec<DVec2>],
+    loops: &[BoundaryLoop],
+) -> (Vec<Vec<DVec2>>, Vec<(DVec2, DVec3)>) {
+    let mut cleaned = Vec::with_capacity(domain_loops.len());
+    let mut samples = Vec::new();
+    for (domain, points) in domain_loops.iter().zip(loops) {
+        let extent = domain
+            .iter()
+            .fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
+        let tolerance = SNAP_RATIO * extent.max(f64::MIN_POSITIVE);
+        let mut kept: Vec<DVec2> = Vec::with_capacity(domain.len());
+        for (&p, &q) in domain.iter().zip(&points.points) {
+            samples.push((p, q));
+            if kept.last().is_none_or(|last| last.distance(p) > tolerance) {
+                kept.push(p);
+            }
+        }
+        while kept.len() > 1 && kept[0].distance(kept[kept.len() - 1]) <= tolerance {
+            kept.pop();
+        }
+        if kept.len() >= 3 {
+            cleaned.push(kept);
+        }
+    }
+    (cleaned, samples)
+}
+
+/// The loop of largest area is the outer one (made counter-clockwise), the others are holes.
+fn outer_and_holes(mut loops: Vec<Vec<DVec2>>) -> (Vec<DVec2>, Vec<Vec<DVec2>>) {
+    let largest = (0..loops.len())
+        .max_by(|&a, &b| {
+            crate::geometry::signed_area(&loops[a])
+                .abs()
+                .total_cmp(&crate::geometry::signed_area(&loops[b]).abs())
+        })
+        .unwrap_or(0);
+    let mut outer = if loops.is_empty() {
+        Vec::new()
+    } else {
+        loops.remove(largest)
+    };
+    if crate::geometry::signed_area(&outer) < 0.0 {
+        outer.reverse();
+    }
+    (outer, loops)
+}
+
+/// Positions with every vertex at a boundary sample's domain point moved exactly onto the
+/// sample's 3D point.
+fn snap_to_samples(
+    positions: &[DVec3],
+    parameters: &[DVec2],
+    samples: &[(DVec2, DVec3)],
+) -> Vec<DVec3> {
+    let extent = samples
+        .iter()
+        .fold(0.0_f64, |m, (p, _)| m.max(p.abs().max_element()));
+    let tolerance = SNAP_RATIO * extent.max(f64::MIN_POSITIVE) * 10.0;
+    let mut sorted: Vec<(DVec2, DVec3)> = samples.to_vec();
+    sorted.sort_by(|a, b| a.0.x.total_cmp(&b.0.x));
+    positions
+        .iter()
+        .zip(parameters)
+        .map(|(&position, &parameter)| {
+            let from = sorted.partition_point(|(p, _)| p.x < parameter.x - tolerance);
+            sorted[from..]
+                .iter()
+                .take_while(|(p, _)| p.x <= parameter.x + tolerance)
+                .find(|(p, _)| p.distance(parameter) <= tolerance)
+                .map_or(position, |&(_, exact)| exact)
+        })
+        .collect()
+}
+
+/// Whether most triangles (by area) turn like the face's normal.
+fn follows_face_normal(
+    face: &CompressedFace<StepSurface>,
+    surface: &FaceSurface,
+    positions: &[DVec3],
+    parameters: &[DVec2],
+    triangles: &[[u32; 3]],
+) -> bool {
+    let sign = if face.orientation { 1.0 } else { -1.0 };
+    let agreement: f64 = triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| positions[v as usize]);
+            let centre = t.iter().map(|&v| parameters[v as usize]).sum::<DVec2>() / 3.0;
+            let normal = surface.native_normal(surface.native(centre));
+            (b - a).cross(c - a).dot(normal.normalize_or_zero())
+        })
+        .sum();
+    sign * agreement >= 0.0
+}
+
+fn to_dvec(p: Point3) -> DVec3 {
+    DVec3::new(p.x, p.y, p.z)
+}

@@ -1,0 +1,592 @@
+//! The domain a STEP face is meshed in: its surface's parameters mapped so that the domain has
+//! (nearly) the surface's own metric, so the patch mesher's angle and size bounds hold on the
+//! surface, not only in the parameter plane.
+//!
+//! Input: a face's surface (truck-stepio's [`StepSurface`]) and its boundary loops as points on
+//! the surface. Output: the loops in the domain ([`FaceDomain::loops`]) and a [`MappedSurface`]
+//! that evaluates the surface at domain coordinates, for [`super::patch::mesh_patch`].
+//!
+//! - Cylinders are unrolled (arc length, height): an isometry, so the domain *is* the flat
+//!   surface and a closed side face becomes a rectangle whose two seam sides are sampled alike.
+//! - Cones are developed in log-polar coordinates (angle about the apex in the development, log of
+//!   the distance from the apex): a conformal map, so angles are the surface's and lengths scale
+//!   smoothly; rulings and circles are straight lines along the axes (a polar development would
+//!   put a ruling's points off one line by round-off, and the mesher would make slivers there).
+//!   Faces that reach their apex keep their own parameters.
+//! - Other surfaces (planes, B-splines, NURBS, spheres, tori, swept curves) keep their own
+//!   parameters; the patch mesher scales them by the mean surface speeds.
+//!
+//! Boundary points are inverted into the surface's parameters (truck's search, then Gauss-Newton
+//! from the previous point of the loop), and periodic parameters are unwrapped along each loop so
+//! a loop that crosses the seam stays continuous.
+
+use std::ops::Bound;
+
+use glam::{DVec2, DVec3};
+use truck_meshalgo::prelude::*;
+use truck_stepio::r#in::alias::{ElementarySurface, Surface as StepSurface};
+
+use super::surface::MappedSurface;
+
+/// Grid intervals per parameter on which a face's curvature is sampled.
+const CURVATURE_SAMPLES: usize = 6;
+/// Gauss-Newton steps of a point inversion.
+const INVERSION_STEPS: usize = 12;
+/// Grid samples per parameter of the fallback search of a point inversion.
+const SEARCH_GRID: usize = 24;
+/// A boundary point farther than this fraction of the face's size from its inverted surface point
+/// means the inversion failed.
+const INVERSION_TOLERANCE_RATIO: f64 = 1e-5;
+/// A cone face reaching closer to its apex than this fraction of its largest distance from it
+/// keeps its own parameters (the log-polar map is singular at the apex).
+const APEX_RATIO: f64 = 1e-3;
+/// A cone whose radius changes less than this per unit of ruling length is a cylinder.
+const CYLINDER_SLOPE: f64 = 1e-9;
+
+/// A boundary point inverted onto the surface failed; the message says where.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DomainError(pub String);
+
+/// How a face's parameters `(u, v)` map to the domain it is meshed in.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum DomainMap {
+    /// The parameters themselves.
+    Native,
+    /// A cylinder unrolled: `(radius × angle, speed × t)`.
+    Unrolled {
+        angular: Axis,
+        radius: f64,
+        speed: f64,
+    },
+    /// A cone mapped conformally: its development in log-polar coordinates
+    /// `(ρ₀ k θ, ρ₀ ln(ρ / ρ₀))` with `ρ = r(t) / k` the distance from the apex along a ruling,
+    /// `r(t) = r0 + slope t` the radius and `k` the sine of the half-angle. Rulings and circles
+    /// are straight lines along the axes (so points of one ruling are exactly collinear) and
+    /// angles are those of the surface; lengths scale by `ρ / ρ₀`.
+    Developed {
+        angular: Axis,
+        r0: f64,
+        slope: f64,
+        k: f64,
+        /// Reference distance from the apex (the face's largest).
+        reference: f64,
+    },
+}
+
+/// Which surface parameter is the angle about the axis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Axis {
+    U,
+    V,
+}
+
+impl Axis {
+    /// `(t, θ)` (ruling parameter, angle) from `(u, v)`.
+    fn split(self, native: DVec2) -> (f64, f64) {
+        match self {
+            Axis::U => (native.y, native.x),
+            Axis::V => (native.x, native.y),
+        }
+    }
+
+    /// `(u, v)` from `(t, θ)`.
+    fn join(self, t: f64, angle: f64) -> DVec2 {
+        match self {
+            Axis::U => DVec2::new(angle, t),
+            Axis::V => DVec2::new(t, angle),
+        }
+    }
+}
+
+impl DomainMap {
+    fn domain_of(self, native: DVec2) -> DVec2 {
+        match self {
+            DomainMap::Native => native,
+            DomainMap::Unrolled {
+                angular,
+                radius,
+                speed,
+            } => {
+                let (t, angle) = angular.split(native);
+                DVec2::new(radius * angle, speed * t)
+            }
+            DomainMap::Developed {
+                angular,
+                r0,
+                slope,
+                k,
+                reference,
+            } => {
+                let (t, angle) = angular.split(native);
+                let rho = (r0 + slope * t) / k;
+                DVec2::new(reference * k * angle, reference * (rho / reference).ln())
+            }
+        }
+    }
+
+    fn native_of(self, domain: DVec2) -> DVec2 {
+        match self {
+            DomainMap::Native => domain,
+            DomainMap::Unrolled {
+                angular,
+                radius,
+                speed,
+            } => angular.join(domain.y / speed, domain.x / radius),
+            DomainMap::Developed {
+                angular,
+                r0,
+                slope,
+                k,
+                reference,
+            } => {
+                let rho = reference * (domain.y / reference).exp();
+                angular.join((k * rho - r0) / slope, domain.x / (reference * k))
+            }
+        }
+    }
+
+    /// `(∂(u, v)/∂x, ∂(u, v)/∂y)` at domain coordinates.
+    fn native_derivatives(&self, domain: DVec2) -> (DVec2, DVec2) {
+        match *self {
+            DomainMap::Native => (DVec2::X, DVec2::Y),
+            DomainMap::Unrolled {
+                angular,
+                radius,
+                speed,
+            } => (
+                angular.join(0.0, 1.0 / radius),
+                angular.join(1.0 / speed, 0.0),
+            ),
+            DomainMap::Developed {
+                angular,
+                slope,
+                k,
+                reference,
+                ..
+            } => {
+                let rho = reference * (domain.y / reference).exp();
+                (
+                    angular.join(0.0, 1.0 / (reference * k)),
+                    angular.join(k / slope * rho / reference, 0.0),
+                )
+            }
+        }
+    }
+}
+
+/// A face's surface evaluated at domain coordinates.
+#[derive(Debug, Clone)]
+pub struct FaceSurface {
+    surface: StepSurface,
+    map: DomainMap,
+}
+
+impl FaceSurface {
+    /// The surface's parameters at domain coordinates.
+    pub fn native(&self, domain: DVec2) -> DVec2 {
+        self.map.native_of(domain)
+    }
+
+    /// The surface's normal `∂S/∂u × ∂S/∂v` at its parameters (not normalised).
+    pub fn native_normal(&self, native: DVec2) -> DVec3 {
+        let (u, v) = native_derivatives(&self.surface, native);
+        u.cross(v)
+    }
+}
+
+impl MappedSurface for FaceSurface {
+    fn point(&self, parameters: DVec2) -> DVec3 {
+        native_point(&self.surface, self.map.native_of(parameters))
+    }
+
+    fn derivatives(&self, parameters: DVec2) -> (DVec3, DVec3) {
+        let native = self.map.native_of(parameters);
+        let (su, sv) = native_derivatives(&self.surface, native);
+        let (dx, dy) = self.map.native_derivatives(parameters);
+        (su * dx.x + sv * dx.y, su * dy.x + sv * dy.y)
+    }
+}
+
+fn native_point(surface: &StepSurface, native: DVec2) -> DVec3 {
+    let p = surface.subs(native.x, native.y);
+    DVec3::new(p.x, p.y, p.z)
+}
+
+fn native_derivatives(surface: &StepSurface, native: DVec2) -> (DVec3, DVec3) {
+    let u = surface.uder(native.x, native.y);
+    let v = surface.vder(native.x, native.y);
+    (DVec3::new(u.x, u.y, u.z), DVec3::new(v.x, v.y, v.z))
+}
+
+/// Relative spread of a parameter along an edge below which the edge lies on an iso-parameter
+/// line (a seam, a circle of a cone, a B-spline patch's side); its points then get exactly the
+/// same parameter, so the loop is straight there and the mesher makes no sliver along it.
+const ISO_LINE_RATIO: f64 = 1e-7;
+
+/// A boundary loop of a face: points on the surface (the loop does not repeat its first point)
+/// and the index of each edge's first point.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct BoundaryLoop {
+    /// The points, in loop order.
+    pub points: Vec<DVec3>,
+    /// Index in `points` of the first point of each edge, ascending.
+    pub edge_starts: Vec<usize>,
+}
+
+/// A face's domain: its surface and its boundary loops in domain coordinates.
+#[derive(Debug, Clone)]
+pub struct FaceDomain {
+    /// The surface at domain coordinates.
+    pub surface: FaceSurface,
+    /// The boundary loops (as given, one domain point per boundary point).
+    pub loops: Vec<Vec<DVec2>>,
+    /// The largest principal curvature over the face's parameter box (sampled), 1 / length.
+    pub curvature: f64,
+}
+
+/// Maps a face's boundary loops (points on `surface`) into its meshing domain; `size` is the
+/// face's size (for the inversion tolerance).
+pub fn face_domain(
+    surface: &StepSurface,
+    loops: &[BoundaryLoop],
+    size: f64,
+) -> Result<FaceDomain, DomainError> {
+    let periods = [surface.u_period(), surface.v_period()];
+    let ranges = parameter_ranges(surface, periods);
+    let mut native_loops = Vec::with_capacity(loops.len());
+    for boundary in loops {
+        let mut native = invert_loop(surface, &boundary.points, periods, ranges, size)?;
+        check_closed(&native, periods)?;
+        straighten_iso_edges(&mut native, &boundary.edge_starts);
+        native_loops.push(native);
+    }
+    let map = domain_map(surface, &native_loops, periods);
+    let curvature = largest_curvature(surface, &native_loops);
+    let loops = native_loops
+        .iter()
+        .map(|native| native.iter().map(|&p| map.domain_of(p)).collect())
+        .collect();
+    Ok(FaceDomain {
+        surface: FaceSurface {
+            surface: surface.clone(),
+            map,
+        },
+        loops,
+        curvature,
+    })
+}
+
+/// The largest principal curvature `|H| + √(H² − K)` on a grid over the loops' parameter box.
+fn largest_curvature(surface: &StepSurface, native_loops: &[Vec<DVec2>]) -> f64 {
+    let (low, high) = native_loops
+        .iter()
+        .flatten()
+        .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(low, high), &p| {
+            (low.min(p), high.max(p))
+        });
+    if !(low.is_finite() && high.is_finite()) {
+        return 0.0;
+    }
+    let mut largest = 0.0_f64;
+    for i in 0..=CURVATURE_SAMPLES {
+        for j in 0..=CURVATURE_SAMPLES {
+            let t = DVec2::new(i as f64, j as f64) / CURVATURE_SAMPLES as f64;
+            let p = low + (high - low) * t;
+            let vector = |v: Vector3| DVec3::new(v.x, v.y, v.z);
+            let (su, sv) = native_derivatives(surface, p);
+            let (suu, suv, svv) = (
+                vector(surface.uuder(p.x, p.y)),
+                vector(surface.uvder(p.x, p.y)),
+                vector(surface.vvder(p.x, p.y)),
+            );
+            let normal = su.cross(sv).normalize_or_zero();
+            let (e, f, g) = (su.dot(su), su.dot(sv), sv.dot(sv));
+            let (l, m, n) = (suu.dot(normal), suv.dot(normal), svv.dot(normal));
+            let area = e * g - f * f;
+            if area.partial_cmp(&(f64::EPSILON * e * g)) != Some(std::cmp::Ordering::Greater) {
+                continue;
+            }
+            let mean = (e * n + g * l - 2.0 * f * m) / (2.0 * area);
+            let gauss = (l * n - m * m) / area;
+            let curvature = mean.abs() + (mean * mean - gauss).max(0.0).sqrt();
+            if curvature.is_finite() {
+                largest = largest.max(curvature);
+            }
+        }
+    }
+    largest
+}
+
+/// Each parameter's range where evaluation must stay inside it (B-spline and NURBS surfaces, not
+/// periodic); `None` elsewhere (elementary surfaces extend beyond their nominal ranges).
+fn parameter_ranges(surface: &StepSurface, periods: [Option<f64>; 2]) -> [Option<(f64, f64)>; 2] {
+    if !matches!(
+        surface,
+        StepSurface::BSplineSurface(_) | StepSurface::NurbsSurface(_)
+    ) {
+        return [None, None];
+    }
+    let (u, v) = surface.parameter_range();
+    let bounded = |(low, high): (Bound<f64>, Bound<f64>)| match (low, high) {
+        (Bound::Included(a) | Bound::Excluded(a), Bound::Included(b) | Bound::Excluded(b)) => {
+            Some((a, b))
+        }
+        _ => None,
+    };
+    [
+        periods[0].map_or(bounded(u), |_| None),
+        periods[1].map_or(bounded(v), |_| None),
+    ]
+}
+
+/// The loop's points in the surface's parameters, periodic parameters unwrapped along the loop.
+fn invert_loop(
+    surface: &StepSurface,
+    points: &[DVec3],
+    periods: [Option<f64>; 2],
+    ranges: [Option<(f64, f64)>; 2],
+    size: f64,
+) -> Result<Vec<DVec2>, DomainError> {
+    let tolerance = INVERSION_TOLERANCE_RATIO * size.max(f64::MIN_POSITIVE);
+    let mut native: Vec<DVec2> = Vec::with_capacity(points.len());
+    for &point in points {
+        let previous = native.last().copied();
+        let guess = previous
+            .map(|p| refine_inversion(surface, point, p, ranges))
+            .filter(|&p| native_point(surface, p).distance(point) <= tolerance)
+            .or_else(|| global_inversion(surface, point, periods, ranges))
+            .filter(|&p| native_point(surface, p).distance(point) <= tolerance)
+            .ok_or_else(|| {
+                DomainError(format!(
+                    "the boundary point ({:.6}, {:.6}, {:.6}) is not on the face's surface",
+                    point.x, point.y, point.z
+                ))
+            })?;
+        native.push(match previous {
+            Some(previous) => unwrap_near(guess, previous, periods),
+            None => guess,
+        });
+    }
+    Ok(native)
+}
+
+/// `parameters` shifted by whole periods to lie nearest `previous`.
+fn unwrap_near(parameters: DVec2, previous: DVec2, periods: [Option<f64>; 2]) -> DVec2 {
+    let shift = |value: f64, reference: f64, period: Option<f64>| match period {
+        Some(period) => value - ((value - reference) / period).round() * period,
+        None => value,
+    };
+    DVec2::new(
+        shift(parameters.x, previous.x, periods[0]),
+        shift(parameters.y, previous.y, periods[1]),
+    )
+}
+
+/// A loop that does not come back to its start in the parameters wraps around a periodic
+/// surface without a seam edge.
+fn check_closed(native: &[DVec2], periods: [Option<f64>; 2]) -> Result<(), DomainError> {
+    let (Some(first), Some(last)) = (native.first(), native.last()) else {
+        return Ok(());
+    };
+    for (axis, period) in periods.iter().enumerate() {
+        if let Some(period) = period
+            && (last[axis] - first[axis]).abs() > 0.5 * period
+        {
+            return Err(DomainError(
+                "a boundary loop wraps around the face's periodic surface without a seam edge; \
+                 export the face split along a seam (most CAD systems do by default)"
+                    .into(),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Gives every point of an edge that lies on an iso-parameter line the parameter of the edge's
+/// first point (edges in loop order, so a run of such edges shares one value).
+fn straighten_iso_edges(native: &mut [DVec2], edge_starts: &[usize]) {
+    let count = native.len();
+    let (low, high) = native
+        .iter()
+        .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(low, high), &p| {
+            (low.min(p), high.max(p))
+        });
+    let tolerance = ISO_LINE_RATIO * (high - low).max_element().max(f64::MIN_POSITIVE);
+    for (k, &start) in edge_starts.iter().enumerate() {
+        let end = edge_starts.get(k + 1).copied().unwrap_or(count);
+        // The edge runs from its first point to the next edge's first point (inclusive).
+        let indices: Vec<usize> = (start..=end).map(|i| i % count).collect();
+        #[allow(clippy::needless_range_loop)] // `axis` indexes each point's two parameters
+        for axis in 0..2 {
+            let (min, max) = indices
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &i| {
+                    (a.min(native[i][axis]), b.max(native[i][axis]))
+                });
+            if max - min <= tolerance {
+                let value = native[start % count][axis];
+                for &i in &indices {
+                    native[i][axis] = value;
+                }
+            }
+        }
+    }
+}
+
+/// Truck's own search, or the best point of a parameter grid, polished by Gauss-Newton.
+fn global_inversion(
+    surface: &StepSurface,
+    point: DVec3,
+    periods: [Option<f64>; 2],
+    ranges: [Option<(f64, f64)>; 2],
+) -> Option<DVec2> {
+    let start = surface
+        .search_nearest_parameter(Point3::new(point.x, point.y, point.z), None, 100)
+        .map(|(u, v)| DVec2::new(u, v))
+        .unwrap_or_else(|| grid_search(surface, point, periods, ranges));
+    Some(refine_inversion(surface, point, start, ranges))
+}
+
+fn grid_search(
+    surface: &StepSurface,
+    point: DVec3,
+    periods: [Option<f64>; 2],
+    ranges: [Option<(f64, f64)>; 2],
+) -> DVec2 {
+    let span = |axis: usize| match (periods[axis], ranges[axis]) {
+        (Some(period), _) => (0.0, period),
+        (None, Some(range)) => range,
+        (None, None) => (-1.0, 1.0),
+    };
+    let (u, v) = (span(0), span(1));
+    let mut best = (f64::INFINITY, DVec2::ZERO);
+    for i in 0..=SEARCH_GRID {
+        for j in 0..=SEARCH_GRID {
+            let t = DVec2::new(i as f64, j as f64) / SEARCH_GRID as f64;
+            let p = DVec2::new(u.0 + (u.1 - u.0) * t.x, v.0 + (v.1 - v.0) * t.y);
+            let distance = native_point(surface, p).distance_squared(point);
+            if distance < best.0 {
+                best = (distance, p);
+            }
+        }
+    }
+    best.1
+}
+
+/// Gauss-Newton on `|S(u, v) − point|²` from `start`, bounded parameters clamped to their range.
+fn refine_inversion(
+    surface: &StepSurface,
+    point: DVec3,
+    start: DVec2,
+    ranges: [Option<(f64, f64)>; 2],
+) -> DVec2 {
+    let clamp = |p: DVec2| {
+        let axis = |value: f64, range: Option<(f64, f64)>| {
+            range.map_or(value, |(low, high)| value.clamp(low, high))
+        };
+        DVec2::new(axis(p.x, ranges[0]), axis(p.y, ranges[1]))
+    };
+    let mut p = clamp(start);
+    for _ in 0..INVERSION_STEPS {
+        let residual = point - native_point(surface, p);
+        let (su, sv) = native_derivatives(surface, p);
+        let (a, b, c) = (su.dot(su), su.dot(sv), sv.dot(sv));
+        let determinant = a * c - b * b;
+        if determinant.abs().partial_cmp(&f64::MIN_POSITIVE) != Some(std::cmp::Ordering::Greater) {
+            break;
+        }
+        let (ru, rv) = (su.dot(residual), sv.dot(residual));
+        let step = DVec2::new(c * ru - b * rv, a * rv - b * ru) / determinant;
+        if !step.is_finite() {
+            break;
+        }
+        p = clamp(p + step);
+        if step.length_squared() < 1e-30 * (1.0 + p.length_squared()) {
+            break;
+        }
+    }
+    p
+}
+
+/// The map that suits the surface: cones developed, cylinders unrolled, the rest native.
+fn domain_map(
+    surface: &StepSurface,
+    native_loops: &[Vec<DVec2>],
+    periods: [Option<f64>; 2],
+) -> DomainMap {
+    let StepSurface::ElementarySurface(elementary) = surface else {
+        return DomainMap::Native;
+    };
+    if !matches!(
+        elementary.as_ref(),
+        ElementarySurface::CylindricalSurface(_) | ElementarySurface::ConicalSurface(_)
+    ) {
+        return DomainMap::Native;
+    }
+    let angular = match periods {
+        [Some(_), None] => Axis::U,
+        [None, Some(_)] => Axis::V,
+        _ => return DomainMap::Native,
+    };
+    let (mut low, mut high) = (DVec2::INFINITY, DVec2::NEG_INFINITY);
+    for p in native_loops.iter().flatten() {
+        low = low.min(*p);
+        high = high.max(*p);
+    }
+    let ((t0, angle0), (t1, _)) = (angular.split(low), angular.split(high));
+    if !(t0.is_finite() && t1.is_finite()) {
+        return DomainMap::Native;
+    }
+    let t1 = if t1 > t0 { t1 } else { t0 + 1.0 };
+    let radius_speed = |t: f64| {
+        let (su, sv) = native_derivatives(surface, angular.join(t, angle0));
+        match angular {
+            Axis::U => (su.length(), sv.length()),
+            Axis::V => (sv.length(), su.length()),
+        }
+    };
+    let ((radius0, speed), (radius1, _)) = (radius_speed(t0), radius_speed(t1));
+    let slope = (radius1 - radius0) / (t1 - t0);
+    if !(speed > 0.0 && radius0.max(radius1) > 0.0) {
+        return DomainMap::Native;
+    }
+    if slope.abs() <= CYLINDER_SLOPE * speed {
+        return DomainMap::Unrolled {
+            angular,
+            radius: 0.5 * (radius0 + radius1),
+            speed,
+        };
+    }
+    let k = slope.abs() / speed;
+    let (near, far) = (radius0.min(radius1) / k, radius0.max(radius1) / k);
+    if near < APEX_RATIO * far {
+        return DomainMap::Native;
+    }
+    DomainMap::Developed {
+        angular,
+        r0: radius0 - slope * t0,
+        slope,
+        k,
+        reference: far,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_development_of_a_cone_round_trips() {
+        let map = DomainMap::Developed {
+            angular: Axis::V,
+            r0: 100.0,
+            slope: -0.5,
+            k: 0.53,
+            reference: 190.0,
+        };
+        for native in [DVec2::new(0.0, 0.1), DVec2::new(60.0, 6.0)] {
+            let back = map.native_of(map.domain_of(native));
+            assert!(back.distance(native) < 1e-9, "{native} -> {back}");
+        }
+    }
+}
