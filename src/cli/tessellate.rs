@@ -39,7 +39,7 @@ pub struct MeshSizeArgs {
     #[arg(long, value_name = "LENGTH")]
     mesh_size: Option<f64>,
     /// Largest distance between a surface and its triangles, in the part's units (default: the
-    /// part's bounding diagonal × 0.0001; × 0.0002 for STEP faces).
+    /// part's bounding diagonal × 0.0001).
     #[arg(long, value_name = "LENGTH")]
     chord: Option<f64>,
 }

@@ -8,7 +8,7 @@
 //! the edge between two surfaces becomes the mesh edges those surfaces share.
 //!
 //! Mesh size and chord tolerance default from the part's size (the diagonal of its bounding box):
-//! [`DEFAULT_DIVISIONS`] edges along the diagonal, a chord of [`DEFAULT_SURFACE_CHORD_RATIO`] of
+//! [`DEFAULT_DIVISIONS`] edges along the diagonal, a chord of [`DEFAULT_CHORD_RATIO`] of
 //! it.
 
 pub mod brep;
@@ -34,15 +34,11 @@ pub use weld::Welded;
 
 /// Default mesh size: the part's bounding diagonal divided by this.
 pub const DEFAULT_DIVISIONS: f64 = 50.0;
-/// Default chord tolerance of STEP faces meshed by truck, as a fraction of the part's bounding
-/// diagonal.
-pub const DEFAULT_CHORD_RATIO: f64 = 2e-4;
-/// Default chord tolerance of the surfaces flatcut meshes itself (part files, loose STEP
-/// surfaces), as a fraction of the part's bounding diagonal. Half the STEP default: a cone
-/// frustum's rim is an inscribed polygon whose development subtends a little less than the
-/// analytic sector, and at 2e-4 the seam end of a 100/50/80 mm frustum is 0.065 mm off the
-/// analytic development when the other end is pinned (0.037 mm at 1e-4).
-pub const DEFAULT_SURFACE_CHORD_RATIO: f64 = 1e-4;
+/// Default chord tolerance, as a fraction of the part's bounding diagonal. A cone frustum's rim
+/// is an inscribed polygon whose development subtends a little less than the analytic sector:
+/// at 2e-4 the seam end of a 100/50/80 mm frustum is 0.065 mm off the analytic development when
+/// the other end is pinned, at 1e-4 0.037 mm.
+pub const DEFAULT_CHORD_RATIO: f64 = 1e-4;
 /// The smallest mesh size accepted, as a fraction of the bounding diagonal (bounds the
 /// triangle count near four million).
 pub const MINIMUM_MESH_SIZE_RATIO: f64 = 1.0 / 2000.0;
@@ -57,7 +53,7 @@ pub struct TessellateOptions {
     /// Target edge length (part units); default the bounding diagonal / [`DEFAULT_DIVISIONS`].
     pub mesh_size: Option<f64>,
     /// Largest distance between the surface and a triangle (part units); default the bounding
-    /// diagonal × [`DEFAULT_SURFACE_CHORD_RATIO`] ([`DEFAULT_CHORD_RATIO`] for STEP faces).
+    /// diagonal × [`DEFAULT_CHORD_RATIO`].
     pub chord: Option<f64>,
 }
 
@@ -221,7 +217,7 @@ pub fn sizes_for_diagonal(
     options: &TessellateOptions,
 ) -> Result<(f64, f64), TessellateError> {
     let mesh_size = options.mesh_size.unwrap_or(size / DEFAULT_DIVISIONS);
-    let chord = options.chord.unwrap_or(size * DEFAULT_SURFACE_CHORD_RATIO);
+    let chord = options.chord.unwrap_or(size * DEFAULT_CHORD_RATIO);
     let minimum = size * MINIMUM_MESH_SIZE_RATIO;
     if !(mesh_size.is_finite() && mesh_size >= minimum && chord.is_finite() && chord > 0.0) {
         return Err(TessellateError::BadSize {
