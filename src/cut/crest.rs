@@ -120,30 +120,43 @@ pub fn crest_lines(
                 blocked: settings.blocked,
                 on_boundary: &on_boundary,
             };
-            let Some(line) = tracer.crest_line(start, floor) else {
-                continue;
-            };
-            let count = line.vertices.len();
-            let prefixes: Vec<CrestLine> = if count >= PREFIX_MIN_VERTICES {
-                (1..PREFIX_PARTS)
-                    .map(|part| (count * part).div_ceil(PREFIX_PARTS).max(2))
-                    .map(|length| line.prefix(model, energies, length))
-                    .collect()
-            } else {
-                Vec::new()
-            };
-            for candidate in std::iter::once(line).chain(prefixes) {
-                if !lines
-                    .iter()
-                    .any(|known| known.vertices == candidate.vertices)
-                {
-                    lines.push(candidate);
-                }
+            for line in [tracer.crest_line(start, floor), tracer.slit(start, floor)]
+                .into_iter()
+                .flatten()
+            {
+                push_with_prefixes(model, energies, line, &mut lines);
             }
         }
     }
     lines.sort_by(|a, b| b.score().total_cmp(&a.score()));
     lines
+}
+
+/// Adds `line` to `lines`, and for a line of [`PREFIX_MIN_VERTICES`] or more its first
+/// `k / PREFIX_PARTS`, skipping lines already there.
+fn push_with_prefixes(
+    model: &FacetModel,
+    energies: &[f64],
+    line: CrestLine,
+    lines: &mut Vec<CrestLine>,
+) {
+    let count = line.vertices.len();
+    let prefixes: Vec<CrestLine> = if count >= PREFIX_MIN_VERTICES {
+        (1..PREFIX_PARTS)
+            .map(|part| (count * part).div_ceil(PREFIX_PARTS).max(2))
+            .map(|length| line.prefix(model, energies, length))
+            .collect()
+    } else {
+        Vec::new()
+    };
+    for candidate in std::iter::once(line).chain(prefixes) {
+        if !lines
+            .iter()
+            .any(|known| known.vertices == candidate.vertices)
+        {
+            lines.push(candidate);
+        }
+    }
 }
 
 /// True for every vertex on a boundary loop.
@@ -220,6 +233,23 @@ impl Tracer<'_> {
             return None;
         }
         Some(CrestLine::along(self.model, self.energies, vertices))
+    }
+
+    /// The slit through an interior `start`: the dart branch, reversed, then the dart branch
+    /// the other way, both ends inside the part. Cutting it opens a slot (a new boundary loop)
+    /// where the material is stretched across it; `None` for a start on the boundary or a slit
+    /// of fewer than three vertices (which duplicates no vertex).
+    fn slit(&self, start: u32, floor: f64) -> Option<CrestLine> {
+        if self.on_boundary[start as usize] {
+            return None;
+        }
+        let mut visited = vec![false; self.model.vertex_count()];
+        visited[start as usize] = true;
+        let mut vertices = self.dart_branch(start, floor, &mut visited);
+        vertices.reverse();
+        vertices.push(start);
+        vertices.extend(self.dart_branch(start, floor, &mut visited));
+        (vertices.len() >= 3).then(|| CrestLine::along(self.model, self.energies, vertices))
     }
 
     /// From `start` (interior) down to the boundary: `start` first, a boundary vertex last.
