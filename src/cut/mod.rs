@@ -58,7 +58,8 @@ pub const SCREEN_ITERATIONS: usize = 20;
 /// Screened candidates that must still lower the error after being flattened on to
 /// [`TRIAL_STEP_TOLERANCE`] before the choice is made among them.
 pub const FULL_TRIALS: usize = 3;
-/// Most screened candidates flattened on per cut step (non-overlapping ones first, then by gain).
+/// Screened candidates flattened on per cut step (non-overlapping ones first, then by gain) before
+/// the choice is made among those accepted; while none is, the trials go on down the list.
 pub const TRIAL_BUDGET: usize = 6;
 /// Extensions of a cut from its inner end allowed per cut, on average: the loop makes at most
 /// `max_cuts × (1 + EXTENSIONS_PER_CUT)` cut steps. An extension lengthens a cut and does not
@@ -467,8 +468,8 @@ struct Trial {
 /// flattened for [`SCREEN_ITERATIONS`] solver iterations, warm-started from the current pattern
 /// (the lines in parallel; the results keep the lines' order). Trial: the screened cuts that
 /// lower the error, those without overlap first and then by gain, are flattened on to the trial
-/// threshold [`TRIAL_STEP_TOLERANCE`] until [`FULL_TRIALS`] still lower the error (at most
-/// [`TRIAL_BUDGET`] tried); among those the one of largest gain
+/// threshold [`TRIAL_STEP_TOLERANCE`] until [`FULL_TRIALS`] still lower the error, or
+/// [`TRIAL_BUDGET`] were tried and at least one does; among those the one of largest gain
 /// (the shortest within tolerance, else the largest `ΔE / L^LENGTH_EXPONENT`) is flattened to
 /// the full threshold and returned.
 fn best_cut(
@@ -495,15 +496,14 @@ fn best_cut(
             .cmp(&overlaps(b))
             .then(b.gain.total_cmp(&a.gain))
     });
-    screened.truncate(TRIAL_BUDGET);
     let trial_options = with_fast(flatten_options, |fast| FastOptions {
         step_tolerance: fast.step_tolerance.max(TRIAL_STEP_TOLERANCE),
         ..fast
     });
     let mut best: Option<Trial> = None;
     let mut accepted = 0;
-    for trial in screened {
-        if accepted == FULL_TRIALS {
+    for (tried, trial) in screened.into_iter().enumerate() {
+        if accepted == FULL_TRIALS || (tried >= TRIAL_BUDGET && accepted > 0) {
             break;
         }
         let Some(trial) = flatten_on(trial, flattened, &trial_options)? else {
@@ -553,17 +553,16 @@ fn candidate_lines(
         flatten_options.spring_constant,
     );
     let adjacency = Adjacency::new(&state.model);
+    let tension = springs.tension_energies(&flattened.positions);
     let settings = CrestSettings {
         blocked: starts.blocked,
         candidates: options.candidates,
         dart_floor: options.dart_floor,
+        tension: &tension,
     };
     let mut lines: Vec<CrestLine> = Vec::new();
-    for energies in [
-        springs.vertex_energies(&flattened.positions),
-        springs.tension_energies(&flattened.positions),
-    ] {
-        for line in crest_lines(&state.model, &adjacency, &energies, &settings) {
+    for energies in [&springs.vertex_energies(&flattened.positions), &tension] {
+        for line in crest_lines(&state.model, &adjacency, energies, &settings) {
             let allowed = starts.new_cut_allowed || starts.tips.contains(&line.vertices[0]);
             if allowed && !lines.iter().any(|known| known.vertices == line.vertices) {
                 lines.push(line);
