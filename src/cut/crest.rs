@@ -20,8 +20,10 @@
 //!
 //! Candidates: from each of the `candidates` highest local maxima, one line per [`Descent`] (the
 //! paper's slowest descent, and the steepest descent, which on a dome is the radial dart the
-//! slowest descent misses by running along the rim), and the first half of each line of four or
-//! more vertices (a shorter dart from the same boundary point).
+//! slowest descent misses by running along the rim), each with its dart branch stopped on the
+//! energy alone and also where the tension energy ([`CrestSettings::tension`]) falls low; from an
+//! interior maximum also a slit (the dart branch both ways, both ends inside); and the first third
+//! and two thirds of each line of four or more vertices.
 //!
 //! Estimated score (beyond the paper): the energy released per unit of cut length,
 //! `Σ_{v on the line} E(v) / L`: a cut frees the springs of every vertex it passes to move apart,

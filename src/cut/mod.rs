@@ -7,11 +7,12 @@
 //! 2. automatic seams ([`seam`]) open the surface to a disk: one per ring loop, a tree through the
 //!    corners of a closed surface, a tree–cotree cut graph ([`cut_graph`]) first if it has handles;
 //! 3. the part is flattened; while it is over tolerance and cuts are left, every candidate line of
-//!    its energy map ([`crest`]) is cut and flattened, warm-started from the current pattern;
-//!    among those that lower the error (`max(E_S, E_C)`, an overlapping pattern counting as worse
-//!    than any other) the shortest that meets the tolerance is kept, or else the one of largest
-//!    measured gain `ΔE / L^LENGTH_EXPONENT`; a line from the inner end of an earlier cut extends
-//!    that cut;
+//!    its energy map and of its tension map (stretched springs only: where a cut opens) ([`crest`])
+//!    is cut and briefly flattened, warm-started from the current pattern, and the most promising
+//!    are flattened on (`best_cut`, docs/cutting.md); among those that lower the error (`max(E_S, E_C)`, an
+//!    overlapping pattern counting as worse than any other) the shortest that meets the tolerance
+//!    is kept, or else the one of largest measured gain `ΔE / L^LENGTH_EXPONENT`; a line from the
+//!    inner end of an earlier cut extends that cut;
 //! 4. the cut model, its pattern and every cut with its figures before and after come back.
 //!
 //! Cuts never run along or across a fold line (no vertex of a fold-line edge is crossed) nor
@@ -53,7 +54,7 @@ pub const LENGTH_EXPONENT: f64 = 0.5;
 /// at a fraction of the cost. The chosen cut is then flattened to the full threshold.
 pub const TRIAL_STEP_TOLERANCE: f64 = 1e-4;
 /// Solver iterations of the screening round, in which every candidate cut is flattened briefly
-/// to rank it (see [`best_cut`]).
+/// to rank it (see `best_cut`).
 pub const SCREEN_ITERATIONS: usize = 20;
 /// Screened candidates that must still lower the error after being flattened on to
 /// [`TRIAL_STEP_TOLERANCE`] before the choice is made among them.
