@@ -207,6 +207,21 @@ fn handles_with_a_boundary_are_refused_with_their_genus() {
     assert_eq!(error, CutError::HigherGenus { genus: 1 });
 }
 
+/// A saddle's pattern is compressed at its boundary and stretched in the middle: a cut where the
+/// energy peaks would need its sides to overlap, so only cuts through stretched material (the
+/// tension map) can help. The sample is 1.06 % / 0.87 % uncut.
+#[test]
+fn a_saddle_is_cut_where_it_is_stretched_and_reaches_tolerance() {
+    let model = sample("saddle.obj");
+    let result = run(&model, &CutOptions::default()).expect("flattens");
+    let accuracy = result.flattened.stats.accuracy;
+    assert!(!result.cuts.is_empty());
+    assert!(accuracy.within(0.01), "{accuracy:?}");
+    assert_eq!(result.stop, CutStop::ToleranceMet);
+    let recomputed = Accuracy::measure(&result.model, &result.flattened.positions);
+    assert!(!recomputed.overlap && recomputed.flipped == 0);
+}
+
 #[test]
 fn a_hemisphere_is_cut_until_its_error_falls() {
     let model = sample("hemisphere.obj");

@@ -20,8 +20,10 @@
 //!
 //! Candidates: from each of the `candidates` highest local maxima, one line per [`Descent`] (the
 //! paper's slowest descent, and the steepest descent, which on a dome is the radial dart the
-//! slowest descent misses by running along the rim), and the first half of each line of four or
-//! more vertices (a shorter dart from the same boundary point).
+//! slowest descent misses by running along the rim), each with its dart branch stopped on the
+//! energy alone and also where the tension energy ([`CrestSettings::tension`]) falls low; from an
+//! interior maximum also a slit (the dart branch both ways, both ends inside); and the first third
+//! and two thirds of each line of four or more vertices.
 //!
 //! Estimated score (beyond the paper): the energy released per unit of cut length,
 //! `Σ_{v on the line} E(v) / L`: a cut frees the springs of every vertex it passes to move apart,
@@ -94,6 +96,10 @@ pub struct CrestSettings<'a> {
     pub candidates: usize,
     /// Multiple of the mean vertex energy below which the dart branch stops.
     pub dart_floor: f64,
+    /// Per-vertex energy of the stretched springs ([`crate::flatten::SpringSystem::tension_energies`]).
+    /// Each start also gives darts that stop where it falls below `dart_floor` times its mean,
+    /// since a cut through compressed material would make its sides overlap.
+    pub tension: &'a [f64],
 }
 
 /// Traces a line of each [`Descent`] from each of the highest local energy maxima and returns
@@ -107,8 +113,19 @@ pub fn crest_lines(
 ) -> Vec<CrestLine> {
     let on_boundary = boundary_flags(model);
     let starts = local_maxima(adjacency, energies, settings.blocked);
-    let mean = energies.iter().sum::<f64>() / energies.len().max(1) as f64;
-    let floor = settings.dart_floor * mean;
+    let energy_floor = settings.dart_floor * mean_of(energies);
+    // Darts that stop on the energy alone, and darts that also stop where the material turns
+    // compressed: on a dome the first reach further towards the compressed centre, which can pay.
+    let floors = [
+        Floor {
+            energy: energy_floor,
+            tension: 0.0,
+        },
+        Floor {
+            energy: energy_floor,
+            tension: settings.dart_floor * mean_of(settings.tension),
+        },
+    ];
     let mut lines: Vec<CrestLine> = Vec::new();
     for start in spread_out(model, &starts, settings.candidates) {
         for descent in [Descent::Slowest, Descent::Steepest] {
@@ -117,33 +134,62 @@ pub fn crest_lines(
                 model,
                 adjacency,
                 energies,
+                tension: settings.tension,
                 blocked: settings.blocked,
                 on_boundary: &on_boundary,
             };
-            let Some(line) = tracer.crest_line(start, floor) else {
-                continue;
-            };
-            let count = line.vertices.len();
-            let prefixes: Vec<CrestLine> = if count >= PREFIX_MIN_VERTICES {
-                (1..PREFIX_PARTS)
-                    .map(|part| (count * part).div_ceil(PREFIX_PARTS).max(2))
-                    .map(|length| line.prefix(model, energies, length))
-                    .collect()
-            } else {
-                Vec::new()
-            };
-            for candidate in std::iter::once(line).chain(prefixes) {
-                if !lines
-                    .iter()
-                    .any(|known| known.vertices == candidate.vertices)
+            for floor in floors {
+                for line in [tracer.crest_line(start, floor), tracer.slit(start, floor)]
+                    .into_iter()
+                    .flatten()
                 {
-                    lines.push(candidate);
+                    push_with_prefixes(model, energies, line, &mut lines);
                 }
             }
         }
     }
     lines.sort_by(|a, b| b.score().total_cmp(&a.score()));
     lines
+}
+
+/// Adds `line` to `lines`, and for a line of [`PREFIX_MIN_VERTICES`] or more its first
+/// `k / PREFIX_PARTS`, skipping lines already there.
+fn push_with_prefixes(
+    model: &FacetModel,
+    energies: &[f64],
+    line: CrestLine,
+    lines: &mut Vec<CrestLine>,
+) {
+    let count = line.vertices.len();
+    let prefixes: Vec<CrestLine> = if count >= PREFIX_MIN_VERTICES {
+        (1..PREFIX_PARTS)
+            .map(|part| (count * part).div_ceil(PREFIX_PARTS).max(2))
+            .map(|length| line.prefix(model, energies, length))
+            .collect()
+    } else {
+        Vec::new()
+    };
+    for candidate in std::iter::once(line).chain(prefixes) {
+        if !lines
+            .iter()
+            .any(|known| known.vertices == candidate.vertices)
+        {
+            lines.push(candidate);
+        }
+    }
+}
+
+/// Where a dart branch stops: below either energy.
+#[derive(Debug, Clone, Copy)]
+struct Floor {
+    /// On the map being traced.
+    energy: f64,
+    /// On the tension map.
+    tension: f64,
+}
+
+fn mean_of(values: &[f64]) -> f64 {
+    values.iter().sum::<f64>() / values.len().max(1) as f64
 }
 
 /// True for every vertex on a boundary loop.
@@ -198,6 +244,7 @@ struct Tracer<'a> {
     model: &'a FacetModel,
     adjacency: &'a Adjacency,
     energies: &'a [f64],
+    tension: &'a [f64],
     blocked: &'a [bool],
     on_boundary: &'a [bool],
 }
@@ -205,7 +252,7 @@ struct Tracer<'a> {
 impl Tracer<'_> {
     /// The crest line through `start`: opening branch reversed (so the line starts on the
     /// boundary), then the dart branch down to `floor`.
-    fn crest_line(&self, start: u32, floor: f64) -> Option<CrestLine> {
+    fn crest_line(&self, start: u32, floor: Floor) -> Option<CrestLine> {
         let mut visited = vec![false; self.model.vertex_count()];
         visited[start as usize] = true;
         let mut vertices = if self.on_boundary[start as usize] {
@@ -220,6 +267,23 @@ impl Tracer<'_> {
             return None;
         }
         Some(CrestLine::along(self.model, self.energies, vertices))
+    }
+
+    /// The slit through an interior `start`: the dart branch, reversed, then the dart branch
+    /// the other way, both ends inside the part. Cutting it opens a slot (a new boundary loop)
+    /// where the material is stretched across it; `None` for a start on the boundary or a slit
+    /// of fewer than three vertices (which duplicates no vertex).
+    fn slit(&self, start: u32, floor: Floor) -> Option<CrestLine> {
+        if self.on_boundary[start as usize] {
+            return None;
+        }
+        let mut visited = vec![false; self.model.vertex_count()];
+        visited[start as usize] = true;
+        let mut vertices = self.dart_branch(start, floor, &mut visited);
+        vertices.reverse();
+        vertices.push(start);
+        vertices.extend(self.dart_branch(start, floor, &mut visited));
+        (vertices.len() >= 3).then(|| CrestLine::along(self.model, self.energies, vertices))
     }
 
     /// From `start` (interior) down to the boundary: `start` first, a boundary vertex last.
@@ -246,13 +310,16 @@ impl Tracer<'_> {
         Some(branch)
     }
 
-    /// From `start` inward while the energy stays at or above `floor`, never onto the boundary;
+    /// From `start` inward while the energy and the tension energy stay at or above `floor`,
+    /// never onto the boundary;
     /// `start` itself is not included.
-    fn dart_branch(&self, start: u32, floor: f64, visited: &mut [bool]) -> Vec<u32> {
+    fn dart_branch(&self, start: u32, floor: Floor, visited: &mut [bool]) -> Vec<u32> {
         let mut branch = Vec::new();
         let mut current = start;
         while let Some(next) = self.descend(current, visited, false) {
-            if self.energies[next as usize] < floor {
+            if self.energies[next as usize] < floor.energy
+                || self.tension[next as usize] < floor.tension
+            {
                 break;
             }
             visited[next as usize] = true;
@@ -328,6 +395,7 @@ mod tests {
             blocked: &blocked,
             candidates: 1,
             dart_floor: DEFAULT_DART_FLOOR,
+            tension: &energies,
         };
         let lines = crest_lines(&model, &adjacency, &energies, &settings);
         // The dart branch goes on to 9, whose energy is above the mean (1.25).
@@ -349,6 +417,7 @@ mod tests {
             blocked: &blocked,
             candidates: 1,
             dart_floor: DEFAULT_DART_FLOOR,
+            tension: &energies,
         };
         let lines = crest_lines(&model, &adjacency, &energies, &settings);
         // From boundary vertex 1 inward; 13 is on the far boundary and is never reached.
@@ -368,6 +437,7 @@ mod tests {
             blocked: &blocked,
             candidates: 1,
             dart_floor: DEFAULT_DART_FLOOR,
+            tension: &energies,
         };
         let lines = crest_lines(&model, &adjacency, &energies, &settings);
         assert!(!lines[0].vertices.contains(&1));

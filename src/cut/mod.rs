@@ -7,11 +7,12 @@
 //! 2. automatic seams ([`seam`]) open the surface to a disk: one per ring loop, a tree through the
 //!    corners of a closed surface, a tree–cotree cut graph ([`cut_graph`]) first if it has handles;
 //! 3. the part is flattened; while it is over tolerance and cuts are left, every candidate line of
-//!    its energy map ([`crest`]) is cut and flattened, warm-started from the current pattern;
-//!    among those that lower the error (`max(E_S, E_C)`, an overlapping pattern counting as worse
-//!    than any other) the shortest that meets the tolerance is kept, or else the one of largest
-//!    measured gain `ΔE / L^LENGTH_EXPONENT`; a line from the inner end of an earlier cut extends
-//!    that cut;
+//!    its energy map and of its tension map (stretched springs only: where a cut opens) ([`crest`])
+//!    is cut and briefly flattened, warm-started from the current pattern, and the most promising
+//!    are flattened on (`best_cut`, docs/cutting.md); among those that lower the error (`max(E_S, E_C)`, an
+//!    overlapping pattern counting as worse than any other) the shortest that meets the tolerance
+//!    is kept, or else the one of largest measured gain `ΔE / L^LENGTH_EXPONENT`; a line from the
+//!    inner end of an earlier cut extends that cut;
 //! 4. the cut model, its pattern and every cut with its figures before and after come back.
 //!
 //! Cuts never run along or across a fold line (no vertex of a fold-line edge is crossed) nor
@@ -25,6 +26,7 @@ pub mod seam;
 pub mod split;
 
 use glam::{DVec2, DVec3};
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 pub use errors::CutError;
@@ -51,6 +53,15 @@ pub const LENGTH_EXPONENT: f64 = 0.5;
 /// fraction of the mean rest length; see [`FastOptions::step_tolerance`]): enough to rank them,
 /// at a fraction of the cost. The chosen cut is then flattened to the full threshold.
 pub const TRIAL_STEP_TOLERANCE: f64 = 1e-4;
+/// Solver iterations of the screening round, in which every candidate cut is flattened briefly
+/// to rank it (see `best_cut`).
+pub const SCREEN_ITERATIONS: usize = 20;
+/// Screened candidates that must still lower the error after being flattened on to
+/// [`TRIAL_STEP_TOLERANCE`] before the choice is made among them.
+pub const FULL_TRIALS: usize = 3;
+/// Screened candidates flattened on per cut step (non-overlapping ones first, then by gain) before
+/// the choice is made among those accepted; while none is, the trials go on down the list.
+pub const TRIAL_BUDGET: usize = 6;
 /// Extensions of a cut from its inner end allowed per cut, on average: the loop makes at most
 /// `max_cuts × (1 + EXTENSIONS_PER_CUT)` cut steps. An extension lengthens a cut and does not
 /// count as a new one.
@@ -470,9 +481,21 @@ struct Starts<'a> {
     blocked: &'a [bool],
 }
 
-/// Cuts along each crest line of the current pattern in turn, flattens (warm-started from the
-/// current pattern), and among the cuts that lower the error returns the shortest that meets the
-/// tolerance, or else the one of largest gain `ΔE / L^LENGTH_EXPONENT`.
+/// A candidate cut, made and flattened.
+struct Trial {
+    improvement: Improvement,
+    /// Its gain: [`f64::MAX`]` / L` when it meets the tolerance, else `ΔE / L^LENGTH_EXPONENT`.
+    gain: f64,
+}
+
+/// Picks the next cut in two rounds. Screening: every crest line of the current pattern is cut and
+/// flattened for [`SCREEN_ITERATIONS`] solver iterations, warm-started from the current pattern
+/// (the lines in parallel; the results keep the lines' order). Trial: the screened cuts that
+/// lower the error, those without overlap first and then by gain, are flattened on to the trial
+/// threshold [`TRIAL_STEP_TOLERANCE`] until [`FULL_TRIALS`] still lower the error, or
+/// [`TRIAL_BUDGET`] were tried and at least one does; among those the one of largest gain
+/// (the shortest within tolerance, else the largest `ΔE / L^LENGTH_EXPONENT`) is flattened to
+/// the full threshold and returned.
 fn best_cut(
     state: &CutState,
     flattened: &Flattened,
@@ -480,65 +503,45 @@ fn best_cut(
     options: &CutOptions,
     starts: &Starts<'_>,
 ) -> Result<Option<Improvement>, CutError> {
-    let springs = SpringSystem::new(
-        &state.model,
-        state.stiffness.factors(),
-        flatten_options.spring_constant,
-    );
-    let energies = springs.vertex_energies(&flattened.positions);
-    let adjacency = Adjacency::new(&state.model);
-    let settings = CrestSettings {
-        blocked: starts.blocked,
-        candidates: options.candidates,
-        dart_floor: options.dart_floor,
-    };
-    let trial_options = FlattenOptions {
-        fast: FastOptions {
-            step_tolerance: flatten_options
-                .fast
-                .step_tolerance
-                .max(TRIAL_STEP_TOLERANCE),
-            ..flatten_options.fast
-        },
-        ..flatten_options.clone()
-    };
-    let mut best: Option<(f64, Improvement)> = None;
-    for line in crest_lines(&state.model, &adjacency, &energies, &settings) {
-        if !starts.new_cut_allowed && !starts.tips.contains(&line.vertices[0]) {
-            continue;
+    let lines = candidate_lines(state, flattened, flatten_options, options, starts);
+    let screen_options = with_fast(flatten_options, |fast| FastOptions {
+        max_iterations: fast.max_iterations.min(SCREEN_ITERATIONS),
+        step_tolerance: fast.step_tolerance.max(TRIAL_STEP_TOLERANCE),
+        ..fast
+    });
+    let screened: Vec<Option<Trial>> = lines
+        .into_par_iter()
+        .map(|line| screen(state, flattened, line, &screen_options))
+        .collect::<Result<_, _>>()?;
+    let mut screened: Vec<Trial> = screened.into_iter().flatten().collect();
+    let overlaps = |trial: &Trial| trial.improvement.flattened.stats.accuracy.overlap;
+    screened.sort_by(|a, b| {
+        overlaps(a)
+            .cmp(&overlaps(b))
+            .then(b.gain.total_cmp(&a.gain))
+    });
+    let trial_options = with_fast(flatten_options, |fast| FastOptions {
+        step_tolerance: fast.step_tolerance.max(TRIAL_STEP_TOLERANCE),
+        ..fast
+    });
+    let mut best: Option<Trial> = None;
+    let mut accepted = 0;
+    for (tried, trial) in screened.into_iter().enumerate() {
+        if accepted == FULL_TRIALS || (tried >= TRIAL_BUDGET && accepted > 0) {
+            break;
         }
-        let (next, copied_vertex) = match state.cut_along(&line.vertices) {
-            Ok(cut) => cut,
-            Err(
-                CutError::Disconnects
-                | CutError::OpensNothing
-                | CutError::BoundaryEdge { .. }
-                | CutError::FoldLine { .. },
-            ) => {
-                continue;
-            }
-            Err(other) => return Err(other),
-        };
-        let candidate = reflatten(&next, &copied_vertex, flattened, &trial_options)?;
-        if !is_better(&candidate.stats.accuracy, &flattened.stats.accuracy) {
+        let Some(trial) = flatten_on(trial, flattened, &trial_options)? else {
             continue;
-        }
-        let gain = if candidate.stats.accuracy.within(flatten_options.tolerance) {
-            // Within tolerance: nothing beats it but a shorter cut that is too.
-            f64::MAX / line.length
-        } else {
-            (flattened.stats.energy - candidate.stats.energy) / line.length.powf(LENGTH_EXPONENT)
         };
-        if best.as_ref().is_none_or(|(known, _)| gain > *known) {
-            let improvement = Improvement {
-                state: next,
-                flattened: candidate,
-                line,
-            };
-            best = Some((gain, improvement));
+        accepted += 1;
+        if best.as_ref().is_none_or(|known| trial.gain > known.gain) {
+            best = Some(trial);
         }
     }
-    let Some((_, mut improvement)) = best else {
+    let Some(Trial {
+        mut improvement, ..
+    }) = best
+    else {
         return Ok(None);
     };
     let refined = flatten_from(
@@ -555,6 +558,157 @@ fn best_cut(
         improvement.flattened = refined;
     }
     Ok(Some(improvement))
+}
+
+/// The crest lines of the current pattern a cut step may take: those of the energy map (Eq. 1)
+/// and those of the tension map (stretched springs only, where a cut opens; on a saddle the
+/// energy peaks where the pattern is compressed and a cut there would overlap), without
+/// repeats, an extension of an earlier cut or a new cut only while new cuts are allowed.
+fn candidate_lines(
+    state: &CutState,
+    flattened: &Flattened,
+    flatten_options: &FlattenOptions,
+    options: &CutOptions,
+    starts: &Starts<'_>,
+) -> Vec<CrestLine> {
+    let springs = SpringSystem::new(
+        &state.model,
+        state.stiffness.factors(),
+        flatten_options.spring_constant,
+    );
+    let adjacency = Adjacency::new(&state.model);
+    let tension = springs.tension_energies(&flattened.positions);
+    let settings = CrestSettings {
+        blocked: starts.blocked,
+        candidates: options.candidates,
+        dart_floor: options.dart_floor,
+        tension: &tension,
+    };
+    let mut lines: Vec<CrestLine> = Vec::new();
+    for energies in [&springs.vertex_energies(&flattened.positions), &tension] {
+        for line in crest_lines(&state.model, &adjacency, energies, &settings) {
+            let allowed = starts.new_cut_allowed || starts.tips.contains(&line.vertices[0]);
+            if allowed && !lines.iter().any(|known| known.vertices == line.vertices) {
+                lines.push(line);
+            }
+        }
+    }
+    lines
+}
+
+/// The flatten options with the fast solver's options changed by `change`.
+fn with_fast(
+    options: &FlattenOptions,
+    change: impl FnOnce(FastOptions) -> FastOptions,
+) -> FlattenOptions {
+    FlattenOptions {
+        fast: change(options.fast),
+        ..options.clone()
+    }
+}
+
+/// Cuts along `line` and flattens with `screen_options`; `None` if the line cannot be cut (it
+/// would cut a piece off, open nothing, or run along the boundary or a fold line) or the cut
+/// does not lower the error.
+fn screen(
+    state: &CutState,
+    flattened: &Flattened,
+    line: CrestLine,
+    screen_options: &FlattenOptions,
+) -> Result<Option<Trial>, CutError> {
+    let (next, copied_vertex) = match state.cut_along(&line.vertices) {
+        Ok(cut) => cut,
+        Err(
+            CutError::Disconnects
+            | CutError::OpensNothing
+            | CutError::BoundaryEdge { .. }
+            | CutError::FoldLine { .. },
+        ) => return Ok(None),
+        Err(other) => return Err(other),
+    };
+    let candidate = reflatten(&next, &copied_vertex, flattened, screen_options)?;
+    let improvement = Improvement {
+        state: next,
+        flattened: candidate,
+        line,
+    };
+    Ok(judge(
+        improvement,
+        flattened,
+        screen_options.tolerance,
+        Overlap::Ignored,
+    ))
+}
+
+/// Flattens a screened cut on from its screened pattern with `trial_options`; `None` if it no
+/// longer lowers the error.
+fn flatten_on(
+    trial: Trial,
+    before: &Flattened,
+    trial_options: &FlattenOptions,
+) -> Result<Option<Trial>, CutError> {
+    let Improvement {
+        state,
+        flattened,
+        line,
+    } = trial.improvement;
+    let further = flatten_from(
+        &state.model,
+        &state.stiffness,
+        &flattened.positions,
+        trial_options,
+    )?;
+    let flattened = if is_better(&flattened.stats.accuracy, &further.stats.accuracy) {
+        flattened
+    } else {
+        further
+    };
+    let improvement = Improvement {
+        state,
+        flattened,
+        line,
+    };
+    Ok(judge(
+        improvement,
+        before,
+        trial_options.tolerance,
+        Overlap::Refused,
+    ))
+}
+
+/// Whether [`judge`] refuses an overlapping pattern. Screening ignores overlap: after a few
+/// iterations the freshly cut sides have barely separated and touch (which counts as overlap) on
+/// fine meshes; the trial round refuses it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Overlap {
+    Ignored,
+    Refused,
+}
+
+/// The trial of a cut model and its pattern, or `None` if it does not lower the error of the
+/// pattern `before`.
+fn judge(
+    improvement: Improvement,
+    before: &Flattened,
+    tolerance: f64,
+    overlap: Overlap,
+) -> Option<Trial> {
+    let after = &improvement.flattened.stats;
+    let lower = match overlap {
+        Overlap::Refused => is_better(&after.accuracy, &before.stats.accuracy),
+        Overlap::Ignored => error(&after.accuracy) < error(&before.stats.accuracy),
+    };
+    if !lower {
+        return None;
+    }
+    let length = improvement.line.length;
+    let gain = if after.accuracy.within(tolerance) {
+        // Within tolerance: nothing beats it but a shorter cut that is too.
+        f64::MAX / length
+    } else {
+        (before.stats.energy - after.energy) / length.powf(LENGTH_EXPONENT)
+    };
+    Some(Trial { improvement, gain })
 }
 
 /// The pattern of a cut model, warm-started from the pattern before the cut (each copy starts
@@ -582,17 +736,20 @@ fn reflatten(
     })
 }
 
-/// True if `candidate` is a better pattern than `current`: it does not overlap while `current`
-/// does, or both agree on overlapping and its larger error is lower.
 /// The larger of `E_S` and `E_C`.
 fn error(a: &Accuracy) -> f64 {
     a.area_error.max(a.shape_error)
 }
 
+/// True if `candidate` is a better pattern than `current`: it does not overlap while `current`
+/// does; or both overlap and it has fewer flipped triangles (on an opened torus the cuts then
+/// go where they unflip the pattern: 0 flipped instead of 3 after eight cuts); or its larger
+/// error is lower.
 fn is_better(candidate: &Accuracy, current: &Accuracy) -> bool {
     match (candidate.overlap, current.overlap) {
         (false, true) => true,
         (true, false) => false,
+        (true, true) if candidate.flipped != current.flipped => candidate.flipped < current.flipped,
         _ => error(candidate) < error(current),
     }
 }

@@ -68,10 +68,28 @@ impl SpringSystem {
 
     /// Per-vertex energy of Eq. 1: each vertex gets the full energy of every spring it ends.
     pub fn vertex_energies(&self, positions: &[DVec2]) -> Vec<f64> {
+        self.vertex_energies_of(positions, |_| true)
+    }
+
+    /// Per-vertex energy of the stretched springs only (`|P_i P_j| > d_ij`): the energy a cut can
+    /// release by opening. A compressed spring holds material the pattern has too much of; a cut
+    /// across it would make its sides overlap, so it releases nothing.
+    pub fn tension_energies(&self, positions: &[DVec2]) -> Vec<f64> {
+        self.vertex_energies_of(positions, |stretch| stretch > 0.0)
+    }
+
+    /// Per-vertex sums of the energies of the springs whose stretch `|P_i P_j| − d_ij` passes
+    /// `counts`.
+    fn vertex_energies_of(&self, positions: &[DVec2], counts: impl Fn(f64) -> bool) -> Vec<f64> {
         let mut energies = vec![0.0; positions.len()];
         for e in 0..self.edges.len() {
-            let energy = self.spring_energy(e, positions);
             let [a, b] = self.edges[e];
+            let stretch =
+                positions[a as usize].distance(positions[b as usize]) - self.rest_lengths[e];
+            if !counts(stretch) {
+                continue;
+            }
+            let energy = self.spring_energy(e, positions);
             energies[a as usize] += energy;
             energies[b as usize] += energy;
         }
