@@ -4,7 +4,7 @@
 //!
 //! Inputs: a facet model, its [`SpringSystem`] (rest lengths `d_ij` in model units, constants
 //! `C_ij > 0`) and an initial pattern (one 2D position per model vertex, model units), such as the
-//! one [`super::init_flatten`] builds. Output: the pattern, moved in place to a lower energy, and a
+//! one [`super::init_flatten()`] builds. Output: the pattern, moved in place to a lower energy, and a
 //! [`FastOutcome`] (iterations, why it stopped, energy before and after). Preconditions: the model
 //! is connected (every [`FacetModel`] is); the constants are positive.
 //!

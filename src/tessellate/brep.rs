@@ -8,9 +8,9 @@
 //!
 //! Method:
 //! 1. Each face gets a mesh size: the target, or less where the face curves so much that the
-//!    chord tolerance needs smaller triangles ([`face_mesh_sizes`]: `√(6 chord / κ)` for the
+//!    chord tolerance needs smaller triangles (`face_mesh_sizes`: `√(6 chord / κ)` for the
 //!    face's largest principal curvature `κ`), so the refinement reaches the chord without
-//!    late Steiner points near the boundary. Every edge is then sampled once ([`sample_edge`]):
+//!    late Steiner points near the boundary. Every edge is then sampled once (`sample_edge`):
 //!    equal parameter steps, as many as keep each piece shorter than [`EDGE_PIECE_RATIO`] of the
 //!    smaller mesh size of its faces and within the chord tolerance of the curve, the ends
 //!    exactly at the edge's vertices.

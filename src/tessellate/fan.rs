@@ -10,7 +10,7 @@
 //! every triangle between two consecutive rulings has that angle at the apex. Triangles that
 //! span several rulings are well shaped but leave the cone: the chord between two rulings is
 //! shorter than its development by `t · excess(a, b)` at the fraction `t` of the way from the apex
-//! ([`Development::excess`]), which is what makes a mesh not exactly developable.
+//! (`Development::excess`), which is what makes a mesh not exactly developable.
 //!
 //! Method: rows across the rulings at fractions `t` from 1 (the far section) towards the apex.
 //! A row uses a subset of the rulings (all of them at first). The radial step between rows is
