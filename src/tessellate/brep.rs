@@ -326,6 +326,8 @@ fn face_loops(
     Ok(loops)
 }
 
+/// One face meshed in its mapped domain, its boundary vertices snapped onto the shared edge
+/// samples and its triangles turned to follow the face's normal.
 fn mesh_face(
     face: &CompressedFace<StepSurface>,
     loops: &[BoundaryLoop],
@@ -342,16 +344,6 @@ fn mesh_face(
         holes,
     };
     let mesh = mesh_patch(&patch, &[], mesh_size, chord).map_err(|e| e.to_string())?;
-    if std::env::var_os("FLATCUT_DEBUG_BREP").is_some() {
-        eprintln!("outer {:?}", patch.outer);
-        for t in &mesh.triangles {
-            let [a, b, c] = t.map(|v| mesh.parameters[v as usize]);
-            let area = 0.5 * (b - a).perp_dot(c - a);
-            if area.abs() < 1e-6 {
-                eprintln!("sliver {t:?} {a} {b} {c} area {area}");
-            }
-        }
-    }
     let positions = snap_to_samples(&mesh.positions, &mesh.parameters, &samples);
     let mut triangles = mesh.triangles;
     if !follows_face_normal(
@@ -371,13 +363,14 @@ fn mesh_face(
     })
 }
 
-/// Domain loops without repeated consecutive points, and every boundary sample as
-/// `(domain point, 3D point)`.
-#[allow(clippy::type_complexity)]
+/// A boundary sample: its point in the face's domain and on the edge in 3D.
+type BoundarySample = (DVec2, DVec3);
+
+/// Domain loops without repeated consecutive points, and every boundary sample.
 fn domain_boundary(
     domain_loops: &[Vec<DVec2>],
     loops: &[BoundaryLoop],
-) -> (Vec<Vec<DVec2>>, Vec<(DVec2, DVec3)>) {
+) -> (Vec<Vec<DVec2>>, Vec<BoundarySample>) {
     let mut cleaned = Vec::with_capacity(domain_loops.len());
     let mut samples = Vec::new();
     for (domain, points) in domain_loops.iter().zip(loops) {
@@ -427,13 +420,13 @@ fn outer_and_holes(mut loops: Vec<Vec<DVec2>>) -> (Vec<DVec2>, Vec<Vec<DVec2>>) 
 fn snap_to_samples(
     positions: &[DVec3],
     parameters: &[DVec2],
-    samples: &[(DVec2, DVec3)],
+    samples: &[BoundarySample],
 ) -> Vec<DVec3> {
     let extent = samples
         .iter()
         .fold(0.0_f64, |m, (p, _)| m.max(p.abs().max_element()));
     let tolerance = SNAP_RATIO * extent.max(f64::MIN_POSITIVE) * 10.0;
-    let mut sorted: Vec<(DVec2, DVec3)> = samples.to_vec();
+    let mut sorted: Vec<BoundarySample> = samples.to_vec();
     sorted.sort_by(|a, b| a.0.x.total_cmp(&b.0.x));
     positions
         .iter()
