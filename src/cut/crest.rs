@@ -381,66 +381,54 @@ mod tests {
     use super::*;
     use crate::cut::paths::tests::grid;
 
-    #[test]
-    fn the_crest_runs_along_the_energy_ridge_to_the_boundary() {
+    /// The first crest line of the 4 x 4 test grid with these vertex energies (also the tension
+    /// map) and blocked vertices.
+    fn first_crest_line(energies: &[f64], blocked: &[bool]) -> CrestLine {
         let model = grid();
         let adjacency = Adjacency::new(&model);
+        let settings = CrestSettings {
+            blocked,
+            candidates: 1,
+            dart_floor: DEFAULT_DART_FLOOR,
+            tension: energies,
+        };
+        crest_lines(&model, &adjacency, energies, &settings).remove(0)
+    }
+
+    #[test]
+    fn the_crest_runs_along_the_energy_ridge_to_the_boundary() {
         // Energy peaks at vertex 5 (interior) and falls along the column x = 1 towards y = 0.
         let mut energies = vec![0.0; 16];
         energies[5] = 10.0;
         energies[1] = 8.0;
         energies[9] = 2.0;
-        let blocked = vec![false; 16];
-        let settings = CrestSettings {
-            blocked: &blocked,
-            candidates: 1,
-            dart_floor: DEFAULT_DART_FLOOR,
-            tension: &energies,
-        };
-        let lines = crest_lines(&model, &adjacency, &energies, &settings);
+        let line = first_crest_line(&energies, &[false; 16]);
         // The dart branch goes on to 9, whose energy is above the mean (1.25).
-        assert_eq!(lines[0].vertices, vec![1, 5, 9]);
-        assert!((lines[0].score() - 10.0).abs() < 1e-12);
+        assert_eq!(line.vertices, vec![1, 5, 9]);
+        assert!((line.score() - 10.0).abs() < 1e-12);
     }
 
     #[test]
     fn a_dart_extends_while_the_energy_stays_high() {
-        let model = grid();
-        let adjacency = Adjacency::new(&model);
         let mut energies = vec![0.0; 16];
         energies[1] = 10.0;
         energies[5] = 9.0;
         energies[9] = 6.0;
         energies[13] = 5.0;
-        let blocked = vec![false; 16];
-        let settings = CrestSettings {
-            blocked: &blocked,
-            candidates: 1,
-            dart_floor: DEFAULT_DART_FLOOR,
-            tension: &energies,
-        };
-        let lines = crest_lines(&model, &adjacency, &energies, &settings);
+        let line = first_crest_line(&energies, &[false; 16]);
         // From boundary vertex 1 inward; 13 is on the far boundary and is never reached.
-        assert_eq!(lines[0].vertices, vec![1, 5, 9]);
+        assert_eq!(line.vertices, vec![1, 5, 9]);
     }
 
     #[test]
     fn blocked_vertices_are_never_on_a_line() {
-        let model = grid();
-        let adjacency = Adjacency::new(&model);
         let mut energies = vec![0.0; 16];
         energies[5] = 10.0;
         energies[1] = 8.0;
         let mut blocked = vec![false; 16];
         blocked[1] = true;
-        let settings = CrestSettings {
-            blocked: &blocked,
-            candidates: 1,
-            dart_floor: DEFAULT_DART_FLOOR,
-            tension: &energies,
-        };
-        let lines = crest_lines(&model, &adjacency, &energies, &settings);
-        assert!(!lines[0].vertices.contains(&1));
-        assert!(lines[0].vertices.contains(&5));
+        let line = first_crest_line(&energies, &blocked);
+        assert!(!line.vertices.contains(&1));
+        assert!(line.vertices.contains(&5));
     }
 }
