@@ -77,6 +77,74 @@ pub fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
     hull
 }
 
+/// Whether `point` lies inside the closed `ring`, by the crossing rule (the ring's last point may
+/// or may not repeat its first).
+pub fn inside(point: DVec2, ring: &[DVec2]) -> bool {
+    let count = ring.len();
+    (0..count)
+        .map(|k| (ring[k], ring[(k + 1) % count]))
+        .filter(|(p, q)| (p.y > point.y) != (q.y > point.y))
+        .filter(|(p, q)| point.x < p.x + (point.y - p.y) / (q.y - p.y) * (q.x - p.x))
+        .count()
+        % 2
+        == 1
+}
+
+/// Distance from `point` to the straight segment from `start` to `end`.
+pub fn distance_to_segment(point: DVec2, start: DVec2, end: DVec2) -> f64 {
+    let direction = end - start;
+    let length_squared = direction.length_squared();
+    if length_squared <= f64::MIN_POSITIVE {
+        return point.distance(start);
+    }
+    let t = ((point - start).dot(direction) / length_squared).clamp(0.0, 1.0);
+    point.distance(start + direction * t)
+}
+
+/// Grid points per side of each search in [`deep_interior_point`].
+const DEEP_POINT_GRID: usize = 24;
+/// Refinements of [`deep_interior_point`]'s search, each around the best point so far.
+const DEEP_POINT_REFINEMENTS: usize = 4;
+
+/// A point deep inside the region of `outer` without `holes`, where a label or a mark belongs:
+/// of a grid over the bounding box, refined around the best point a few times, the point inside
+/// the region farthest from every ring (an approximate pole of inaccessibility). The bounding
+/// box's centre when no grid point lies inside.
+pub fn deep_interior_point(outer: &[DVec2], holes: &[Vec<DVec2>]) -> DVec2 {
+    let (low, high) = outer.iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(low, high), &p| (low.min(p), high.max(p)),
+    );
+    let clearance = |point: DVec2| {
+        let in_region = inside(point, outer) && !holes.iter().any(|hole| inside(point, hole));
+        in_region.then(|| {
+            std::iter::once(outer)
+                .chain(holes.iter().map(Vec::as_slice))
+                .flat_map(|ring| {
+                    (0..ring.len()).map(move |k| (ring[k], ring[(k + 1) % ring.len()]))
+                })
+                .map(|(p, q)| distance_to_segment(point, p, q))
+                .fold(f64::INFINITY, f64::min)
+        })
+    };
+    let mut best = (0.5 * (low + high), f64::NEG_INFINITY);
+    let (mut centre, mut half) = (0.5 * (low + high), 0.5 * (high - low));
+    for _ in 0..=DEEP_POINT_REFINEMENTS {
+        let step = 2.0 * half / DEEP_POINT_GRID as f64;
+        for i in 0..=DEEP_POINT_GRID {
+            for j in 0..=DEEP_POINT_GRID {
+                let point = centre - half + step * DVec2::new(i as f64, j as f64);
+                // A strictly larger clearance wins: the first of equals stays, deterministically.
+                if let Some(distance) = clearance(point).filter(|&d| d > best.1) {
+                    best = (point, distance);
+                }
+            }
+        }
+        (centre, half) = (best.0, 2.0 * step);
+    }
+    best.0
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -128,5 +196,41 @@ mod tests {
     fn collinear_points_have_no_rectangle() {
         let line = [DVec2::ZERO, DVec2::ONE, DVec2::splat(2.0)];
         assert_eq!(long_side_of_smallest_rectangle(&line), None);
+    }
+
+    #[test]
+    fn the_deep_point_of_an_annulus_sector_lies_in_its_material() {
+        // The upper half of an annulus of radii 50 and 100: its bounding box's centre (0, 50)
+        // is in the hole; the deepest point is on the y axis, midway between the arcs.
+        let arc = |radius: f64, from: f64, to: f64| -> Vec<DVec2> {
+            (0..=32)
+                .map(|k| DVec2::from_angle(from + (to - from) * k as f64 / 32.0) * radius)
+                .collect()
+        };
+        let mut ring = arc(100.0, 0.0, std::f64::consts::PI);
+        ring.extend(arc(50.0, std::f64::consts::PI, 0.0));
+        let point = deep_interior_point(&ring, &[]);
+        assert!(inside(point, &ring));
+        assert!((point.length() - 75.0).abs() < 1.0, "{point}");
+    }
+
+    #[test]
+    fn the_deep_point_avoids_holes() {
+        // A 100 mm square with a 40 mm square hole in the middle: the band around the hole is
+        // 30 mm wide, so the deepest points are 15 mm from both.
+        let ring = |low: f64, high: f64| -> Vec<DVec2> {
+            [(low, low), (high, low), (high, high), (low, high)]
+                .map(DVec2::from)
+                .to_vec()
+        };
+        let (outer, hole) = (ring(0.0, 100.0), ring(30.0, 70.0));
+        let point = deep_interior_point(&outer, std::slice::from_ref(&hole));
+        assert!(inside(point, &outer) && !inside(point, &hole), "{point}");
+        let to_ring = |ring: &[DVec2]| {
+            (0..4)
+                .map(|k| distance_to_segment(point, ring[k], ring[(k + 1) % 4]))
+                .fold(f64::INFINITY, f64::min)
+        };
+        assert!(to_ring(&outer).min(to_ring(&hole)) > 14.0, "{point}");
     }
 }

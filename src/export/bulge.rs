@@ -97,16 +97,7 @@ pub fn distance_to_segment(point: DVec2, start: DVec2, end: DVec2, bulge: f64) -
     }
 }
 
-/// Distance from `point` to the straight segment from `start` to `end`.
-pub fn distance_to_line_segment(point: DVec2, start: DVec2, end: DVec2) -> f64 {
-    let direction = end - start;
-    let length_squared = direction.length_squared();
-    if length_squared <= f64::MIN_POSITIVE {
-        return point.distance(start);
-    }
-    let t = ((point - start).dot(direction) / length_squared).clamp(0.0, 1.0);
-    point.distance(start + direction * t)
-}
+pub use crate::geometry::distance_to_segment as distance_to_line_segment;
 
 /// Smallest axis-aligned box (lower and upper corner) holding the segment from `start` to `end`
 /// with the given bulge: its end points and, for an arc, the circle's extreme points it passes.

@@ -14,6 +14,7 @@ use super::drawing::{PartDrawing, SheetDrawing, Units};
 use super::dxf_repair::repair;
 use super::errors::ExportError;
 use super::part_contours::{PartContours, part_contours};
+use crate::geometry::deep_interior_point;
 use dxf::entities::{Entity, EntityType, Line, LwPolyline, Polyline, Text, Vertex};
 use dxf::enums::{AcadVersion, DrawingUnits, Units as DxfUnits};
 use dxf::tables::{Layer, LineType};
@@ -326,12 +327,12 @@ fn add_polyline(
     add_entity(document, layer, entity);
 }
 
-/// The label (part name, quantity, material) centred on the outer contour's bounding box.
+/// The label (part name, quantity, material), centred on a point deep inside the part's material
+/// ([`deep_interior_point`]), or beside it, across the grain line, when the part has one.
 fn add_label(document: &mut Drawing, drawing: &PartDrawing, outer: &[BulgeVertex]) {
-    let (low, high) = outer.iter().fold(
-        (DVec2::INFINITY, DVec2::NEG_INFINITY),
-        |(low, high), vertex| (low.min(vertex.point), high.max(vertex.point)),
-    );
+    let Some((low, high)) = polyline_bounds(outer, true) else {
+        return;
+    };
     let size = high - low;
     let unit = drawing.units.millimetres();
     let (smallest, largest) = LABEL_HEIGHT_RANGE_MM;
@@ -339,7 +340,17 @@ fn add_label(document: &mut Drawing, drawing: &PartDrawing, outer: &[BulgeVertex
         (size.min_element() * LABEL_HEIGHT_FRACTION).clamp(smallest / unit, largest / unit);
     let value = label_text(drawing);
     let width = value.chars().count() as f64 * height * LABEL_CHARACTER_WIDTH;
-    let location = (low + high) * 0.5 - DVec2::new(width, height) * 0.5;
+    let deep = if drawing.outer.len() >= 3 {
+        deep_interior_point(&drawing.outer, &drawing.holes)
+    } else {
+        (low + high) * 0.5
+    };
+    let beside_grain = drawing
+        .grain_arrow()
+        .map_or(DVec2::ZERO, |([tail, head], _)| {
+            (head - tail).normalize_or_zero().perp() * (1.5 * height)
+        });
+    let location = deep + beside_grain - DVec2::new(width, height) * 0.5;
     let text = Text {
         location: point(location),
         text_height: height,

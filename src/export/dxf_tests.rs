@@ -263,6 +263,42 @@ fn label_shows_names_literally() {
 }
 
 #[test]
+fn the_label_sits_on_the_material_and_is_sized_from_the_true_extents() {
+    // A half annulus of radii 200 and 300: its bounding-box centre (0, 150) lies in the hollow;
+    // the label must not. Its outline is 4 collinear vertices and 2 arcs, so the label's size
+    // must come from the arcs' extents (600 x 300 mm: the 10 mm cap), not from the vertices.
+    let part = PartDrawing {
+        outer: cone_development(200.0, 300.0, std::f64::consts::PI),
+        holes: Vec::new(),
+        fold_lines: Vec::new(),
+        grain: None,
+        ..cone_part()
+    };
+    let document = read_back(&write_part_dxf(&part, &DxfOptions::default()).expect("writes"));
+    let text = document
+        .entities()
+        .find_map(|entity| match &entity.specific {
+            EntityType::Text(text) => Some(text.clone()),
+            _ => None,
+        })
+        .expect("a label");
+    assert!(
+        (text.text_height - 10.0).abs() < 1e-9,
+        "{}",
+        text.text_height
+    );
+    let width = text.value.chars().count() as f64 * text.text_height * LABEL_CHARACTER_WIDTH;
+    let centre =
+        DVec2::new(text.location.x, text.location.y) + 0.5 * DVec2::new(width, text.text_height);
+    let radius = centre.length();
+    assert!(
+        (220.0..280.0).contains(&radius),
+        "label centre {centre} at radius {radius}"
+    );
+    assert!(centre.y > 0.0, "{centre}");
+}
+
+#[test]
 fn seam_allowance_cuts_outside_and_keeps_the_sew_line() {
     let square = vec![
         DVec2::ZERO,

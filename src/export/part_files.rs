@@ -20,6 +20,7 @@ use crate::flatten::grain::flat_grain;
 use crate::flatten::outline::Outline;
 use crate::flatten::stiffness::Stiffness;
 use crate::flatten::{Flattened, SpringSystem};
+use crate::geometry::deep_interior_point;
 use crate::mesh::FacetModel;
 use crate::pipeline::PartResult;
 
@@ -91,7 +92,7 @@ pub fn part_drawing(result: &PartResult) -> PartDrawing {
         .attributes
         .grain
         .and_then(|direction| flat_grain(&job.model, positions, direction))
-        .map(|direction| grain_line(&outline.outer, direction));
+        .map(|direction| grain_line(&outline.outer, &outline.holes, direction));
     PartDrawing {
         name: job.name.clone(),
         units: job.units,
@@ -104,20 +105,17 @@ pub fn part_drawing(result: &PartResult) -> PartDrawing {
     }
 }
 
-/// The grain line drawn on a pattern: along the unit `direction`, through the middle of the
-/// outer contour's bounding box, half as long as the contour's extent along `direction`.
-fn grain_line(outer: &[DVec2], direction: DVec2) -> [DVec2; 2] {
-    let (low, high) = outer.iter().fold(
-        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-        |(low, high), &p| (low.min(p), high.max(p)),
-    );
+/// The grain line drawn on a pattern: along the unit `direction`, through a point deep inside
+/// the material ([`deep_interior_point`]), half as long as the outer contour's extent along
+/// `direction`.
+fn grain_line(outer: &[DVec2], holes: &[Vec<DVec2>], direction: DVec2) -> [DVec2; 2] {
     let (first, last) = outer
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
             let along = p.dot(direction);
             (a.min(along), b.max(along))
         });
-    let centre = 0.5 * (low + high);
+    let centre = deep_interior_point(outer, holes);
     let half = 0.25 * (last - first);
     [centre - half * direction, centre + half * direction]
 }

@@ -366,14 +366,4 @@ fn extract_mesh(
     mesh
 }
 
-/// Distance from `point` to the segment `pq` in the plane.
-pub fn distance_to_segment(point: DVec2, p: DVec2, q: DVec2) -> f64 {
-    let edge = q - p;
-    let length_squared = edge.length_squared();
-    let t = if length_squared > 0.0 {
-        ((point - p).dot(edge) / length_squared).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    point.distance(p + edge * t)
-}
+pub use crate::geometry::distance_to_segment;

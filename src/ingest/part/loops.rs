@@ -92,18 +92,7 @@ fn loops_cross(a: &[DVec2], b: &[DVec2]) -> bool {
     segments(a).any(|s| segments(b).any(|t| segments_cross(s, t)))
 }
 
-/// Point in polygon by the crossing rule.
-pub fn inside(point: DVec2, polygon: &[DVec2]) -> bool {
-    segments(polygon)
-        .filter(|(p, q)| (p.y > point.y) != (q.y > point.y))
-        .filter(|(p, q)| {
-            let x = p.x + (point.y - p.y) / (q.y - p.y) * (q.x - p.x);
-            point.x < x
-        })
-        .count()
-        % 2
-        == 1
-}
+pub use crate::geometry::inside;
 
 #[cfg(test)]
 mod tests {
