@@ -58,7 +58,7 @@ use rayon::prelude::*;
 use super::StopReason;
 use super::accuracy::signed_area;
 use super::springs::SpringSystem;
-use crate::mesh::FacetModel;
+use crate::mesh::{FacetModel, compressed_rows};
 
 /// Default iteration budget.
 pub const DEFAULT_MAX_ITERATIONS: usize = 400;
@@ -410,23 +410,12 @@ fn unknown_vertex(i: usize) -> usize {
 /// The springs at each vertex, in compressed rows: offsets and spring indices flagged with
 /// [`SECOND_END`] at their second end.
 fn vertex_springs(vertex_count: usize, springs: &SpringSystem) -> (Vec<u32>, Vec<u32>) {
-    let mut offsets = vec![0u32; vertex_count + 1];
-    for &[a, b] in &springs.edges {
-        offsets[a as usize + 1] += 1;
-        offsets[b as usize + 1] += 1;
-    }
-    for v in 0..vertex_count {
-        offsets[v + 1] += offsets[v];
-    }
-    let mut fill = offsets.clone();
-    let mut incident = vec![0u32; offsets[vertex_count] as usize];
-    for (e, &[a, b]) in springs.edges.iter().enumerate() {
-        for (v, flag) in [(a, 0), (b, SECOND_END)] {
-            incident[fill[v as usize] as usize] = e as u32 | flag;
-            fill[v as usize] += 1;
-        }
-    }
-    (offsets, incident)
+    let entries = springs
+        .edges
+        .iter()
+        .enumerate()
+        .flat_map(|(e, &[a, b])| [(a, e as u32), (b, e as u32 | SECOND_END)]);
+    compressed_rows(vertex_count, entries)
 }
 
 /// The Cholesky factor `L = U Uᵀ` of the reduced spring Laplacian.

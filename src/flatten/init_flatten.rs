@@ -23,7 +23,7 @@ use glam::DVec2;
 
 use super::energy_release::{EnergyRelease, ReleaseParameters};
 use super::springs::SpringSystem;
-use crate::mesh::{FacetModel, NONE};
+use crate::mesh::{FacetModel, NONE, compressed_rows};
 use crate::progress::Progress;
 
 /// The paper's step count for the release after each triangle ("N = 50").
@@ -170,22 +170,12 @@ struct Placer<'a> {
 impl<'a> Placer<'a> {
     fn new(model: &'a FacetModel, springs: &'a SpringSystem) -> Self {
         let n = model.vertex_count();
-        let mut offsets = vec![0u32; n + 1];
-        for &[a, b] in model.edges() {
-            offsets[a as usize + 1] += 1;
-            offsets[b as usize + 1] += 1;
-        }
-        for i in 0..n {
-            offsets[i + 1] += offsets[i];
-        }
-        let mut fill = offsets.clone();
-        let mut vertex_edges = vec![0u32; offsets[n] as usize];
-        for (e, &[a, b]) in model.edges().iter().enumerate() {
-            for v in [a, b] {
-                vertex_edges[fill[v as usize] as usize] = e as u32;
-                fill[v as usize] += 1;
-            }
-        }
+        let edge_ends = model
+            .edges()
+            .iter()
+            .enumerate()
+            .flat_map(|(e, &[a, b])| [(a, e as u32), (b, e as u32)]);
+        let (offsets, vertex_edges) = compressed_rows(n, edge_ends);
         Self {
             model,
             springs,

@@ -216,24 +216,11 @@ fn build_edges(triangles: &[[u32; 3]]) -> EdgeTables {
 
 /// Vertex-to-face incidence in compressed rows.
 fn build_vertex_faces(vertex_count: usize, triangles: &[[u32; 3]]) -> (Vec<u32>, Vec<u32>) {
-    let mut offsets = vec![0u32; vertex_count + 1];
-    for t in triangles {
-        for &v in t {
-            offsets[v as usize + 1] += 1;
-        }
-    }
-    for i in 0..vertex_count {
-        offsets[i + 1] += offsets[i];
-    }
-    let mut fill = offsets.clone();
-    let mut faces = vec![0u32; offsets[vertex_count] as usize];
-    for (f, t) in triangles.iter().enumerate() {
-        for &v in t {
-            faces[fill[v as usize] as usize] = f as u32;
-            fill[v as usize] += 1;
-        }
-    }
-    (offsets, faces)
+    let entries = triangles
+        .iter()
+        .enumerate()
+        .flat_map(|(f, t)| t.iter().map(move |&v| (v, f as u32)));
+    super::compressed_rows(vertex_count, entries)
 }
 
 /// Boundary loops, each following the directed boundary half-edges (surface on the left).
