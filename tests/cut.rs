@@ -92,6 +92,64 @@ fn closed_box(size: DVec3, n: u32) -> FacetModel {
     validate(&soup).expect("valid box").components.remove(0)
 }
 
+/// A spherical cap of radius 100 and polar half-angle `half_angle` (degrees): `rings` rings at
+/// equal polar steps, `6 k` vertices on ring `k`, `6 rings²` triangles (the mesh of
+/// `../shared/bench/cap_mesh.py`).
+fn spherical_cap(half_angle: f64, rings: u32) -> FacetModel {
+    let radius = 100.0;
+    let mut positions = vec![DVec3::new(0.0, 0.0, radius)];
+    let mut ring_start = vec![0u32];
+    for k in 1..=rings {
+        ring_start.push(positions.len() as u32);
+        let polar = half_angle.to_radians() * k as f64 / rings as f64;
+        let count = 6 * k;
+        for j in 0..count {
+            let azimuth = std::f64::consts::TAU * j as f64 / count as f64;
+            positions.push(
+                radius
+                    * DVec3::new(
+                        polar.sin() * azimuth.cos(),
+                        polar.sin() * azimuth.sin(),
+                        polar.cos(),
+                    ),
+            );
+        }
+    }
+    let mut triangles = Vec::new();
+    for k in 1..=rings {
+        let (inner_count, outer_count) = (if k == 1 { 1 } else { 6 * (k - 1) }, 6 * k);
+        let (inner, outer) = (ring_start[k as usize - 1], ring_start[k as usize]);
+        // Walk both rings by angle (a merge of their sorted angles).
+        let (mut i, mut o) = (u32::from(inner_count == 1), 0);
+        while i < inner_count || o < outer_count {
+            let inner_next = if inner_count > 1 {
+                f64::from(i + 1) / f64::from(inner_count)
+            } else {
+                2.0
+            };
+            let outer_next = f64::from(o + 1) / f64::from(outer_count);
+            if o < outer_count && (outer_next <= inner_next || i >= inner_count || inner_count == 1)
+            {
+                triangles.push([
+                    inner + i % inner_count,
+                    outer + o,
+                    outer + (o + 1) % outer_count,
+                ]);
+                o += 1;
+            } else {
+                triangles.push([
+                    inner + i % inner_count,
+                    outer + o % outer_count,
+                    inner + (i + 1) % inner_count,
+                ]);
+                i += 1;
+            }
+        }
+    }
+    let soup = TriangleSoup::new(positions, triangles);
+    validate(&soup).expect("valid cap").components.remove(0)
+}
+
 /// A torus (genus 1) with `n × n` quads.
 fn torus(n: u32) -> FacetModel {
     let (major, minor) = (50.0, 20.0);
@@ -223,6 +281,26 @@ fn a_saddle_is_cut_where_it_is_stretched_and_reaches_tolerance() {
 }
 
 #[test]
+fn a_fine_cap_is_cut_to_tolerance() {
+    // 9600 triangles (edges of 1.2 mm), 2.5 % uncut: the cut planning works on a map smoothed
+    // over a length tied to the part's size, so a fine mesh reaches 1 % like a coarse one.
+    let model = spherical_cap(40.0, 40);
+    assert_eq!(model.triangle_count(), 9600);
+    let result = run(&model, &CutOptions::default()).expect("flattens");
+    let first = result.cuts.first().expect("cut").before;
+    assert!(first.area_error > 0.02, "uncut: {first:?}");
+    assert_eq!(result.stop, CutStop::ToleranceMet);
+    let recomputed = Accuracy::measure(&result.model, &result.flattened.positions);
+    assert!(recomputed.within(0.01), "{recomputed:?}");
+    // The 40° cap's arc is 70 mm from the pole to the rim: about three darts.
+    assert!(
+        result.total_cut_length() < 200.0,
+        "{}",
+        result.total_cut_length()
+    );
+}
+
+#[test]
 fn a_hemisphere_is_cut_until_its_error_falls() {
     let model = sample("hemisphere.obj");
     let options = CutOptions {
@@ -237,7 +315,8 @@ fn a_hemisphere_is_cut_until_its_error_falls() {
         first.area_error.max(first.shape_error) > 0.1,
         "uncut: {first:?}"
     );
-    assert!(error(&accuracy) < 0.05, "cut: {accuracy:?}");
+    let uncut = first.area_error.max(first.shape_error);
+    assert!(error(&accuracy) < 0.5 * uncut, "cut: {accuracy:?}");
     assert_eq!(accuracy.flipped, 0);
     for cut in &result.cuts {
         assert!(cut.after.energy < cut.before.energy);

@@ -1,7 +1,9 @@
 //! Crest lines of the energy map (paper §6.3): candidate cutting lines along mesh edges.
 //!
-//! Inputs: a [`FacetModel`], a per-vertex energy (Eq. 1 of the current flat pattern), and the
-//! vertices a cut may not pass through (on or next to a fold line, in a no-cut region).
+//! Inputs: a [`FacetModel`], a planning map ([`super::density`]: the energy of Eq. 1 of the
+//! current flat pattern per unit area, smoothed over a length tied to the part's size, so the
+//! lines do not depend on the mesh), the inner ends of earlier cuts, and the vertices a cut may
+//! not pass through (on or next to a fold line, in a no-cut region). "Energy" below is that map.
 //! Output: candidate [`CrestLine`]s, best first.
 //!
 //! The paper's crest line passes through the maximum-energy point along the slowest descent of
@@ -13,10 +15,14 @@
 //!   shortest edge path to the boundary;
 //! - the *dart branch* continues from the maximum the other way and stops inside the part where
 //!   extending no longer pays: at the first vertex whose energy is below `dart_floor` times the
-//!   mean vertex energy (the cut would run through less strained material than the average), or
+//!   mean energy (the cut would run through less strained material than the average), or
 //!   before it would touch the boundary (which would cut a piece off).
 //!
-//! A start on the boundary has only the dart branch: a dart inward from the boundary.
+//! A start on the boundary has only the dart branch: a dart inward from the boundary. A start
+//! near the inner end of an earlier cut (within [`TIP_SNAP`] smoothing lengths) is that end's
+//! stress peak: its line runs from the cut's end to the start by the shortest path and on along
+//! the dart branch, extending the cut. Once no new cut is allowed, the lines start from the
+//! highest vertex near each cut's end instead of from the highest maxima.
 //!
 //! Candidates: from each of the `candidates` highest local maxima, one line per [`Descent`] (the
 //! paper's slowest descent, and the steepest descent, which on a dome is the radial dart the
@@ -30,16 +36,22 @@
 //! so the energy of those vertices is what it can release at most. The cut loop measures the real
 //! release of each candidate by flattening; the estimate only orders them.
 
+use super::density::{DensityMap, smoothing_length};
 use super::paths::{Adjacency, dijkstra, path_length};
 use crate::mesh::FacetModel;
 
 /// Default number of crest lines traced per cut (from the highest local maxima).
 pub const DEFAULT_CANDIDATES: usize = 3;
-/// Default multiple of the mean vertex energy below which the dart branch stops.
+/// Default multiple of the map's mean (area-weighted) below which the dart branch stops.
 pub const DEFAULT_DART_FLOOR: f64 = 0.25;
 /// Smallest distance between the starts of candidate lines, as a fraction of the part's bounding
 /// diagonal: candidates from one energy peak would all be near copies of one another.
 pub const START_SPACING: f64 = 0.1;
+/// A maximum within this many smoothing lengths ([`smoothing_length`]) of
+/// the inner end of an earlier cut is that end's stress peak, spread by the smoothing: its line
+/// starts at the cut's end and extends the cut (and it gives no slit, which would leave a
+/// sliver of material between the two).
+pub const TIP_SNAP: f64 = 1.0;
 /// Lines of at least this many vertices also yield their shorter prefixes as candidates.
 const PREFIX_MIN_VERTICES: usize = 4;
 /// A long line also yields its first `k / PREFIX_PARTS` for `k = 1 .. PREFIX_PARTS − 1`.
@@ -94,12 +106,19 @@ pub struct CrestSettings<'a> {
     pub blocked: &'a [bool],
     /// Number of local maxima to start from.
     pub candidates: usize,
-    /// Multiple of the mean vertex energy below which the dart branch stops.
+    /// Multiple of the area-weighted mean of the map below which the dart branch stops.
     pub dart_floor: f64,
-    /// Per-vertex energy of the stretched springs ([`crate::flatten::SpringSystem::tension_energies`]).
+    /// The tension map: the planning map ([`super::density`]) of the energy of the stretched
+    /// springs ([`crate::flatten::SpringSystem::tension_energies`]).
     /// Each start also gives darts that stop where it falls below `dart_floor` times its mean,
     /// since a cut through compressed material would make its sides overlap.
-    pub tension: &'a [f64],
+    pub tension: &'a DensityMap,
+    /// The inner ends of earlier cuts: a line from a maximum near one starts there (see
+    /// [`TIP_SNAP`]).
+    pub tips: &'a [u32],
+    /// True when no new cut may be made: the lines then start from the highest vertex at or near
+    /// each of `tips` (within [`TIP_SNAP`] smoothing lengths), instead of the highest maxima.
+    pub extensions_only: bool,
 }
 
 /// Traces a line of each [`Descent`] from each of the highest local energy maxima and returns
@@ -108,12 +127,21 @@ pub struct CrestSettings<'a> {
 pub fn crest_lines(
     model: &FacetModel,
     adjacency: &Adjacency,
-    energies: &[f64],
+    map: &DensityMap,
     settings: &CrestSettings<'_>,
 ) -> Vec<CrestLine> {
+    let energies = &map.values;
     let on_boundary = boundary_flags(model);
-    let starts = local_maxima(adjacency, energies, settings.blocked);
-    let energy_floor = settings.dart_floor * mean_of(energies);
+    let snap_distance = TIP_SNAP * smoothing_length(model);
+    let (starts, start_count) = if settings.extensions_only {
+        let peaks = tip_peaks(model, adjacency, energies, settings, snap_distance);
+        let count = peaks.len();
+        (peaks, count)
+    } else {
+        let maxima = local_maxima(adjacency, energies, settings.blocked);
+        (maxima, settings.candidates)
+    };
+    let energy_floor = settings.dart_floor * map.mean;
     // Darts that stop on the energy alone, and darts that also stop where the material turns
     // compressed: on a dome the first reach further towards the compressed centre, which can pay.
     let floors = [
@@ -123,23 +151,28 @@ pub fn crest_lines(
         },
         Floor {
             energy: energy_floor,
-            tension: settings.dart_floor * mean_of(settings.tension),
+            tension: settings.dart_floor * settings.tension.mean,
         },
     ];
     let mut lines: Vec<CrestLine> = Vec::new();
-    for start in spread_out(model, &starts, settings.candidates) {
+    for start in spread_out(model, &starts, start_count) {
+        let tip = nearby_tip(model, adjacency, settings.tips, start, snap_distance);
         for descent in [Descent::Slowest, Descent::Steepest] {
             let tracer = Tracer {
                 descent,
                 model,
                 adjacency,
                 energies,
-                tension: settings.tension,
+                tension: &settings.tension.values,
                 blocked: settings.blocked,
                 on_boundary: &on_boundary,
             };
             for floor in floors {
-                for line in [tracer.crest_line(start, floor), tracer.slit(start, floor)]
+                let slit = match tip {
+                    Some(_) => None,
+                    None => tracer.slit(start, floor),
+                };
+                for line in [tracer.crest_line(start, tip, floor), slit]
                     .into_iter()
                     .flatten()
                 {
@@ -188,10 +221,6 @@ struct Floor {
     tension: f64,
 }
 
-fn mean_of(values: &[f64]) -> f64 {
-    values.iter().sum::<f64>() / values.len().max(1) as f64
-}
-
 /// True for every vertex on a boundary loop.
 pub fn boundary_flags(model: &FacetModel) -> Vec<bool> {
     let mut flags = vec![false; model.vertex_count()];
@@ -238,6 +267,66 @@ fn spread_out(model: &FacetModel, starts: &[u32], count: usize) -> Vec<u32> {
     taken
 }
 
+/// The inner end of an earlier cut (one of `tips`) next to `start` (a neighbour) or within
+/// `snap_distance` of it: the closest, if any. On the smoothed map the stress peak at a cut's
+/// end lies a little inside the material; a line from it continues that cut.
+fn nearby_tip(
+    model: &FacetModel,
+    adjacency: &Adjacency,
+    tips: &[u32],
+    start: u32,
+    snap_distance: f64,
+) -> Option<u32> {
+    let positions = model.positions();
+    let here = positions[start as usize];
+    tips.iter()
+        .copied()
+        .filter(|&tip| tip != start)
+        .map(|tip| (tip, positions[tip as usize].distance(here)))
+        .filter(|&(tip, distance)| {
+            distance <= snap_distance || adjacency.neighbours(start).iter().any(|&(w, _)| w == tip)
+        })
+        .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)))
+        .map(|(tip, _)| tip)
+}
+
+/// For each of the settings' tips, the unblocked vertex of highest energy among the tip, its
+/// neighbours and the vertices within `snap_distance` of it; highest energy first, without
+/// repeats.
+fn tip_peaks(
+    model: &FacetModel,
+    adjacency: &Adjacency,
+    energies: &[f64],
+    settings: &CrestSettings<'_>,
+    snap_distance: f64,
+) -> Vec<u32> {
+    let positions = model.positions();
+    let mut peaks: Vec<u32> = Vec::new();
+    for &tip in settings.tips {
+        let near = (0..model.vertex_count() as u32).filter(|&v| {
+            v == tip
+                || positions[v as usize].distance(positions[tip as usize]) <= snap_distance
+                || adjacency.neighbours(tip).iter().any(|&(w, _)| w == v)
+        });
+        let peak = near
+            .filter(|&v| !settings.blocked[v as usize])
+            .max_by(|&a, &b| {
+                energies[a as usize]
+                    .total_cmp(&energies[b as usize])
+                    .then(b.cmp(&a))
+            });
+        if let Some(peak) = peak.filter(|peak| !peaks.contains(peak)) {
+            peaks.push(peak);
+        }
+    }
+    peaks.sort_by(|&a, &b| {
+        energies[b as usize]
+            .total_cmp(&energies[a as usize])
+            .then(a.cmp(&b))
+    });
+    peaks
+}
+
 /// The data one trace needs.
 struct Tracer<'a> {
     descent: Descent,
@@ -251,18 +340,31 @@ struct Tracer<'a> {
 
 impl Tracer<'_> {
     /// The crest line through `start`: opening branch reversed (so the line starts on the
-    /// boundary), then the dart branch down to `floor`.
-    fn crest_line(&self, start: u32, floor: Floor) -> Option<CrestLine> {
+    /// boundary), then the dart branch down to `floor`. With a `tip` (the inner end of an earlier
+    /// cut next to `start`), the line starts there instead and extends that cut: the shortest way
+    /// from the tip to `start` (or, for a `start` on the boundary, to the first vertex of its
+    /// dart), then the dart branch on from there.
+    fn crest_line(&self, start: u32, tip: Option<u32>, floor: Floor) -> Option<CrestLine> {
         let mut visited = vec![false; self.model.vertex_count()];
-        visited[start as usize] = true;
-        let mut vertices = if self.on_boundary[start as usize] {
-            vec![start]
-        } else {
-            let mut opening = self.opening_branch(start, &mut visited)?;
-            opening.reverse();
-            opening
+        let (mut vertices, dart_start) = match tip {
+            Some(tip) => {
+                let first = self.first_inner_vertex(start, &visited)?;
+                let mut way = self.way_to_tip(first, tip, &mut visited)?;
+                way.reverse();
+                (way, first)
+            }
+            None => {
+                visited[start as usize] = true;
+                if self.on_boundary[start as usize] {
+                    (vec![start], start)
+                } else {
+                    let mut opening = self.opening_branch(start, &mut visited)?;
+                    opening.reverse();
+                    (opening, start)
+                }
+            }
         };
-        vertices.extend(self.dart_branch(start, floor, &mut visited));
+        vertices.extend(self.dart_branch(dart_start, floor, &mut visited));
         if vertices.len() < 2 {
             return None;
         }
@@ -366,6 +468,34 @@ impl Tracer<'_> {
             .any(|&(x, _)| x != current && visited[x as usize])
     }
 
+    /// `start` if it is interior, else the first vertex of a dart from it.
+    fn first_inner_vertex(&self, start: u32, visited: &[bool]) -> Option<u32> {
+        if !self.on_boundary[start as usize] {
+            return Some(start);
+        }
+        let mut visited = visited.to_vec();
+        visited[start as usize] = true;
+        self.descend(start, &visited, false)
+    }
+
+    /// The shortest edge path from `start` (interior) to `tip` through unvisited, unblocked
+    /// interior vertices (`start` first), marked visited.
+    fn way_to_tip(&self, start: u32, tip: u32, visited: &mut [bool]) -> Option<Vec<u32>> {
+        let passable = |v: u32| {
+            v == tip
+                || (!visited[v as usize]
+                    && !self.blocked[v as usize]
+                    && !self.on_boundary[v as usize])
+        };
+        let (paths, reached) =
+            dijkstra(self.model, self.adjacency, &[start], passable, |v| v == tip);
+        let path = paths.path_to(reached?)?;
+        for &v in &path {
+            visited[v as usize] = true;
+        }
+        Some(path)
+    }
+
     /// The shortest edge path from `current` to the boundary through unvisited, unblocked
     /// vertices (`current` first).
     fn shortest_way_out(&self, current: u32, visited: &[bool]) -> Option<Vec<u32>> {
@@ -386,13 +516,19 @@ mod tests {
     fn first_crest_line(energies: &[f64], blocked: &[bool]) -> CrestLine {
         let model = grid();
         let adjacency = Adjacency::new(&model);
+        let map = DensityMap {
+            values: energies.to_vec(),
+            mean: energies.iter().sum::<f64>() / energies.len() as f64,
+        };
         let settings = CrestSettings {
             blocked,
             candidates: 1,
             dart_floor: DEFAULT_DART_FLOOR,
-            tension: energies,
+            tension: &map,
+            tips: &[],
+            extensions_only: false,
         };
-        crest_lines(&model, &adjacency, energies, &settings).remove(0)
+        crest_lines(&model, &adjacency, &map, &settings).remove(0)
     }
 
     #[test]

@@ -20,6 +20,7 @@
 
 pub mod crest;
 pub mod cut_graph;
+pub mod density;
 mod errors;
 pub mod paths;
 pub mod seam;
@@ -39,6 +40,7 @@ use crate::flatten::{
 use crate::mesh::{FacetModel, NONE};
 use crate::progress::{NoProgress, Progress};
 use crest::{CrestLine, CrestSettings, DEFAULT_CANDIDATES, DEFAULT_DART_FLOOR, crest_lines};
+use density::planning_map;
 use paths::{Adjacency, path_edges, path_length};
 use split::split_along_edges;
 
@@ -77,7 +79,7 @@ pub struct CutOptions {
     /// Crest lines traced before each cut, from the highest energy maxima; default
     /// [`DEFAULT_CANDIDATES`].
     pub candidates: usize,
-    /// A dart stops where the energy falls below this multiple of the mean vertex energy;
+    /// A dart stops where the energy falls below this multiple of the mean energy density (see [`density`]);
     /// default [`DEFAULT_DART_FLOOR`].
     pub dart_floor: f64,
 }
@@ -562,8 +564,10 @@ fn best_cut(
 
 /// The crest lines of the current pattern a cut step may take: those of the energy map (Eq. 1)
 /// and those of the tension map (stretched springs only, where a cut opens; on a saddle the
-/// energy peaks where the pattern is compressed and a cut there would overlap), without
-/// repeats, an extension of an earlier cut or a new cut only while new cuts are allowed.
+/// energy peaks where the pattern is compressed and a cut there would overlap), both as planning
+/// maps ([`density`]: energy per unit area smoothed over a length tied to the part's size, so
+/// the lines do not depend on the mesh); without repeats, an extension of an earlier cut or a
+/// new cut only while new cuts are allowed.
 fn candidate_lines(
     state: &CutState,
     flattened: &Flattened,
@@ -577,16 +581,21 @@ fn candidate_lines(
         flatten_options.spring_constant,
     );
     let adjacency = Adjacency::new(&state.model);
-    let tension = springs.tension_energies(&flattened.positions);
+    let areas = density::vertex_areas(&state.model);
+    let map_of = |energies: Vec<f64>| planning_map(&state.model, &adjacency, &areas, &energies);
+    let energy = map_of(springs.vertex_energies(&flattened.positions));
+    let tension = map_of(springs.tension_energies(&flattened.positions));
     let settings = CrestSettings {
         blocked: starts.blocked,
         candidates: options.candidates,
         dart_floor: options.dart_floor,
         tension: &tension,
+        tips: starts.tips,
+        extensions_only: !starts.new_cut_allowed,
     };
     let mut lines: Vec<CrestLine> = Vec::new();
-    for energies in [&springs.vertex_energies(&flattened.positions), &tension] {
-        for line in crest_lines(&state.model, &adjacency, energies, &settings) {
+    for map in [&energy, &tension] {
+        for line in crest_lines(&state.model, &adjacency, map, &settings) {
             let allowed = starts.new_cut_allowed || starts.tips.contains(&line.vertices[0]);
             if allowed && !lines.iter().any(|known| known.vertices == line.vertices) {
                 lines.push(line);
