@@ -10,11 +10,44 @@
 //! edges not in `T` (breadth first from face 0). The `2g` edges in neither close one loop each
 //! with `T`; the union of `T` and those edges, with every dangling branch of `T` pruned, is the
 //! cut graph. On a genus-0 surface it is empty (no loop to cut).
+//!
+//! A closed surface also gets the **curvature cut graph** ([`curvature_cut_graph`]), in the spirit
+//! of Seamster (Sheffer and Hart 2002) and of cone-singularity parametrisations: a surface that
+//! concentrates its Gaussian curvature (angle deficit `2π − Σθ`) in a few regions (the corners of
+//! a box, filleted or not, the rims of a capped cylinder, the floor rim of a pocket) develops
+//! exactly, or nearly, once the seams pass through those regions. The regions are the connected
+//! sets of vertices whose curvature density `|2π − Σθ| / area` is at least
+//! [`REGION_DENSITY_FACTOR`] times that of a sphere of the part's area, holding together at least
+//! [`REGION_MIN_DEFICIT`]; the seams are a shortest-path Steiner tree (Prim's heuristic) from the
+//! seams cut so far (or from the strongest region) through every vertex of those regions, along
+//! edge costs that make routes along creases, fillets and the regions themselves cheaper (where a
+//! seam shows least and releases most). Prim's tree never closes a loop, so a ring-shaped region
+//! (a rim) is cut all around but one edge: a can opens to its side and two lids, each hinged on
+//! one edge.
 
 use std::collections::VecDeque;
+use std::f64::consts::{PI, TAU};
 
-use super::paths::{Adjacency, dijkstra};
+
+use super::crest::boundary_flags;
+use super::paths::{Adjacency, dijkstra, weighted_dijkstra};
+use super::seam::angle_deficits;
 use crate::mesh::{FacetModel, NONE};
+
+/// A curvature region's vertices have a curvature density `|2π − Σθ| / area` (area: a third of
+/// the triangles around the vertex) of at least this multiple of `4π / A`, the density of a sphere
+/// of the part's area `A`: the surface is there curved at least as a sphere of half that sphere's
+/// radius. A smooth sphere or torus has no region; a box corner, sharp or filleted, and the rim of
+/// a can are one each.
+pub const REGION_DENSITY_FACTOR: f64 = 4.0;
+/// Smallest total angle deficit `|Σ (2π − Σθ)|` (radians) of a curvature region (30°: a box corner
+/// holds 90°, a rim 360°).
+pub const REGION_MIN_DEFICIT: f64 = PI / 6.0;
+/// Dihedral angle (radians) at which an edge costs half its length to cut along (10°): seams
+/// prefer creases and the rulings of fillets.
+pub const BEND_SCALE: f64 = PI / 18.0;
+/// Cost factor of an edge with both ends in a curvature region.
+pub const REGION_ROUTE_FACTOR: f64 = 0.5;
 
 /// A cut graph: its edges, and the same edges as chains of vertices.
 #[derive(Debug, Clone, PartialEq)]
@@ -36,6 +69,169 @@ pub fn tree_cotree_cut_graph(model: &FacetModel, adjacency: &Adjacency) -> CutGr
     let edges: Vec<usize> = (0..in_graph.len()).filter(|&e| in_graph[e]).collect();
     let chains = chains(model, adjacency, &in_graph);
     CutGraph { edges, chains }
+}
+
+/// The curvature cut graph of a closed surface, or of a closed surface already opened by earlier
+/// seams (their boundary is where the tree starts); see the module documentation. `None` when it
+/// has no curvature region to reach, or the graph would be a single edge of a closed surface
+/// (which opens nothing). Vertices marked in `blocked` are never crossed.
+pub fn curvature_cut_graph(
+    model: &FacetModel,
+    adjacency: &Adjacency,
+    blocked: &[bool],
+) -> Option<CutGraph> {
+    let deficits = angle_deficits(model);
+    let regions = curvature_regions(model, adjacency, &deficits);
+    let on_boundary = boundary_flags(model);
+    let mut terminal = vec![false; model.vertex_count()];
+    for &v in regions.iter().flatten() {
+        terminal[v as usize] = !blocked[v as usize] && !on_boundary[v as usize];
+    }
+    let mut in_tree: Vec<bool> = (0..model.vertex_count())
+        .map(|v| on_boundary[v] && !blocked[v])
+        .collect();
+    if !in_tree.contains(&true) {
+        let root = strongest_vertex(&regions, &deficits, &terminal)?;
+        in_tree[root as usize] = true;
+    }
+    let cost = route_costs(model, &terminal);
+    let mut in_graph = vec![false; model.edges().len()];
+    loop {
+        let tree: Vec<u32> = (0..model.vertex_count() as u32)
+            .filter(|&v| in_tree[v as usize])
+            .collect();
+        let (paths, reached) = weighted_dijkstra(
+            model,
+            adjacency,
+            &tree,
+            |v| !blocked[v as usize],
+            |v| terminal[v as usize] && !in_tree[v as usize],
+            |edge| cost[edge as usize],
+        );
+        let Some(path) = reached.and_then(|target| paths.path_to(target)) else {
+            break;
+        };
+        for pair in path.windows(2) {
+            in_graph[model.find_edge(pair[0], pair[1])?] = true;
+            in_tree[pair[1] as usize] = true;
+        }
+    }
+    let edges: Vec<usize> = (0..in_graph.len()).filter(|&e| in_graph[e]).collect();
+    if edges.is_empty() || (model.is_closed() && edges.len() < 2) {
+        return None;
+    }
+    let chains = chains(model, adjacency, &in_graph);
+    Some(CutGraph { edges, chains })
+}
+
+/// A third of the area of the triangles around each vertex.
+fn vertex_areas(model: &FacetModel) -> Vec<f64> {
+    let mut areas = vec![0.0; model.vertex_count()];
+    for (face, triangle) in model.triangles().iter().enumerate() {
+        let third = model.triangle_area(face) / 3.0;
+        for &v in triangle {
+            areas[v as usize] += third;
+        }
+    }
+    areas
+}
+
+/// The curvature regions: connected sets of vertices of one sign of angle deficit whose
+/// curvature density is at least [`REGION_DENSITY_FACTOR`]` × 4π / A`, holding at least
+/// [`REGION_MIN_DEFICIT`] in all. Each region's vertices ascend.
+pub fn curvature_regions(
+    model: &FacetModel,
+    adjacency: &Adjacency,
+    deficits: &[f64],
+) -> Vec<Vec<u32>> {
+    let areas = vertex_areas(model);
+    let threshold = REGION_DENSITY_FACTOR * 2.0 * TAU / model.area();
+    let sign: Vec<i8> = (0..model.vertex_count())
+        .map(|v| {
+            let dense = areas[v] > 0.0 && deficits[v].abs() >= threshold * areas[v];
+            if dense { deficits[v].signum() as i8 } else { 0 }
+        })
+        .collect();
+    let mut seen = vec![false; model.vertex_count()];
+    let mut regions = Vec::new();
+    for start in 0..model.vertex_count() as u32 {
+        if sign[start as usize] == 0 || seen[start as usize] {
+            continue;
+        }
+        seen[start as usize] = true;
+        let mut region = vec![start];
+        let mut queue = VecDeque::from([start]);
+        while let Some(v) = queue.pop_front() {
+            for &(w, _) in adjacency.neighbours(v) {
+                if sign[w as usize] == sign[start as usize] && !seen[w as usize] {
+                    seen[w as usize] = true;
+                    region.push(w);
+                    queue.push_back(w);
+                }
+            }
+        }
+        let total: f64 = region.iter().map(|&v| deficits[v as usize]).sum();
+        if total.abs() >= REGION_MIN_DEFICIT {
+            region.sort_unstable();
+            regions.push(region);
+        }
+    }
+    regions
+}
+
+/// The root of the curvature tree of a closed surface: the terminal of largest `|deficit|` in the
+/// region holding the largest `|Σ deficit|` (ties to the lower index).
+fn strongest_vertex(regions: &[Vec<u32>], deficits: &[f64], terminal: &[bool]) -> Option<u32> {
+    let held = |region: &Vec<u32>| {
+        region
+            .iter()
+            .map(|&v| deficits[v as usize])
+            .sum::<f64>()
+            .abs()
+    };
+    let mut order: Vec<&Vec<u32>> = regions.iter().collect();
+    order.sort_by(|a, b| held(b).total_cmp(&held(a)));
+    order.into_iter().find_map(|region| {
+        region
+            .iter()
+            .copied()
+            .filter(|&v| terminal[v as usize])
+            .max_by(|&a, &b| {
+                deficits[a as usize]
+                    .abs()
+                    .total_cmp(&deficits[b as usize].abs())
+                    .then(b.cmp(&a))
+            })
+    })
+}
+
+/// The cost of cutting along each edge: its length, divided by `1 + dihedral / BEND_SCALE`, and
+/// times [`REGION_ROUTE_FACTOR`] when both its ends are region vertices (`in_region`).
+fn route_costs(model: &FacetModel, in_region: &[bool]) -> Vec<f64> {
+    let positions = model.positions();
+    let normal = |face: u32| {
+        let [a, b, c] = model.triangles()[face as usize].map(|v| positions[v as usize]);
+        (b - a).cross(c - a).normalize_or_zero()
+    };
+    model
+        .edges()
+        .iter()
+        .zip(model.edge_faces())
+        .map(|(&[a, b], &[first, second])| {
+            let length = positions[a as usize].distance(positions[b as usize]);
+            let dihedral = if second == NONE {
+                0.0
+            } else {
+                normal(first).angle_between(normal(second))
+            };
+            let bent = length / (1.0 + dihedral.max(0.0) / BEND_SCALE);
+            if in_region[a as usize] && in_region[b as usize] {
+                bent * REGION_ROUTE_FACTOR
+            } else {
+                bent
+            }
+        })
+        .collect()
 }
 
 /// Edges of the shortest-path tree from vertex 0.

@@ -436,6 +436,16 @@ fn open_to_disk(
             seams.push(make_seam(&state.model, SeamKind::Handle, chain));
         }
     }
+    if was_closed {
+        let blocked = state.blocked(&constraints.no_cut_regions);
+        let adjacency = Adjacency::new(&state.model);
+        if let Some(graph) = cut_graph::curvature_cut_graph(&state.model, &adjacency, &blocked) {
+            (*state, _) = state.cut_edges(&graph.edges)?;
+            for chain in &graph.chains {
+                seams.push(make_seam(&state.model, SeamKind::Curvature, chain));
+            }
+        }
+    }
     // Every seam removes a boundary loop, a handle or a corner, so this bounds the count.
     for _ in 0..=state.model.vertex_count() {
         let adjacency = Adjacency::new(&state.model);

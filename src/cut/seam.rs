@@ -55,6 +55,9 @@ pub enum SeamKind {
     Corner,
     /// Part of the cut graph that opens the handles of a closed surface.
     Handle,
+    /// Part of the tree through the curvature regions of a closed surface (its corners, rims
+    /// and filleted corners; see [`super::cut_graph::curvature_cut_graph`]).
+    Curvature,
 }
 
 /// The next automatic seam to cut, or `None` when the model is a disk (one boundary loop, no
@@ -105,7 +108,7 @@ fn angle_sums(model: &FacetModel) -> Vec<f64> {
 }
 
 /// Angle deficit `2π − Σθ` of every interior vertex (0 on the boundary).
-fn angle_deficits(model: &FacetModel) -> Vec<f64> {
+pub(super) fn angle_deficits(model: &FacetModel) -> Vec<f64> {
     let on_boundary = boundary_flags(model);
     angle_sums(model)
         .into_iter()
