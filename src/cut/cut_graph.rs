@@ -74,14 +74,16 @@ pub fn tree_cotree_cut_graph(model: &FacetModel, adjacency: &Adjacency) -> CutGr
 /// The curvature cut graph of a closed surface, or of a closed surface already opened by earlier
 /// seams (their boundary is where the tree starts); see the module documentation. `None` when it
 /// has no curvature region to reach, or the graph would be a single edge of a closed surface
-/// (which opens nothing). Vertices marked in `blocked` are never crossed.
+/// (which opens nothing). Vertices marked in `blocked` are never crossed; `signs` says which
+/// curvature makes regions.
 pub fn curvature_cut_graph(
     model: &FacetModel,
     adjacency: &Adjacency,
     blocked: &[bool],
+    signs: RegionSigns,
 ) -> Option<CutGraph> {
     let deficits = angle_deficits(model);
-    let regions = curvature_regions(model, adjacency, &deficits);
+    let regions = curvature_regions(model, adjacency, &deficits, signs);
     let on_boundary = boundary_flags(model);
     let mut terminal = vec![false; model.vertex_count()];
     for &v in regions.iter().flatten() {
@@ -136,20 +138,38 @@ fn vertex_areas(model: &FacetModel) -> Vec<f64> {
     areas
 }
 
-/// The curvature regions: connected sets of vertices of one sign of angle deficit whose
-/// curvature density is at least [`REGION_DENSITY_FACTOR`]` × 4π / A`, holding at least
-/// [`REGION_MIN_DEFICIT`] in all. Each region's vertices ascend.
+/// Which signs of Gaussian curvature make curvature regions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RegionSigns {
+    /// Positive only (corners, rims of lids, domes).
+    Positive,
+    /// Positive and negative (also the rim of a pocket or of a hole's collar, the inside of a
+    /// torus): a seam there frees the material around it, which then often has nowhere to lie but
+    /// over its neighbours.
+    Both,
+}
+
+/// The curvature regions: connected sets of vertices of one sign of angle deficit (positive only,
+/// or either, as `signs` says) whose curvature density is at least
+/// [`REGION_DENSITY_FACTOR`]` × 4π / A`, holding at least [`REGION_MIN_DEFICIT`] in all (in
+/// absolute value). Each region's vertices ascend.
 pub fn curvature_regions(
     model: &FacetModel,
     adjacency: &Adjacency,
     deficits: &[f64],
+    signs: RegionSigns,
 ) -> Vec<Vec<u32>> {
     let areas = vertex_areas(model);
     let threshold = REGION_DENSITY_FACTOR * 2.0 * TAU / model.area();
     let sign: Vec<i8> = (0..model.vertex_count())
         .map(|v| {
+            let counted = signs == RegionSigns::Both || deficits[v] > 0.0;
             let dense = areas[v] > 0.0 && deficits[v].abs() >= threshold * areas[v];
-            if dense { deficits[v].signum() as i8 } else { 0 }
+            if counted && dense {
+                deficits[v].signum() as i8
+            } else {
+                0
+            }
         })
         .collect();
     let mut seen = vec![false; model.vertex_count()];

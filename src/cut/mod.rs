@@ -38,6 +38,7 @@ use crate::flatten::{
 };
 use crate::mesh::{FacetModel, NONE};
 use crate::progress::{NoProgress, Progress};
+use cut_graph::RegionSigns;
 use crest::{CrestLine, CrestSettings, DEFAULT_CANDIDATES, DEFAULT_DART_FLOOR, crest_lines};
 use paths::{Adjacency, path_edges, path_length};
 use split::split_along_edges;
@@ -246,10 +247,10 @@ pub fn cut_and_flatten(
         stiffness: stiffness.clone(),
         original_vertex: (0..model.vertex_count() as u32).collect(),
     };
-    let mut seams = Vec::new();
-    lay_user_seams(&mut state, constraints, &mut seams)?;
-    open_to_disk(&mut state, constraints, &mut seams)?;
-    let mut flattened = flatten(&state.model, &state.stiffness, flatten_options, progress)?;
+    let mut user_seams = Vec::new();
+    lay_user_seams(&mut state, constraints, &mut user_seams)?;
+    let (mut state, seams, mut flattened) =
+        open_and_flatten(&state, constraints, user_seams, flatten_options, progress)?;
     let loop_options = converged_options(flatten_options);
     if !flattened.stats.accuracy.within(flatten_options.tolerance) && options.max_cuts > 0 {
         let start = flattened.positions.clone();
@@ -422,11 +423,53 @@ fn lay_user_seams(
     Ok(())
 }
 
-/// Cuts automatic seams until the model is a disk.
+/// Opens the part to a disk with automatic seams after `seams` (the user's) and flattens it. A
+/// closed surface whose curvature regions have both signs is opened both ways, with seams
+/// through the regions of either sign and through the positive ones only
+/// ([`cut_graph::RegionSigns`]), and the better pattern is kept ([`is_better`]: an overlapping
+/// pattern is worse than any other): on a box with a pocket, the seam around the pocket's rim
+/// lets the pocket develop exactly; on a torus, the seam along its inside lets the pattern cross
+/// itself.
+fn open_and_flatten(
+    state: &CutState,
+    constraints: &CutConstraints,
+    seams: Vec<Seam>,
+    flatten_options: &FlattenOptions,
+    progress: &dyn Progress,
+) -> Result<(CutState, Vec<Seam>, Flattened), CutError> {
+    let variants: &[RegionSigns] = if state.model.is_closed() {
+        &[RegionSigns::Both, RegionSigns::Positive]
+    } else {
+        &[RegionSigns::Both]
+    };
+    let mut best: Option<(CutState, Vec<Seam>, Flattened)> = None;
+    for &signs in variants {
+        let mut opened = state.clone();
+        let mut opened_seams = seams.clone();
+        open_to_disk(&mut opened, constraints, &mut opened_seams, signs)?;
+        if best
+            .as_ref()
+            .is_some_and(|(_, known, _)| *known == opened_seams)
+        {
+            continue;
+        }
+        let flattened = flatten(&opened.model, &opened.stiffness, flatten_options, progress)?;
+        if best.as_ref().is_none_or(|(_, _, known)| {
+            is_better(&flattened.stats.accuracy, &known.stats.accuracy)
+        }) {
+            best = Some((opened, opened_seams, flattened));
+        }
+    }
+    best.ok_or(CutError::NoSeam)
+}
+
+/// Cuts automatic seams until the model is a disk; `signs` says which curvature regions the
+/// seams of a closed surface run through.
 fn open_to_disk(
     state: &mut CutState,
     constraints: &CutConstraints,
     seams: &mut Vec<Seam>,
+    signs: RegionSigns,
 ) -> Result<(), CutError> {
     let was_closed = state.model.is_closed();
     if was_closed && seam::genus(&state.model) > 0 {
@@ -439,7 +482,9 @@ fn open_to_disk(
     if was_closed {
         let blocked = state.blocked(&constraints.no_cut_regions);
         let adjacency = Adjacency::new(&state.model);
-        if let Some(graph) = cut_graph::curvature_cut_graph(&state.model, &adjacency, &blocked) {
+        if let Some(graph) =
+            cut_graph::curvature_cut_graph(&state.model, &adjacency, &blocked, signs)
+        {
             (*state, _) = state.cut_edges(&graph.edges)?;
             for chain in &graph.chains {
                 seams.push(make_seam(&state.model, SeamKind::Curvature, chain));
