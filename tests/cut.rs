@@ -178,7 +178,7 @@ fn a_closed_box_opens_along_its_corners_to_an_exact_net() {
 fn a_closed_torus_opens_along_its_cut_graph() {
     let model = torus(16);
     let options = CutOptions {
-        max_cuts: 0,
+        max_cuts: Some(0),
         ..CutOptions::default()
     };
     let result = run(&model, &options).expect("flattens");
@@ -226,7 +226,7 @@ fn a_saddle_is_cut_where_it_is_stretched_and_reaches_tolerance() {
 fn a_hemisphere_is_cut_until_its_error_falls() {
     let model = sample("hemisphere.obj");
     let options = CutOptions {
-        max_cuts: 2,
+        max_cuts: Some(2),
         ..CutOptions::default()
     };
     let result = run(&model, &options).expect("flattens");
@@ -258,7 +258,7 @@ fn a_hemisphere_is_cut_until_its_error_falls() {
 fn cutting_is_deterministic() {
     let model = sample("hemisphere.obj");
     let options = CutOptions {
-        max_cuts: 1,
+        max_cuts: Some(1),
         ..CutOptions::default()
     };
     let first = run(&model, &options).expect("flattens");
@@ -339,7 +339,7 @@ fn cuts_never_touch_a_fold_line() {
         .map(|v| model.positions()[v as usize])
         .collect();
     let options = CutOptions {
-        max_cuts: 3,
+        max_cuts: Some(3),
         ..CutOptions::default()
     };
     let result = run(&model, &options).expect("flattens");

@@ -5,8 +5,8 @@
 //! Input: a closed [`FacetModel`] (no boundary). Output: the edges of the graph and the graph
 //! split into chains (vertex paths between its branch points) for reporting.
 //!
-//! Method: `T` is the shortest-path tree of the vertices from vertex 0 (Dijkstra on 3D edge
-//! lengths, so the cut runs along short paths); `C` is a spanning tree of the faces across the
+//! Method: `T` is the shortest-path tree of the vertices from the vertex of most negative angle
+//! deficit over its one-ring (Dijkstra on 3D edge lengths, so the cut runs along short paths); `C` is a spanning tree of the faces across the
 //! edges not in `T` (breadth first from face 0). The `2g` edges in neither close one loop each
 //! with `T`; the union of `T` and those edges, with every dangling branch of `T` pruned, is the
 //! cut graph. On a genus-0 surface it is empty (no loop to cut).
@@ -27,7 +27,6 @@
 
 use std::collections::VecDeque;
 use std::f64::consts::{PI, TAU};
-
 
 use super::crest::boundary_flags;
 use super::paths::{Adjacency, dijkstra, weighted_dijkstra};
@@ -60,7 +59,7 @@ pub struct CutGraph {
 
 /// The tree–cotree cut graph of a closed model; see the module documentation.
 pub fn tree_cotree_cut_graph(model: &FacetModel, adjacency: &Adjacency) -> CutGraph {
-    let in_tree = shortest_path_tree(model, adjacency);
+    let in_tree = shortest_path_tree(model, adjacency, most_saddle_like_vertex(model, adjacency));
     let in_cotree = dual_spanning_tree(model, &in_tree);
     let mut in_graph: Vec<bool> = (0..model.edges().len())
         .map(|e| in_tree[e] || !in_cotree[e])
@@ -254,11 +253,38 @@ fn route_costs(model: &FacetModel, in_region: &[bool]) -> Vec<f64> {
         .collect()
 }
 
-/// Edges of the shortest-path tree from vertex 0.
-fn shortest_path_tree(model: &FacetModel, adjacency: &Adjacency) -> Vec<bool> {
-    let (paths, _) = dijkstra(model, adjacency, &[0], |_| true, |_| false);
+/// The vertex whose angle deficit plus its neighbours' is most negative (the lowest index among
+/// equals; the neighbours smooth out the triangulation's bias): on the inside of a handle, where
+/// the loops around it are shortest. Rooted there, the cut graph of a torus runs
+/// along its inner equator, the pattern's outline is where the material is shortest, and the
+/// crest-line darts cut from it taper outwards into a fishbone instead of fanning into each other
+/// (rooted on the outer equator, 8 cuts left the outline crossing itself).
+fn most_saddle_like_vertex(model: &FacetModel, adjacency: &Adjacency) -> u32 {
+    let deficit = angle_deficits(model);
+    let deficits: Vec<f64> = (0..model.vertex_count() as u32)
+        .map(|v| {
+            let ring: f64 = adjacency
+                .neighbours(v)
+                .iter()
+                .map(|&(w, _)| deficit[w as usize])
+                .sum();
+            deficit[v as usize] + ring
+        })
+        .collect();
+    (0..model.vertex_count() as u32)
+        .min_by(|&a, &b| {
+            deficits[a as usize]
+                .total_cmp(&deficits[b as usize])
+                .then(a.cmp(&b))
+        })
+        .unwrap_or(0)
+}
+
+/// Edges of the shortest-path tree from `root`.
+fn shortest_path_tree(model: &FacetModel, adjacency: &Adjacency, root: u32) -> Vec<bool> {
+    let (paths, _) = dijkstra(model, adjacency, &[root], |_| true, |_| false);
     let mut in_tree = vec![false; model.edges().len()];
-    for v in 1..model.vertex_count() as u32 {
+    for v in 0..model.vertex_count() as u32 {
         if let Some(parent) = paths.predecessor(v)
             && let Some(edge) = model.find_edge(v, parent)
         {

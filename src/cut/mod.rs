@@ -25,6 +25,8 @@ pub mod paths;
 pub mod seam;
 pub mod split;
 
+use std::f64::consts::PI;
+
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -38,13 +40,20 @@ use crate::flatten::{
 };
 use crate::mesh::{FacetModel, NONE};
 use crate::progress::{NoProgress, Progress};
-use cut_graph::RegionSigns;
 use crest::{CrestLine, CrestSettings, DEFAULT_CANDIDATES, DEFAULT_DART_FLOOR, crest_lines};
+use cut_graph::RegionSigns;
 use paths::{Adjacency, path_edges, path_length};
 use split::split_along_edges;
 
-/// Default largest number of crest-line cuts per part (seams not counted).
+/// Smallest default number of crest-line cuts per part (seams not counted); see
+/// [`default_cut_budget`].
 pub const DEFAULT_MAX_CUTS: usize = 8;
+/// Total absolute Gaussian curvature `∫|K| dA` of the spherical cap of half-angle 60°,
+/// `2π (1 − cos 60°) = π`, the unit of [`default_cut_budget`].
+pub const CAP_CURVATURE: f64 = PI;
+/// Crest-line cuts the loop needs per [`CAP_CURVATURE`] of total absolute curvature: the 60° cap
+/// reaches 1 % with 5.
+pub const CUTS_PER_CAP: f64 = 5.0;
 /// The cut loop keeps the candidate of largest `ΔE / L^LENGTH_EXPONENT` (measured energy drop
 /// `ΔE`, cut length `L`). With 1 (drop per unit length) the loop prefers ever shorter steps, since
 /// returns diminish along a cut, and spends its budget on millimetre extensions; with 1/2 a cut
@@ -72,9 +81,9 @@ pub const EXTENSIONS_PER_CUT: usize = 3;
 /// flattening's ([`FlattenOptions::tolerance`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CutOptions {
-    /// Largest number of crest-line cuts; default [`DEFAULT_MAX_CUTS`]. 0 disables cutting
-    /// (seams are still made).
-    pub max_cuts: usize,
+    /// Largest number of crest-line cuts; `None` (the default) for [`default_cut_budget`] of the
+    /// opened part. `Some(0)` disables cutting (seams are still made).
+    pub max_cuts: Option<usize>,
     /// Crest lines traced before each cut, from the highest energy maxima; default
     /// [`DEFAULT_CANDIDATES`].
     pub candidates: usize,
@@ -99,7 +108,7 @@ pub struct CutConstraints {
 impl Default for CutOptions {
     fn default() -> Self {
         Self {
-            max_cuts: DEFAULT_MAX_CUTS,
+            max_cuts: None,
             candidates: DEFAULT_CANDIDATES,
             dart_floor: DEFAULT_DART_FLOOR,
         }
@@ -251,8 +260,11 @@ pub fn cut_and_flatten(
     lay_user_seams(&mut state, constraints, &mut user_seams)?;
     let (mut state, seams, mut flattened) =
         open_and_flatten(&state, constraints, user_seams, flatten_options, progress)?;
+    let max_cuts = options
+        .max_cuts
+        .unwrap_or_else(|| default_cut_budget(&state.model));
     let loop_options = converged_options(flatten_options);
-    if !flattened.stats.accuracy.within(flatten_options.tolerance) && options.max_cuts > 0 {
+    if !flattened.stats.accuracy.within(flatten_options.tolerance) && max_cuts > 0 {
         let start = flattened.positions.clone();
         flattened = flatten_from(&state.model, &state.stiffness, &start, &loop_options)?;
     }
@@ -260,14 +272,14 @@ pub fn cut_and_flatten(
     let mut cuts: Vec<Cut> = Vec::new();
     let mut tips: Vec<u32> = Vec::new();
     let mut uncut = None;
-    let step_budget = options.max_cuts * (1 + EXTENSIONS_PER_CUT);
+    let step_budget = max_cuts * (1 + EXTENSIONS_PER_CUT);
     let mut reporting = false;
     let mut steps = 0;
     let stop = loop {
         if flattened.stats.accuracy.within(flatten_options.tolerance) {
             break CutStop::ToleranceMet;
         }
-        let new_cut_allowed = cuts.len() < options.max_cuts;
+        let new_cut_allowed = cuts.len() < max_cuts;
         if steps >= step_budget || (!new_cut_allowed && tips.is_empty()) {
             break CutStop::CutBudget;
         }
@@ -336,6 +348,17 @@ pub fn cut_and_flatten(
         stop,
         uncut,
     })
+}
+
+/// The number of crest-line cuts a part may get when the user sets none: [`CUTS_PER_CAP`] per
+/// [`CAP_CURVATURE`] of the total absolute Gaussian curvature `∫|K| dA = Σ |2π − Σθ|` over the
+/// interior vertices of the opened part (the curvature its seams did not release), and at least
+/// [`DEFAULT_MAX_CUTS`]. A closed sphere opened by a slit holds `4π` (20 cuts); a box opened to
+/// its net holds none (8).
+pub fn default_cut_budget(model: &FacetModel) -> usize {
+    let curvature: f64 = seam::angle_deficits(model).iter().map(|d| d.abs()).sum();
+    let scaled = (CUTS_PER_CAP * curvature / CAP_CURVATURE).ceil();
+    DEFAULT_MAX_CUTS.max(scaled as usize)
 }
 
 /// The model being cut, with its stiffness and the way back to the input's vertices.
@@ -424,12 +447,13 @@ fn lay_user_seams(
 }
 
 /// Opens the part to a disk with automatic seams after `seams` (the user's) and flattens it. A
-/// closed surface whose curvature regions have both signs is opened both ways, with seams
-/// through the regions of either sign and through the positive ones only
+/// closed surface without handles whose curvature regions have both signs is opened both ways,
+/// with seams through the regions of either sign and through the positive ones only
 /// ([`cut_graph::RegionSigns`]), and the better pattern is kept ([`is_better`]: an overlapping
 /// pattern is worse than any other): on a box with a pocket, the seam around the pocket's rim
-/// lets the pocket develop exactly; on a torus, the seam along its inside lets the pattern cross
-/// itself.
+/// lets the pocket develop exactly. On a surface with handles the negative curvature is the
+/// inside of the handles, which their cut graph already follows: only positive regions are cut
+/// (seams through a torus's inside cut thin strips off it).
 fn open_and_flatten(
     state: &CutState,
     constraints: &CutConstraints,
@@ -437,10 +461,10 @@ fn open_and_flatten(
     flatten_options: &FlattenOptions,
     progress: &dyn Progress,
 ) -> Result<(CutState, Vec<Seam>, Flattened), CutError> {
-    let variants: &[RegionSigns] = if state.model.is_closed() {
+    let variants: &[RegionSigns] = if state.model.is_closed() && seam::genus(&state.model) == 0 {
         &[RegionSigns::Both, RegionSigns::Positive]
     } else {
-        &[RegionSigns::Both]
+        &[RegionSigns::Positive]
     };
     let mut best: Option<(CutState, Vec<Seam>, Flattened)> = None;
     for &signs in variants {
@@ -454,9 +478,10 @@ fn open_and_flatten(
             continue;
         }
         let flattened = flatten(&opened.model, &opened.stiffness, flatten_options, progress)?;
-        if best.as_ref().is_none_or(|(_, _, known)| {
-            is_better(&flattened.stats.accuracy, &known.stats.accuracy)
-        }) {
+        if best
+            .as_ref()
+            .is_none_or(|(_, _, known)| is_better(&flattened.stats.accuracy, &known.stats.accuracy))
+        {
             best = Some((opened, opened_seams, flattened));
         }
     }

@@ -108,7 +108,7 @@ fn angle_sums(model: &FacetModel) -> Vec<f64> {
 }
 
 /// Angle deficit `2π − Σθ` of every interior vertex (0 on the boundary).
-pub(super) fn angle_deficits(model: &FacetModel) -> Vec<f64> {
+pub fn angle_deficits(model: &FacetModel) -> Vec<f64> {
     let on_boundary = boundary_flags(model);
     angle_sums(model)
         .into_iter()
