@@ -17,8 +17,9 @@
 //! a box, filleted or not, the rims of a capped cylinder, the floor rim of a pocket) develops
 //! exactly, or nearly, once the seams pass through those regions. The regions are the connected
 //! sets of vertices whose curvature density `|2π − Σθ| / area` is at least
-//! [`REGION_DENSITY_FACTOR`] times that of a sphere of the part's area, holding together at least
-//! [`REGION_MIN_DEFICIT`]; the seams are a shortest-path Steiner tree (Prim's heuristic) from the
+//! [`REGION_DENSITY_FACTOR`] times that of a sphere of the part's area (or whose deficit alone is
+//! at least [`REGION_VERTEX_DEFICIT`], for coarse meshes), holding together at least
+//! [`REGION_MIN_DEFICIT`] (negative curvature only on request, see [`RegionSigns`]); the seams are a shortest-path Steiner tree (Prim's heuristic) from the
 //! seams cut so far (or from the strongest region) through every vertex of those regions, along
 //! edge costs that make routes along creases, fillets and the regions themselves cheaper (where a
 //! seam shows least and releases most). Prim's tree never closes a loop, so a ring-shaped region
@@ -39,6 +40,10 @@ use crate::mesh::{FacetModel, NONE};
 /// radius. A smooth sphere or torus has no region; a box corner, sharp or filleted, and the rim of
 /// a can are one each.
 pub const REGION_DENSITY_FACTOR: f64 = 4.0;
+/// A vertex whose own angle deficit is at least this (20°) belongs to a curvature region whatever
+/// its density: on a coarse mesh a rim's vertices are too large for the density to show (a can
+/// with 16 segments has 22.5° at each rim vertex).
+pub const REGION_VERTEX_DEFICIT: f64 = PI / 9.0;
 /// Smallest total angle deficit `|Σ (2π − Σθ)|` (radians) of a curvature region (30°: a box corner
 /// holds 90°, a rim 360°).
 pub const REGION_MIN_DEFICIT: f64 = PI / 6.0;
@@ -150,7 +155,8 @@ pub enum RegionSigns {
 
 /// The curvature regions: connected sets of vertices of one sign of angle deficit (positive only,
 /// or either, as `signs` says) whose curvature density is at least
-/// [`REGION_DENSITY_FACTOR`]` × 4π / A`, holding at least [`REGION_MIN_DEFICIT`] in all (in
+/// [`REGION_DENSITY_FACTOR`]` × 4π / A` or whose deficit is at least [`REGION_VERTEX_DEFICIT`],
+/// holding at least [`REGION_MIN_DEFICIT`] in all (in
 /// absolute value). Each region's vertices ascend.
 pub fn curvature_regions(
     model: &FacetModel,
@@ -163,7 +169,8 @@ pub fn curvature_regions(
     let sign: Vec<i8> = (0..model.vertex_count())
         .map(|v| {
             let counted = signs == RegionSigns::Both || deficits[v] > 0.0;
-            let dense = areas[v] > 0.0 && deficits[v].abs() >= threshold * areas[v];
+            let dense = (areas[v] > 0.0 && deficits[v].abs() >= threshold * areas[v])
+                || deficits[v].abs() >= REGION_VERTEX_DEFICIT;
             if counted && dense {
                 deficits[v].signum() as i8
             } else {
