@@ -507,12 +507,16 @@ fn open_to_disk(
     if was_closed {
         let blocked = state.blocked(&constraints.no_cut_regions);
         let adjacency = Adjacency::new(&state.model);
-        if let Some(graph) =
-            cut_graph::curvature_cut_graph(&state.model, &adjacency, &blocked, signs)
-        {
+        let graph = cut_graph::curvature_cut_graph(&state.model, &adjacency, &blocked, signs)
+            .map(|graph| (SeamKind::Curvature, graph))
+            .or_else(|| {
+                cut_graph::bisector_cut_graph(&state.model, &adjacency, &blocked)
+                    .map(|graph| (SeamKind::Bisector, graph))
+            });
+        if let Some((kind, graph)) = graph {
             (*state, _) = state.cut_edges(&graph.edges)?;
             for chain in &graph.chains {
-                seams.push(make_seam(&state.model, SeamKind::Curvature, chain));
+                seams.push(make_seam(&state.model, kind, chain));
             }
         }
     }

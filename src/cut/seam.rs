@@ -58,6 +58,9 @@ pub enum SeamKind {
     /// Part of the tree through the curvature regions of a closed surface (its corners, rims
     /// and filleted corners; see [`super::cut_graph::curvature_cut_graph`]).
     Curvature,
+    /// Part of the seam that halves a smooth closed surface along the bisector of its two
+    /// farthest points (see [`super::cut_graph::bisector_cut_graph`]).
+    Bisector,
 }
 
 /// The next automatic seam to cut, or `None` when the model is a disk (one boundary loop, no
