@@ -40,9 +40,9 @@ pub struct FlattenArgs {
     /// Step budget of the energy release (phase two).
     #[arg(long, default_value_t = FlattenOptions::default().max_steps)]
     max_steps: usize,
-    /// Largest number of crest-line cuts per part (0: no cuts; seams are still made). Default: 5
-    /// per π of the opened part's total absolute Gaussian curvature ∫|K| dA (the curvature of a
-    /// 60° spherical cap), at least 8.
+    /// Largest number of crest-line cuts per part (0: no cuts; seams are still made). Default: 8
+    /// per π of the opened part's total absolute Gaussian curvature ∫|K| dA (π is the curvature of
+    /// a 60° spherical cap), at least 8.
     #[arg(long)]
     max_cuts: Option<usize>,
     /// Units of mesh coordinates.

@@ -51,9 +51,9 @@ pub const DEFAULT_MAX_CUTS: usize = 8;
 /// Total absolute Gaussian curvature `∫|K| dA` of the spherical cap of half-angle 60°,
 /// `2π (1 − cos 60°) = π`, the unit of [`default_cut_budget`].
 pub const CAP_CURVATURE: f64 = PI;
-/// Crest-line cuts the loop needs per [`CAP_CURVATURE`] of total absolute curvature: the 60° cap
-/// reaches 1 % with 5.
-pub const CUTS_PER_CAP: f64 = 5.0;
+/// Crest-line cuts allowed per [`CAP_CURVATURE`] of total absolute curvature: the 60° cap reaches
+/// 1 % with 5 of its 8, a closed UV sphere halved along its bisector (`3.4π` left) with 27.
+pub const CUTS_PER_CAP: f64 = DEFAULT_MAX_CUTS as f64;
 /// The cut loop keeps the candidate of largest `ΔE / L^LENGTH_EXPONENT` (measured energy drop
 /// `ΔE`, cut length `L`). With 1 (drop per unit length) the loop prefers ever shorter steps, since
 /// returns diminish along a cut, and spends its budget on millimetre extensions; with 1/2 a cut
@@ -353,8 +353,8 @@ pub fn cut_and_flatten(
 /// The number of crest-line cuts a part may get when the user sets none: [`CUTS_PER_CAP`] per
 /// [`CAP_CURVATURE`] of the total absolute Gaussian curvature `∫|K| dA = Σ |2π − Σθ|` over the
 /// interior vertices of the opened part (the curvature its seams did not release), and at least
-/// [`DEFAULT_MAX_CUTS`]. A closed sphere opened by a slit holds `4π` (20 cuts); a box opened to
-/// its net holds none (8).
+/// [`DEFAULT_MAX_CUTS`]. A closed UV sphere halved along its bisector holds about `3.4π` (28
+/// cuts); a box opened to its net holds none (8).
 pub fn default_cut_budget(model: &FacetModel) -> usize {
     let curvature: f64 = seam::angle_deficits(model).iter().map(|d| d.abs()).sum();
     let scaled = (CUTS_PER_CAP * curvature / CAP_CURVATURE).ceil();
