@@ -330,7 +330,6 @@ fn capped_cylinder(segments: u32, rows: u32, rings: u32) -> FacetModel {
             outer = inner;
         }
     }
-    let mut positions = positions;
     for (lid, (&rim, z)) in lids.iter().zip(rims.iter().zip([0.0, height])) {
         let centre = positions.len() as u32;
         positions.push(DVec3::new(0.0, 0.0, z));
