@@ -4,8 +4,11 @@
 //!
 //! [`cut_and_flatten`] is the one-shot entry point:
 //! 1. user seams ([`CutConstraints::seams`]) are laid on the mesh and cut;
-//! 2. automatic seams ([`seam`]) open the surface to a disk: one per ring loop, a tree through the
-//!    corners of a closed surface, a tree–cotree cut graph ([`cut_graph`]) first if it has handles;
+//! 2. automatic seams ([`seam`], [`cut_graph`]) open the surface to a disk: one per ring loop; on a
+//!    closed surface a tree–cotree cut graph first if it has handles, then a Steiner tree through
+//!    the regions where its curvature concentrates, or, on a smooth one, around the bisector of
+//!    its two farthest points but a hinge; the crest-line cut budget defaults to 8 per π of the
+//!    curvature left ([`default_cut_budget`]);
 //! 3. the part is flattened; while it is over tolerance and cuts are left, every candidate line of
 //!    its energy map and of its tension map (stretched springs only: where a cut opens) ([`crest`])
 //!    is cut and briefly flattened, warm-started from the current pattern, and the most promising
@@ -52,7 +55,7 @@ pub const DEFAULT_MAX_CUTS: usize = 8;
 /// `2π (1 − cos 60°) = π`, the unit of [`default_cut_budget`].
 pub const CAP_CURVATURE: f64 = PI;
 /// Crest-line cuts allowed per [`CAP_CURVATURE`] of total absolute curvature: the 60° cap reaches
-/// 1 % with 5 of its 8, a closed UV sphere halved along its bisector (`3.4π` left) with 27.
+/// 1 % with 5 of its 8, a closed UV sphere halved along its bisector (`3.5π` left) with 27.
 pub const CUTS_PER_CAP: f64 = DEFAULT_MAX_CUTS as f64;
 /// The cut loop keeps the candidate of largest `ΔE / L^LENGTH_EXPONENT` (measured energy drop
 /// `ΔE`, cut length `L`). With 1 (drop per unit length) the loop prefers ever shorter steps, since
@@ -353,7 +356,7 @@ pub fn cut_and_flatten(
 /// The number of crest-line cuts a part may get when the user sets none: [`CUTS_PER_CAP`] per
 /// [`CAP_CURVATURE`] of the total absolute Gaussian curvature `∫|K| dA = Σ |2π − Σθ|` over the
 /// interior vertices of the opened part (the curvature its seams did not release), and at least
-/// [`DEFAULT_MAX_CUTS`]. A closed UV sphere halved along its bisector holds about `3.4π` (28
+/// [`DEFAULT_MAX_CUTS`]. A closed UV sphere halved along its bisector holds about `3.5π` (28
 /// cuts); a box opened to its net holds none (8).
 pub fn default_cut_budget(model: &FacetModel) -> usize {
     let curvature: f64 = seam::angle_deficits(model).iter().map(|d| d.abs()).sum();

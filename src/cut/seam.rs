@@ -11,6 +11,8 @@
 //!   lengths) from it to another loop. A loop is a hole that may stay when its total geodesic
 //!   turning `Σ (π − Σθ)` over its vertices is within [`HOLE_TURNING_TOLERANCE`] of `−2π`, the
 //!   turning of a hole in a flat sheet; the outer loop is the one that turns most.
+//! - A closed surface is first opened by the caller along its curvature cut graph or its
+//!   bisector ([`super::cut_graph`]); what follows is the fallback when neither gives a graph.
 //! - A closed surface without handles (genus 0): the shortest path between two far-apart
 //!   vertices (the vertex farthest from vertex 0, and the vertex farthest from that) opens it to a
 //!   disk with a slit (a path of one edge goes on by one more edge: a one-edge slit duplicates no
