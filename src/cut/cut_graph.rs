@@ -100,8 +100,9 @@ pub fn curvature_cut_graph(
 /// The cut graph of a smooth closed surface without handles that has no curvature region (a
 /// sphere, an ellipsoid, a pebble): the bisector of its two farthest-apart vertices `p` and `q`
 /// (the vertices nearer to `p` with a neighbour nearer to `q`), cut all around but one hinge edge
-/// by the same Steiner tree as [`curvature_cut_graph`]. It halves the surface into two caps of about `2π` of curvature each (two
-/// hemispheres of a sphere), which crest-line darts bring to tolerance as they do a hemisphere;
+/// by the same Steiner tree as [`curvature_cut_graph`]. It halves the surface into two caps of
+/// about `2π` of curvature each (two hemispheres of a sphere), which crest-line darts bring to
+/// tolerance as they do a hemisphere;
 /// a single slit between `p` and `q` leaves a pattern whose outline is far too short for its
 /// area (a UV sphere stalled at 4.5 %). `None` for a surface with a boundary or when the
 /// bisector gives no graph.
