@@ -502,6 +502,32 @@ mod tests {
     }
 
     #[test]
+    fn a_torus_has_curvature_regions_only_on_its_inside() {
+        // Outside, K = 1 / (20 × 70) is below 4 × 4π / A; inside, K = −1 / (20 × 30) is not.
+        let model = torus(16);
+        let adjacency = Adjacency::new(&model);
+        let deficits = angle_deficits(&model);
+        let positive = curvature_regions(&model, &adjacency, &deficits, RegionSigns::Positive);
+        assert!(positive.is_empty(), "{positive:?}");
+        let both = curvature_regions(&model, &adjacency, &deficits, RegionSigns::Both);
+        assert!(!both.is_empty());
+        for &v in both.iter().flatten() {
+            let p = model.positions()[v as usize];
+            assert!(p.truncate().length() < 50.0, "{p} is not inside");
+            assert!(deficits[v as usize] < 0.0);
+        }
+    }
+
+    #[test]
+    fn a_closed_torus_is_rooted_on_its_inside() {
+        let model = torus(16);
+        let adjacency = Adjacency::new(&model);
+        let root = most_saddle_like_vertex(&model, &adjacency);
+        let p = model.positions()[root as usize];
+        assert!(p.truncate().length() < 35.0, "{p}");
+    }
+
+    #[test]
     fn a_torus_opens_to_a_disk() {
         let model = torus(10);
         let adjacency = Adjacency::new(&model);
