@@ -40,9 +40,11 @@ pub struct FlattenArgs {
     /// Step budget of the energy release (phase two).
     #[arg(long, default_value_t = FlattenOptions::default().max_steps)]
     max_steps: usize,
-    /// Largest number of crest-line cuts per part (0: no cuts; seams are still made).
-    #[arg(long, default_value_t = CutOptions::default().max_cuts)]
-    max_cuts: usize,
+    /// Largest number of crest-line cuts per part (0: no cuts; seams are still made). Default: 8
+    /// per π of the opened part's total absolute Gaussian curvature ∫|K| dA (π is the curvature of
+    /// a 60° spherical cap), at least 8.
+    #[arg(long)]
+    max_cuts: Option<usize>,
     /// Units of mesh coordinates.
     #[arg(long, value_enum, default_value_t = Units::default())]
     units: Units,

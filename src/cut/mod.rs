@@ -4,8 +4,11 @@
 //!
 //! [`cut_and_flatten`] is the one-shot entry point:
 //! 1. user seams ([`CutConstraints::seams`]) are laid on the mesh and cut;
-//! 2. automatic seams ([`seam`]) open the surface to a disk: one per ring loop, a tree through the
-//!    corners of a closed surface, a tree–cotree cut graph ([`cut_graph`]) first if it has handles;
+//! 2. automatic seams ([`seam`], [`cut_graph`]) open the surface to a disk: one per ring loop; on a
+//!    closed surface a tree–cotree cut graph first if it has handles, then a Steiner tree through
+//!    the regions where its curvature concentrates, or, on a smooth one, around the bisector of
+//!    its two farthest points but a hinge; the crest-line cut budget defaults to 8 per π of the
+//!    curvature left ([`default_cut_budget`]);
 //! 3. the part is flattened; while it is over tolerance and cuts are left, every candidate line of
 //!    its energy map and of its tension map (stretched springs only: where a cut opens) ([`crest`])
 //!    is cut and briefly flattened, warm-started from the current pattern, and the most promising
@@ -26,6 +29,8 @@ pub mod paths;
 pub mod seam;
 pub mod split;
 
+use std::f64::consts::PI;
+
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -40,12 +45,20 @@ use crate::flatten::{
 use crate::mesh::{FacetModel, NONE};
 use crate::progress::{NoProgress, Progress};
 use crest::{CrestLine, CrestSettings, DEFAULT_CANDIDATES, DEFAULT_DART_FLOOR, crest_lines};
+use cut_graph::RegionSigns;
 use density::planning_map;
 use paths::{Adjacency, path_edges, path_length};
 use split::split_along_edges;
 
-/// Default largest number of crest-line cuts per part (seams not counted).
+/// Smallest default number of crest-line cuts per part (seams not counted); see
+/// [`default_cut_budget`].
 pub const DEFAULT_MAX_CUTS: usize = 8;
+/// Total absolute Gaussian curvature `∫|K| dA` of the spherical cap of half-angle 60°,
+/// `2π (1 − cos 60°) = π`, the unit of [`default_cut_budget`].
+pub const CAP_CURVATURE: f64 = PI;
+/// Crest-line cuts allowed per [`CAP_CURVATURE`] of total absolute curvature: the 60° cap reaches
+/// 1 % with 5 of its 8, a closed UV sphere halved along its bisector (`3.5π` left) with 27.
+pub const CUTS_PER_CAP: f64 = DEFAULT_MAX_CUTS as f64;
 /// The cut loop keeps the candidate of largest `ΔE / L^LENGTH_EXPONENT` (measured energy drop
 /// `ΔE`, cut length `L`). With 1 (drop per unit length) the loop prefers ever shorter steps, since
 /// returns diminish along a cut, and spends its budget on millimetre extensions; with 1/2 a cut
@@ -73,9 +86,9 @@ pub const EXTENSIONS_PER_CUT: usize = 3;
 /// flattening's ([`FlattenOptions::tolerance`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CutOptions {
-    /// Largest number of crest-line cuts; default [`DEFAULT_MAX_CUTS`]. 0 disables cutting
-    /// (seams are still made).
-    pub max_cuts: usize,
+    /// Largest number of crest-line cuts; `None` (the default) for [`default_cut_budget`] of the
+    /// opened part. `Some(0)` disables cutting (seams are still made).
+    pub max_cuts: Option<usize>,
     /// Crest lines traced before each cut, from the highest energy maxima; default
     /// [`DEFAULT_CANDIDATES`].
     pub candidates: usize,
@@ -100,7 +113,7 @@ pub struct CutConstraints {
 impl Default for CutOptions {
     fn default() -> Self {
         Self {
-            max_cuts: DEFAULT_MAX_CUTS,
+            max_cuts: None,
             candidates: DEFAULT_CANDIDATES,
             dart_floor: DEFAULT_DART_FLOOR,
         }
@@ -248,12 +261,15 @@ pub fn cut_and_flatten(
         stiffness: stiffness.clone(),
         original_vertex: (0..model.vertex_count() as u32).collect(),
     };
-    let mut seams = Vec::new();
-    lay_user_seams(&mut state, constraints, &mut seams)?;
-    open_to_disk(&mut state, constraints, &mut seams)?;
-    let mut flattened = flatten(&state.model, &state.stiffness, flatten_options, progress)?;
+    let mut user_seams = Vec::new();
+    lay_user_seams(&mut state, constraints, &mut user_seams)?;
+    let (mut state, seams, mut flattened) =
+        open_and_flatten(&state, constraints, user_seams, flatten_options, progress)?;
+    let max_cuts = options
+        .max_cuts
+        .unwrap_or_else(|| default_cut_budget(&state.model));
     let loop_options = converged_options(flatten_options);
-    if !flattened.stats.accuracy.within(flatten_options.tolerance) && options.max_cuts > 0 {
+    if !flattened.stats.accuracy.within(flatten_options.tolerance) && max_cuts > 0 {
         let start = flattened.positions.clone();
         flattened = flatten_from(&state.model, &state.stiffness, &start, &loop_options)?;
     }
@@ -261,14 +277,14 @@ pub fn cut_and_flatten(
     let mut cuts: Vec<Cut> = Vec::new();
     let mut tips: Vec<u32> = Vec::new();
     let mut uncut = None;
-    let step_budget = options.max_cuts * (1 + EXTENSIONS_PER_CUT);
+    let step_budget = max_cuts * (1 + EXTENSIONS_PER_CUT);
     let mut reporting = false;
     let mut steps = 0;
     let stop = loop {
         if flattened.stats.accuracy.within(flatten_options.tolerance) {
             break CutStop::ToleranceMet;
         }
-        let new_cut_allowed = cuts.len() < options.max_cuts;
+        let new_cut_allowed = cuts.len() < max_cuts;
         if steps >= step_budget || (!new_cut_allowed && tips.is_empty()) {
             break CutStop::CutBudget;
         }
@@ -337,6 +353,17 @@ pub fn cut_and_flatten(
         stop,
         uncut,
     })
+}
+
+/// The number of crest-line cuts a part may get when the user sets none: [`CUTS_PER_CAP`] per
+/// [`CAP_CURVATURE`] of the total absolute Gaussian curvature `∫|K| dA = Σ |2π − Σθ|` over the
+/// interior vertices of the opened part (the curvature its seams did not release), and at least
+/// [`DEFAULT_MAX_CUTS`]. A closed UV sphere halved along its bisector holds about `3.5π` (28
+/// cuts); a box opened to its net holds none (8).
+pub fn default_cut_budget(model: &FacetModel) -> usize {
+    let curvature: f64 = seam::angle_deficits(model).iter().map(|d| d.abs()).sum();
+    let scaled = (CUTS_PER_CAP * curvature / CAP_CURVATURE).ceil();
+    DEFAULT_MAX_CUTS.max(scaled as usize)
 }
 
 /// The model being cut, with its stiffness and the way back to the input's vertices.
@@ -424,11 +451,55 @@ fn lay_user_seams(
     Ok(())
 }
 
-/// Cuts automatic seams until the model is a disk.
+/// Opens the part to a disk with automatic seams after `seams` (the user's) and flattens it. A
+/// closed surface without handles whose curvature regions have both signs is opened both ways,
+/// with seams through the regions of either sign and through the positive ones only
+/// ([`cut_graph::RegionSigns`]), and the better pattern is kept ([`is_better`]: an overlapping
+/// pattern is worse than any other): on a box with a pocket, the seam around the pocket's rim
+/// lets the pocket develop exactly. On a surface with handles the negative curvature is the
+/// inside of the handles, which their cut graph already follows: only positive regions are cut
+/// (seams through a torus's inside cut thin strips off it).
+fn open_and_flatten(
+    state: &CutState,
+    constraints: &CutConstraints,
+    seams: Vec<Seam>,
+    flatten_options: &FlattenOptions,
+    progress: &dyn Progress,
+) -> Result<(CutState, Vec<Seam>, Flattened), CutError> {
+    let variants: &[RegionSigns] = if state.model.is_closed() && seam::genus(&state.model) == 0 {
+        &[RegionSigns::Both, RegionSigns::Positive]
+    } else {
+        &[RegionSigns::Positive]
+    };
+    let mut best: Option<(CutState, Vec<Seam>, Flattened)> = None;
+    for &signs in variants {
+        let mut opened = state.clone();
+        let mut opened_seams = seams.clone();
+        open_to_disk(&mut opened, constraints, &mut opened_seams, signs)?;
+        if best
+            .as_ref()
+            .is_some_and(|(_, known, _)| *known == opened_seams)
+        {
+            continue;
+        }
+        let flattened = flatten(&opened.model, &opened.stiffness, flatten_options, progress)?;
+        if best
+            .as_ref()
+            .is_none_or(|(_, _, known)| is_better(&flattened.stats.accuracy, &known.stats.accuracy))
+        {
+            best = Some((opened, opened_seams, flattened));
+        }
+    }
+    best.ok_or(CutError::NoSeam)
+}
+
+/// Cuts automatic seams until the model is a disk; `signs` says which curvature regions the
+/// seams of a closed surface run through.
 fn open_to_disk(
     state: &mut CutState,
     constraints: &CutConstraints,
     seams: &mut Vec<Seam>,
+    signs: RegionSigns,
 ) -> Result<(), CutError> {
     let was_closed = state.model.is_closed();
     if was_closed && seam::genus(&state.model) > 0 {
@@ -436,6 +507,22 @@ fn open_to_disk(
         (*state, _) = state.cut_edges(&graph.edges)?;
         for chain in &graph.chains {
             seams.push(make_seam(&state.model, SeamKind::Handle, chain));
+        }
+    }
+    if was_closed {
+        let blocked = state.blocked(&constraints.no_cut_regions);
+        let adjacency = Adjacency::new(&state.model);
+        let graph = cut_graph::curvature_cut_graph(&state.model, &adjacency, &blocked, signs)
+            .map(|graph| (SeamKind::Curvature, graph))
+            .or_else(|| {
+                cut_graph::bisector_cut_graph(&state.model, &adjacency, &blocked)
+                    .map(|graph| (SeamKind::Bisector, graph))
+            });
+        if let Some((kind, graph)) = graph {
+            (*state, _) = state.cut_edges(&graph.edges)?;
+            for chain in &graph.chains {
+                seams.push(make_seam(&state.model, kind, chain));
+            }
         }
     }
     // Every seam removes a boundary loop, a handle or a corner, so this bounds the count.

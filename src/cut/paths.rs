@@ -104,6 +104,23 @@ pub fn dijkstra(
     stop_at: impl Fn(u32) -> bool,
 ) -> (ShortestPaths, Option<u32>) {
     let positions = model.positions();
+    let length = |edge: u32| {
+        let [a, b] = model.edges()[edge as usize];
+        positions[a as usize].distance(positions[b as usize])
+    };
+    weighted_dijkstra(model, adjacency, sources, passable, stop_at, length)
+}
+
+/// [`dijkstra`] with the cost of crossing each edge given by `cost(edge)` (non-negative) instead
+/// of its 3D length; the distances are sums of those costs.
+pub fn weighted_dijkstra(
+    model: &FacetModel,
+    adjacency: &Adjacency,
+    sources: &[u32],
+    passable: impl Fn(u32) -> bool,
+    stop_at: impl Fn(u32) -> bool,
+    cost: impl Fn(u32) -> f64,
+) -> (ShortestPaths, Option<u32>) {
     let mut distances = vec![f64::INFINITY; model.vertex_count()];
     let mut predecessors = vec![u32::MAX; model.vertex_count()];
     let mut is_source = vec![false; model.vertex_count()];
@@ -125,12 +142,11 @@ pub fn dijkstra(
             reached = Some(vertex);
             break;
         }
-        for &(next, _) in adjacency.neighbours(vertex) {
+        for &(next, edge) in adjacency.neighbours(vertex) {
             if is_source[next as usize] || !passable(next) {
                 continue;
             }
-            let candidate =
-                distance + positions[vertex as usize].distance(positions[next as usize]);
+            let candidate = distance + cost(edge);
             if candidate < distances[next as usize] {
                 distances[next as usize] = candidate;
                 predecessors[next as usize] = vertex;

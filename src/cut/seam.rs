@@ -11,6 +11,8 @@
 //!   lengths) from it to another loop. A loop is a hole that may stay when its total geodesic
 //!   turning `Σ (π − Σθ)` over its vertices is within [`HOLE_TURNING_TOLERANCE`] of `−2π`, the
 //!   turning of a hole in a flat sheet; the outer loop is the one that turns most.
+//! - A closed surface is first opened by the caller along its curvature cut graph or its
+//!   bisector ([`super::cut_graph`]); what follows is the fallback when neither gives a graph.
 //! - A closed surface without handles (genus 0): the shortest path between two far-apart
 //!   vertices (the vertex farthest from vertex 0, and the vertex farthest from that) opens it to a
 //!   disk with a slit (a path of one edge goes on by one more edge: a one-edge slit duplicates no
@@ -55,6 +57,12 @@ pub enum SeamKind {
     Corner,
     /// Part of the cut graph that opens the handles of a closed surface.
     Handle,
+    /// Part of the tree through the curvature regions of a closed surface (its corners, rims
+    /// and filleted corners; see [`super::cut_graph::curvature_cut_graph`]).
+    Curvature,
+    /// Part of the seam that halves a smooth closed surface along the bisector of its two
+    /// farthest points (see [`super::cut_graph::bisector_cut_graph`]).
+    Bisector,
 }
 
 /// The next automatic seam to cut, or `None` when the model is a disk (one boundary loop, no
@@ -105,7 +113,7 @@ fn angle_sums(model: &FacetModel) -> Vec<f64> {
 }
 
 /// Angle deficit `2π − Σθ` of every interior vertex (0 on the boundary).
-fn angle_deficits(model: &FacetModel) -> Vec<f64> {
+pub fn angle_deficits(model: &FacetModel) -> Vec<f64> {
     let on_boundary = boundary_flags(model);
     angle_sums(model)
         .into_iter()
