@@ -81,6 +81,9 @@ pub const TRIAL_BUDGET: usize = 6;
 /// `max_cuts × (1 + EXTENSIONS_PER_CUT)` cut steps. An extension lengthens a cut and does not
 /// count as a new one.
 pub const EXTENSIONS_PER_CUT: usize = 3;
+/// When no line from the [`CutOptions::candidates`] highest maxima lowers the error without
+/// overlap, the lines from this many times as many maxima are measured before the loop gives up.
+pub const WIDER_SEARCH: usize = 4;
 
 /// Options of [`cut_and_flatten`]. `Default` is the only source of defaults. The tolerance is the
 /// flattening's ([`FlattenOptions::tolerance`]).
@@ -298,7 +301,8 @@ pub fn cut_and_flatten(
             progress.start("cut", step_budget as u64);
             reporting = true;
         }
-        let Some(improvement) = best_cut(&state, &flattened, flatten_options, options, &starts)?
+        let Some(improvement) =
+            best_cut_widening(&state, &flattened, flatten_options, options, &starts)?
         else {
             break if new_cut_allowed {
                 CutStop::NoBetterCut
@@ -575,6 +579,25 @@ struct Trial {
     improvement: Improvement,
     /// Its gain: [`f64::MAX`]` / L` when it meets the tolerance, else `ΔE / L^LENGTH_EXPONENT`.
     gain: f64,
+}
+
+/// [`best_cut`], and when it finds no cut, [`best_cut`] again with lines from
+/// [`WIDER_SEARCH`] times as many maxima.
+fn best_cut_widening(
+    state: &CutState,
+    flattened: &Flattened,
+    flatten_options: &FlattenOptions,
+    options: &CutOptions,
+    starts: &Starts<'_>,
+) -> Result<Option<Improvement>, CutError> {
+    if let Some(improvement) = best_cut(state, flattened, flatten_options, options, starts)? {
+        return Ok(Some(improvement));
+    }
+    let wider = CutOptions {
+        candidates: options.candidates * WIDER_SEARCH,
+        ..options.clone()
+    };
+    best_cut(state, flattened, flatten_options, &wider, starts)
 }
 
 /// Picks the next cut in two rounds. Screening: every crest line of the current pattern is cut and
