@@ -207,14 +207,15 @@ fn square_to_round_area(half_side: f64, radius: f64, height: f64) -> f64 {
 fn square_to_round_is_isometric_with_its_area() {
     let results = flatten_sample("square_to_round.toml");
     assert_isometric(&results[0]);
-    // The cone fans are graded towards the square's corners (1.5° before): the worst angle is
-    // 16.7° at the default size, where a fan's graded ruling meets the square's side.
+    // The cone fans are graded towards the square's corners, and so are the square's sides in
+    // the plane triangles next to them (gaps growing by 1.2 from the fan's first ruling gap):
+    // the worst angle is 25.0° at the default size.
     let worst = results[0]
         .job
         .tessellation
         .expect("a part file has tessellation figures")
         .minimum_angle;
-    assert!(worst >= 15.0, "worst angle {worst}");
+    assert!(worst >= 20.0, "worst angle {worst}");
     assert_area(&results[0], square_to_round_area(100.0, 60.0, 150.0));
 }
 
