@@ -207,14 +207,15 @@ fn square_to_round_area(half_side: f64, radius: f64, height: f64) -> f64 {
 fn square_to_round_is_isometric_with_its_area() {
     let results = flatten_sample("square_to_round.toml");
     assert_isometric(&results[0]);
-    // The cone fans are graded towards the square's corners (1.5° before): the worst angle is
-    // 16.7° at the default size, where a fan's graded ruling meets the square's side.
+    // The cone fans are graded towards the square's corners, and so are the square's sides in
+    // the plane triangles next to them (gaps growing by 1.2 from the fan's first ruling gap):
+    // the worst angle is 25.0° at the default size.
     let worst = results[0]
         .job
         .tessellation
         .expect("a part file has tessellation figures")
         .minimum_angle;
-    assert!(worst >= 15.0, "worst angle {worst}");
+    assert!(worst >= 20.0, "worst angle {worst}");
     assert_area(&results[0], square_to_round_area(100.0, 60.0, 150.0));
 }
 
@@ -348,6 +349,8 @@ fn a_face_on_an_unsupported_surface_and_a_file_without_surfaces_exit_1_naming_wh
         message.contains("ADVANCED_FACE #46 on RECTANGULAR_TRIMMED_SURFACE (#5)"),
         "{message}"
     );
+    // Named before truck-stepio is called, which would print a lookup failure of its own.
+    assert!(!message.contains("Lookup failed"), "{message}");
     let points_only = "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('points'),'2;1');\n\
         FILE_NAME('p.step','2026-11-22T00:00:00',(''),(''),'','','');\n\
         FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n\
@@ -386,6 +389,51 @@ fn freecad_step_faces_keep_their_area_and_angles() {
         let angle = job.tessellation.expect("figures").minimum_angle;
         assert!(angle >= STEP_MINIMUM_ANGLE, "{name}: worst angle {angle}");
     }
+}
+
+/// FreeCAD STEP samples on surfaces of revolution, with Open CASCADE's areas (mm²) and the worst
+/// angle each reaches today: a hemisphere (its pole meshed in the polar map) and a quarter
+/// torus reach 20°; a cone through its apex and a revolved B-spline profile ingest with their
+/// areas but not yet with 20° (the apex's triangles, native B-spline parameters).
+const REVOLUTION_SAMPLES: [(&str, f64, f64); 4] = [
+    ("hemisphere_freecad.step", 40212.385966, STEP_MINIMUM_ANGLE),
+    (
+        "torus_quarter_freecad.step",
+        24674.011003,
+        STEP_MINIMUM_ANGLE,
+    ),
+    ("cone_apex_freecad.step", 33291.904316, 5.0),
+    ("vase_revolved_freecad.step", 74115.845005, 15.0),
+];
+
+#[test]
+fn step_faces_on_surfaces_of_revolution_keep_their_area() {
+    for (name, reference, minimum_angle) in REVOLUTION_SAMPLES {
+        let jobs = load_parts(&sample(name), &RunOptions::default()).expect("loads");
+        assert_eq!(jobs.len(), 1, "{name}: one connected part");
+        let area = jobs[0].model.area();
+        assert!(
+            (area - reference).abs() / reference <= AREA_TOLERANCE,
+            "{name}: area {area} vs {reference}"
+        );
+        let angle = jobs[0].tessellation.expect("figures").minimum_angle;
+        assert!(angle >= minimum_angle, "{name}: worst angle {angle}");
+    }
+}
+
+#[test]
+fn a_hemisphere_is_one_disk_through_its_pole() {
+    let jobs =
+        load_parts(&sample("hemisphere_freecad.step"), &RunOptions::default()).expect("loads");
+    let model = &jobs[0].model;
+    // The seam through the pole is meshed across: one boundary loop, the equator.
+    assert_eq!(model.boundary_loops().len(), 1);
+    // The mesh covers the pole (within the chord: the default is 0.024 mm here).
+    let top = model.positions().iter().map(|p| p.z).fold(0.0, f64::max);
+    assert!(
+        (top - 80.0).abs() < 0.03,
+        "the mesh stops short of the pole: {top}"
+    );
 }
 
 #[test]

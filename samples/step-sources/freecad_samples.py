@@ -17,6 +17,16 @@ Run from the repository root, headless:
   and a blind hole (diameter 1 in, depth 1 in) in its top face: MANIFOLD_SOLID_BREP with planes,
   cylinders and a face with an inner loop, AP214, inches.
 
+- hemisphere_freecad.step: the spherical face of a hemisphere (radius 80 mm): one face on a
+  SPHERICAL_SURFACE whose loop runs along the equator and up and down a seam through the pole
+  (the degenerate edge at the pole is not written), AP214, millimetres.
+- cone_apex_freecad.step: a solid cone (base radius 60 mm, height 100 mm, apex on top): a
+  CONICAL_SURFACE face through its apex and a plane disk, AP214, millimetres.
+- torus_quarter_freecad.step: a quarter of a torus (radii 100 and 25 mm), the toroidal face
+  only, TOROIDAL_SURFACE, AP214, millimetres.
+- vase_revolved_freecad.step: a solid of revolution whose side is a B-spline profile revolved
+  a full turn (SURFACE_OF_REVOLUTION) between two plane disks, AP214, millimetres.
+
 It prints each shape's area (OpenCASCADE's own integration) in mm^2: flatcut's tests compare
 its tessellated areas with these figures.
 """
@@ -84,10 +94,40 @@ def box_fillet_pocket():
     return filleted.cut(hole)
 
 
+def faces_on(shape, kind):
+    return Part.Shell([f for f in shape.Faces if f.Surface.__class__.__name__ == kind])
+
+
+def hemisphere():
+    return faces_on(Part.makeSphere(80.0, FreeCAD.Vector(0, 0, 0), FreeCAD.Vector(0, 0, 1), 0, 90,
+                                    360), "Sphere")
+
+
+def torus_quarter():
+    return faces_on(Part.makeTorus(100.0, 25.0, FreeCAD.Vector(0, 0, 0), FreeCAD.Vector(0, 0, 1),
+                                   -180, 180, 90), "Toroid")
+
+
+def vase_revolved():
+    vector = FreeCAD.Vector
+    profile = Part.BSplineCurve()
+    profile.interpolate([vector(60, 0, 0), vector(75, 0, 30), vector(50, 0, 70),
+                         vector(40, 0, 100), vector(55, 0, 130)])
+    wire = Part.Wire([Part.LineSegment(vector(0, 0, 0), vector(60, 0, 0)).toShape(),
+                      profile.toShape(),
+                      Part.LineSegment(vector(55, 0, 130), vector(0, 0, 130)).toShape(),
+                      Part.LineSegment(vector(0, 0, 130), vector(0, 0, 0)).toShape()])
+    return Part.Face(wire).revolve(vector(0, 0, 0), vector(0, 0, 1), 360)
+
+
 def main():
     if UNIT == "mm":
         export(cone_frustum_side(), "cone_frustum_freecad.step")
         export(bspline_loft(), "bspline_loft_freecad.step")
+        export(hemisphere(), "hemisphere_freecad.step")
+        export(Part.makeCone(60.0, 0.0, 100.0), "cone_apex_freecad.step")
+        export(torus_quarter(), "torus_quarter_freecad.step")
+        export(vase_revolved(), "vase_revolved_freecad.step")
         environment = dict(os.environ, FLATCUT_SAMPLE_UNIT="in")
         subprocess.run([shutil.which("freecadcmd"), SCRIPT], env=environment, check=True)
     else:

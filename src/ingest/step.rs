@@ -195,7 +195,9 @@ fn prefer_3d_curves(text: &str) -> String {
 }
 
 /// Converts the shells with truck-stepio; a face it drops (an unreadable surface) is an error
-/// naming the face.
+/// naming the face. Faces on surfaces flatcut knows truck-stepio cannot read are named before
+/// truck-stepio is called: it would print `Lookup failed for #N` on stderr for each (it
+/// reports a failed lookup of a referenced entity on stderr and drops the face).
 fn convert_shells(
     table: &Table,
     shell_ids: &[u64],
@@ -203,35 +205,45 @@ fn convert_shells(
 ) -> Result<Vec<StepShell>, String> {
     let mut shells = Vec::with_capacity(shell_ids.len());
     for &id in shell_ids {
-        let shell = &table.shell[&id];
-        let converted = catch_unwind(AssertUnwindSafe(|| table.to_compressed_shell(shell)))
-            .map_err(|_| format!("shell #{id}: truck-stepio failed on it"))?
-            .map_err(|e| format!("shell #{id}: {e}"))?;
         let declared = shell_faces(statements, id);
-        if converted.faces.len() < declared.len() {
-            let unreadable: Vec<String> = declared
-                .iter()
-                .filter(|&&face| {
-                    face_surface(statements, face).is_none_or(|(_, names)| {
-                        names.iter().any(|name| is_unsupported_geometry(name))
-                    })
-                })
-                .map(|&face| describe_face(statements, face))
-                .collect();
-            return Err(format!(
-                "shell #{id}: {} of its {} faces cannot be read{}",
-                declared.len() - converted.faces.len(),
+        let unreadable = unreadable_faces(statements, &declared);
+        let cannot_read = |count: usize| {
+            format!(
+                "shell #{id}: {count} of its {} faces cannot be read{}",
                 declared.len(),
                 if unreadable.is_empty() {
                     String::new()
                 } else {
                     format!(" ({})", unreadable.join(", "))
                 }
-            ));
+            )
+        };
+        if !unreadable.is_empty() {
+            return Err(cannot_read(unreadable.len()));
+        }
+        let shell = &table.shell[&id];
+        let converted = catch_unwind(AssertUnwindSafe(|| table.to_compressed_shell(shell)))
+            .map_err(|_| format!("shell #{id}: truck-stepio failed on it"))?
+            .map_err(|e| format!("shell #{id}: {e}"))?;
+        if converted.faces.len() < declared.len() {
+            return Err(cannot_read(declared.len() - converted.faces.len()));
         }
         shells.push(converted);
     }
     Ok(shells)
+}
+
+/// The faces among `faces` whose surface is missing or of a kind truck-stepio cannot read,
+/// described for an error message.
+fn unreadable_faces(statements: &Statements, faces: &[u64]) -> Vec<String> {
+    faces
+        .iter()
+        .filter(|&&face| {
+            face_surface(statements, face)
+                .is_none_or(|(_, names)| names.iter().any(|name| is_unsupported_geometry(name)))
+        })
+        .map(|&face| describe_face(statements, face))
+        .collect()
 }
 
 /// The face entities a shell statement lists, in order.

@@ -385,14 +385,37 @@ fn domain_boundary(
                 kept.push(p);
             }
         }
-        while kept.len() > 1 && kept[0].distance(kept[kept.len() - 1]) <= tolerance {
-            kept.pop();
-        }
+        remove_slits(&mut kept, tolerance);
         if kept.len() >= 3 {
             cleaned.push(kept);
         }
     }
     (cleaned, samples)
+}
+
+/// Removes repeated consecutive points (cyclically) and slits: a loop that runs out along a
+/// line and back along it (a seam through a smooth pole, which the polar map puts on one ray)
+/// loses the slit, so the face is meshed across its seam.
+fn remove_slits(points: &mut Vec<DVec2>, tolerance: f64) {
+    loop {
+        while points.len() > 1 && points[0].distance(points[points.len() - 1]) <= tolerance {
+            points.pop();
+        }
+        let count = points.len();
+        if count < 3 {
+            return;
+        }
+        let tip = (0..count).find(|&k| {
+            points[(k + count - 1) % count].distance(points[(k + 1) % count]) <= tolerance
+        });
+        let Some(tip) = tip else { return };
+        // Drop the tip and the point after it (the way back duplicates the way out).
+        let after = (tip + 1) % count;
+        let (first, second) = (tip.max(after), tip.min(after));
+        points.remove(first);
+        points.remove(second);
+        points.dedup_by(|a, b| a.distance(*b) <= tolerance);
+    }
 }
 
 /// The loop of largest area is the outer one (made counter-clockwise), the others are holes.

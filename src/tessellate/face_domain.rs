@@ -42,13 +42,24 @@ const INVERSION_TOLERANCE_RATIO: f64 = 1e-5;
 const APEX_RATIO: f64 = 1e-3;
 /// A cone whose radius changes less than this per unit of ruling length is a cylinder.
 const CYLINDER_SLOPE: f64 = 1e-9;
+/// A boundary point where the parallel's radius `|∂S/∂θ|` is below this fraction of the face's
+/// size is a pole.
+const POLE_RATIO: f64 = 1e-7;
+/// Curvature is not sampled within this fraction of the parameter range from a pole.
+const POLE_CURVATURE_EXCLUSION: f64 = 0.25;
+/// Samples of a polar map's table along the meridian.
+const POLAR_SAMPLES: usize = 1024;
+/// A polar map's `c` within this of 1 is a smooth pole (`c = 1`).
+const SMOOTH_POLE_TOLERANCE: f64 = 1e-3;
+/// Finite-difference step of a polar map's derivatives, fraction of the domain's radius.
+const POLAR_DIFFERENCE_RATIO: f64 = 1e-6;
 
 /// A boundary point inverted onto the surface failed; the message says where.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DomainError(pub String);
 
 /// How a face's parameters `(u, v)` map to the domain it is meshed in.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 enum DomainMap {
     /// The parameters themselves.
     Native,
@@ -71,6 +82,51 @@ enum DomainMap {
         /// Reference distance from the apex (the face's largest).
         reference: f64,
     },
+    /// A face around a pole of a surface of revolution (a sphere's pole, a cone's apex, a
+    /// revolved profile meeting the axis) in conformal polar coordinates about the pole:
+    /// `g(t) (cos c θ, sin c θ)` with `ln g = ∫ c s / r dt` (`r` the parallel's radius, `s` the
+    /// meridian's speed) and `c = r / G` at the pole (`G` the meridian arc length from it): 1
+    /// at a smooth pole, the sine of the half-angle at a cone's apex (where the map is the
+    /// cone's development). The pole is the origin, so triangles keep their shape up to it.
+    Polar(PolarMap),
+}
+
+/// The table of a [`DomainMap::Polar`] map.
+#[derive(Debug, Clone, PartialEq)]
+struct PolarMap {
+    angular: Axis,
+    /// `c`: the angle in the domain per angle about the axis.
+    c: f64,
+    /// Angle about the axis that maps to the domain's x axis.
+    angle0: f64,
+    /// Parameter `t` at the samples, from the pole outwards (monotone).
+    t: Vec<f64>,
+    /// `g(t)` at the samples (0 at the pole, increasing).
+    g: Vec<f64>,
+}
+
+impl PolarMap {
+    fn radius_of(&self, t: f64) -> f64 {
+        interpolate(&self.t, &self.g, t)
+    }
+
+    fn t_of(&self, radius: f64) -> f64 {
+        interpolate(&self.g, &self.t, radius)
+    }
+}
+
+/// Piecewise-linear interpolation of `ys` over monotone `xs` (either direction), extrapolated
+/// linearly past the ends.
+fn interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
+    let increasing = xs[xs.len() - 1] >= xs[0];
+    let k = xs
+        .partition_point(|&v| if increasing { v < x } else { v > x })
+        .clamp(1, xs.len() - 1);
+    let (x0, x1, y0, y1) = (xs[k - 1], xs[k], ys[k - 1], ys[k]);
+    if x1 == x0 {
+        return y0;
+    }
+    y0 + (y1 - y0) * (x - x0) / (x1 - x0)
 }
 
 /// Which surface parameter is the angle about the axis.
@@ -99,8 +155,8 @@ impl Axis {
 }
 
 impl DomainMap {
-    fn domain_of(self, native: DVec2) -> DVec2 {
-        match self {
+    fn domain_of(&self, native: DVec2) -> DVec2 {
+        match *self {
             DomainMap::Native => native,
             DomainMap::Unrolled {
                 angular,
@@ -121,11 +177,15 @@ impl DomainMap {
                 let rho = (r0 + slope * t) / k;
                 DVec2::new(reference * k * angle, reference * (rho / reference).ln())
             }
+            DomainMap::Polar(ref polar) => {
+                let (t, angle) = polar.angular.split(native);
+                DVec2::from_angle(polar.c * (angle - polar.angle0)) * polar.radius_of(t)
+            }
         }
     }
 
-    fn native_of(self, domain: DVec2) -> DVec2 {
-        match self {
+    fn native_of(&self, domain: DVec2) -> DVec2 {
+        match *self {
             DomainMap::Native => domain,
             DomainMap::Unrolled {
                 angular,
@@ -141,6 +201,16 @@ impl DomainMap {
             } => {
                 let rho = reference * (domain.y / reference).exp();
                 angular.join((k * rho - r0) / slope, domain.x / (reference * k))
+            }
+            DomainMap::Polar(ref polar) => {
+                // The cut of the angle is in the middle of the sector's gap (none when c = 1).
+                let gap = std::f64::consts::TAU * (1.0 - polar.c);
+                let angle = (domain.y.atan2(domain.x) + 0.5 * gap)
+                    .rem_euclid(std::f64::consts::TAU)
+                    - 0.5 * gap;
+                polar
+                    .angular
+                    .join(polar.t_of(domain.length()), polar.angle0 + angle / polar.c)
             }
         }
     }
@@ -169,6 +239,17 @@ impl DomainMap {
                     angular.join(0.0, 1.0 / (reference * k)),
                     angular.join(k / slope * rho / reference, 0.0),
                 )
+            }
+            DomainMap::Polar(ref polar) => {
+                let step = POLAR_DIFFERENCE_RATIO * polar.g[polar.g.len() - 1];
+                // The angle jumps by a turn across the cut (inside the domain when c = 1).
+                let turn = std::f64::consts::TAU / polar.c;
+                let difference = |offset: DVec2| {
+                    let change = self.native_of(domain + offset) - self.native_of(domain - offset);
+                    let (t, angle) = polar.angular.split(change);
+                    polar.angular.join(t, angle - (angle / turn).round() * turn) / (2.0 * step)
+                };
+                (difference(DVec2::X * step), difference(DVec2::Y * step))
             }
         }
     }
@@ -254,14 +335,18 @@ pub fn face_domain(
     let periods = [surface.u_period(), surface.v_period()];
     let ranges = parameter_ranges(surface, periods);
     let mut native_loops = Vec::with_capacity(loops.len());
+    let mut pole = None;
     for boundary in loops {
         let mut native = invert_loop(surface, &boundary.points, periods, ranges, size)?;
+        pole = pole.or(close_at_pole(surface, &mut native, periods, size));
         check_closed(&native, periods)?;
         straighten_iso_edges(&mut native, &boundary.edge_starts);
         native_loops.push(native);
     }
-    let map = domain_map(surface, &native_loops, periods);
-    let curvature = largest_curvature(surface, &native_loops);
+    let map = pole
+        .and_then(|(angular, t_pole)| polar_map(surface, &native_loops, angular, t_pole))
+        .unwrap_or_else(|| domain_map(surface, &native_loops, periods));
+    let curvature = largest_curvature(surface, &native_loops, pole);
     let loops = native_loops
         .iter()
         .map(|native| native.iter().map(|&p| map.domain_of(p)).collect())
@@ -276,8 +361,14 @@ pub fn face_domain(
     })
 }
 
-/// The largest principal curvature `|H| + √(H² − K)` on a grid over the loops' parameter box.
-fn largest_curvature(surface: &StepSurface, native_loops: &[Vec<DVec2>]) -> f64 {
+/// The largest principal curvature `|H| + √(H² − K)` on a grid over the loops' parameter box,
+/// away from a pole (a cone's curvature grows without bound at its apex, where its triangles
+/// are small across the rulings anyway).
+fn largest_curvature(
+    surface: &StepSurface,
+    native_loops: &[Vec<DVec2>],
+    pole: Option<(Axis, f64)>,
+) -> f64 {
     let (low, high) = native_loops
         .iter()
         .flatten()
@@ -292,6 +383,12 @@ fn largest_curvature(surface: &StepSurface, native_loops: &[Vec<DVec2>]) -> f64 
         for j in 0..=CURVATURE_SAMPLES {
             let t = DVec2::new(i as f64, j as f64) / CURVATURE_SAMPLES as f64;
             let p = low + (high - low) * t;
+            if let Some((angular, t_pole)) = pole {
+                let range = angular.split(high - low).0;
+                if (angular.split(p).0 - t_pole).abs() < POLE_CURVATURE_EXCLUSION * range {
+                    continue;
+                }
+            }
             let vector = |v: Vector3| DVec3::new(v.x, v.y, v.z);
             let (su, sv) = native_derivatives(surface, p);
             let (suu, suv, svv) = (
@@ -400,6 +497,115 @@ fn check_closed(native: &[DVec2], periods: [Option<f64>; 2]) -> Result<(), Domai
         }
     }
     Ok(())
+}
+
+/// Where a loop passes through a pole of a periodic surface (a sphere's pole, a cone's apex: a
+/// point where the parallel's radius `|∂S/∂θ|` vanishes), the angle about the axis is undefined
+/// there and the loop (which has no edge along the pole) does not close in it: the points after
+/// the pole are shifted by whole periods so that it does, and the pole takes its predecessor's
+/// angle. Returns the angular axis and the pole's other parameter.
+fn close_at_pole(
+    surface: &StepSurface,
+    native: &mut [DVec2],
+    periods: [Option<f64>; 2],
+    size: f64,
+) -> Option<(Axis, f64)> {
+    let count = native.len();
+    for (axis, period) in [(Axis::U, periods[0]), (Axis::V, periods[1])] {
+        let Some(period) = period else { continue };
+        let radius = |p: DVec2| {
+            let (su, sv) = native_derivatives(surface, p);
+            match axis {
+                Axis::U => su.length(),
+                Axis::V => sv.length(),
+            }
+        };
+        let Some((index, smallest)) = native
+            .iter()
+            .enumerate()
+            .map(|(k, &p)| (k, radius(p)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+        else {
+            continue;
+        };
+        if smallest > POLE_RATIO * size || smallest.is_nan() || count < 3 {
+            continue;
+        }
+        let angle = |p: DVec2| axis.split(p).1;
+        let turns = ((angle(native[count - 1]) - angle(native[0])) / period).round();
+        for p in &mut native[index + 1..] {
+            let (t, a) = axis.split(*p);
+            *p = axis.join(t, a - turns * period);
+        }
+        let (t_pole, _) = axis.split(native[index]);
+        let previous = native[(index + count - 1) % count];
+        native[index] = axis.join(t_pole, angle(previous));
+        return Some((axis, t_pole));
+    }
+    None
+}
+
+/// The polar map about the pole at `t_pole` (see [`DomainMap::Polar`]), tabulated along the
+/// meridian from the pole to the loops' farthest parameter.
+fn polar_map(
+    surface: &StepSurface,
+    native_loops: &[Vec<DVec2>],
+    angular: Axis,
+    t_pole: f64,
+) -> Option<DomainMap> {
+    let angle0 = angular.split(*native_loops.first()?.first()?).1;
+    let t_far = native_loops
+        .iter()
+        .flatten()
+        .map(|&p| angular.split(p).0)
+        .max_by(|a, b| (a - t_pole).abs().total_cmp(&(b - t_pole).abs()))?;
+    let step = (t_far - t_pole) / POLAR_SAMPLES as f64;
+    if !(step.is_finite() && step != 0.0) {
+        return None;
+    }
+    let radius_speed = |t: f64| {
+        let (su, sv) = native_derivatives(surface, angular.join(t, angle0));
+        match angular {
+            Axis::U => (su.length(), sv.length()),
+            Axis::V => (sv.length(), su.length()),
+        }
+    };
+    let t: Vec<f64> = (0..=POLAR_SAMPLES)
+        .map(|i| t_pole + step * i as f64)
+        .collect();
+    // The meridian's arc length to the first sample, and c = r / G there.
+    let substeps = 16;
+    let first_arc: f64 = (0..substeps)
+        .map(|j| radius_speed(t_pole + step * (j as f64 + 0.5) / substeps as f64).1)
+        .sum::<f64>()
+        * step.abs()
+        / substeps as f64;
+    let c = radius_speed(t[1]).0 / first_arc;
+    let c = if (1.0 - c).abs() <= SMOOTH_POLE_TOLERANCE {
+        1.0
+    } else {
+        c
+    };
+    if !(c > 0.0 && c < 1.0 + SMOOTH_POLE_TOLERANCE && first_arc > 0.0) {
+        return None;
+    }
+    let mut g = vec![0.0, first_arc];
+    let mut log = first_arc.ln();
+    for &sample in &t[1..POLAR_SAMPLES] {
+        let (radius, speed) = radius_speed(sample + 0.5 * step);
+        log += c * speed * step.abs() / radius;
+        g.push(log.exp());
+    }
+    if !g.iter().all(|v| v.is_finite()) || g.windows(2).any(|w| w[1] <= w[0]) {
+        return None;
+    }
+    Some(DomainMap::Polar(PolarMap {
+        angular,
+        c,
+        angle0,
+        t,
+        g,
+    }))
 }
 
 /// Gives every point of an edge that lies on an iso-parameter line the parameter of the edge's
@@ -585,6 +791,28 @@ mod tests {
             reference: 190.0,
         };
         for native in [DVec2::new(0.0, 0.1), DVec2::new(60.0, 6.0)] {
+            let back = map.native_of(map.domain_of(native));
+            assert!(back.distance(native) < 1e-9, "{native} -> {back}");
+        }
+    }
+
+    #[test]
+    fn a_polar_map_round_trips_on_both_sides_of_its_cut() {
+        // A cone's apex (c = 0.5): g grows linearly with the distance from the pole.
+        let t: Vec<f64> = (0..=10).map(|i| i as f64).collect();
+        let g: Vec<f64> = t.iter().map(|t| 2.0 * t).collect();
+        let map = DomainMap::Polar(PolarMap {
+            angular: Axis::V,
+            c: 0.5,
+            angle0: 1.0,
+            t,
+            g,
+        });
+        for native in [
+            DVec2::new(3.5, 1.0),
+            DVec2::new(7.25, 1.0 + 6.2),
+            DVec2::new(9.0, 1.0 + 3.0),
+        ] {
             let back = map.native_of(map.domain_of(native));
             assert!(back.distance(native) < 1e-9, "{native} -> {back}");
         }

@@ -405,53 +405,101 @@ fn plane_boundary(
     boundary
 }
 
-/// Ratio of consecutive lengths of the points added on a section side next to a much shorter
-/// boundary edge.
+/// Growth of consecutive gaps between the points added on a section side, from a much shorter
+/// neighbouring boundary edge towards the side's own spacing.
 const SIDE_GRADING: f64 = 1.2;
+/// Integration step of the graded spacing, as a fraction of the local size.
+const GRADING_STEP: f64 = 0.05;
+/// Two consecutive section edges whose directions differ by less than this (sine) are one side.
+const COLLINEAR_TOLERANCE: f64 = 1e-9;
 
-/// Splits section sides of `boundary` next to a much shorter boundary edge (a fan's ruling
-/// graded towards its apex) geometrically, so that the corner can be meshed with well-shaped
-/// triangles. Ruling sides are shared with the neighbouring piece and are kept.
+/// Adds points on the straight section sides of `boundary` next to a much shorter boundary edge
+/// (a fan's ruling graded towards its apex), so that the corner can be meshed with well-shaped
+/// triangles: along a side (a run of collinear section edges) the gaps grow by
+/// [`SIDE_GRADING`] from the neighbouring edge's length up to the side's own spacing, over as
+/// many of its pieces as that takes. The side's points are kept (each piece gets points of its
+/// own), and so are ruling sides, which are shared with the neighbouring piece.
 fn graded_sides(mesh: &mut FaceMesh, boundary: &[(u32, bool)]) -> Vec<u32> {
     let count = boundary.len();
-    let position = |v: u32, mesh: &FaceMesh| mesh.positions[v as usize];
-    let length = |k: usize, mesh: &FaceMesh| {
-        position(boundary[k].0, mesh).distance(position(boundary[(k + 1) % count].0, mesh))
+    let position = |k: usize, mesh: &FaceMesh| mesh.positions[boundary[k % count].0 as usize];
+    let direction =
+        |k: usize, mesh: &FaceMesh| (position(k + 1, mesh) - position(k, mesh)).normalize_or_zero();
+    let continues_side = |k: usize, mesh: &FaceMesh| {
+        let previous = (k + count - 1) % count;
+        boundary[k].1
+            && boundary[previous].1
+            && direction(previous, mesh).cross(direction(k, mesh)).length() <= COLLINEAR_TOLERANCE
+            && direction(previous, mesh).dot(direction(k, mesh)) > 0.0
+    };
+    let Some(start) = (0..count).find(|&k| !continues_side(k, mesh)) else {
+        return boundary.iter().map(|&(v, _)| v).collect();
     };
     let mut graded = Vec::with_capacity(count);
-    for k in 0..count {
-        let (from, on_section) = boundary[k];
-        graded.push(from);
-        if !on_section {
+    let mut k = start;
+    while k < start + count {
+        if !boundary[k % count].1 {
+            graded.push(boundary[k % count].0);
+            k += 1;
             continue;
         }
-        let to = boundary[(k + 1) % count].0;
-        let side = length(k, mesh);
-        let before = length((k + count - 1) % count, mesh);
-        let after = length((k + 1) % count, mesh);
-        // Distances from one end growing by SIDE_GRADING from the neighbour's length, up to the
-        // middle when both ends are graded, else until the last gap matches the one before.
-        let graded_end = |neighbour: f64| neighbour * SIDE_GRADING < side;
-        let both = graded_end(before) && graded_end(after);
-        let reach = if both { side / 2.0 } else { side };
-        let distances_from = |neighbour: f64| {
-            let mut distances = Vec::new();
-            let (mut previous, mut d) = (0.0, neighbour * SIDE_GRADING);
-            while graded_end(neighbour) && reach - d > (d - previous) * SIDE_GRADING {
-                distances.push(d);
-                previous = d;
-                d *= SIDE_GRADING;
-            }
-            distances
-        };
-        let (a, b) = (position(from, mesh), position(to, mesh));
-        let mut fractions: Vec<f64> = distances_from(before).iter().map(|d| d / side).collect();
-        fractions.extend(distances_from(after).iter().rev().map(|d| 1.0 - d / side));
-        for t in fractions {
-            graded.push(mesh.add_vertex(a.lerp(b, t)));
+        let mut end = k + 1;
+        while end < start + count && continues_side(end % count, mesh) {
+            end += 1;
         }
+        let side: Vec<DVec3> = (k..=end).map(|j| position(j, mesh)).collect();
+        let before = position(k + count - 1, mesh).distance(side[0]);
+        let after = side[side.len() - 1].distance(position(end + 1, mesh));
+        for (piece, points) in graded_side(&side, before, after).into_iter().enumerate() {
+            graded.push(boundary[(k + piece) % count].0);
+            graded.extend(points.into_iter().map(|p| mesh.add_vertex(p)));
+        }
+        k = end;
     }
     graded
+}
+
+/// The points to add inside each piece of the straight side `side` (its points in order), whose
+/// neighbouring boundary edges are `before` and `after` long: spread by the size
+/// `min(piece, before + (g − 1) x, after + (g − 1) (L − x))` at distance `x` along the side
+/// (`g` the grading, `L` the side's length), each piece getting the rounded integral of
+/// `1 / size` as its number of gaps.
+fn graded_side(side: &[DVec3], before: f64, after: f64) -> Vec<Vec<DVec3>> {
+    let lengths: Vec<f64> = side.windows(2).map(|w| w[0].distance(w[1])).collect();
+    let total: f64 = lengths.iter().sum();
+    let growth = SIDE_GRADING - 1.0;
+    let mut offset = 0.0;
+    let mut added = Vec::with_capacity(lengths.len());
+    for (piece, &length) in lengths.iter().enumerate() {
+        let size = |x: f64| {
+            length
+                .min(before + growth * x)
+                .min(after + growth * (total - x))
+        };
+        // Cumulative integral of 1 / size over the piece (midpoint rule, steps a fraction of
+        // the size so that the graded end is resolved).
+        let mut samples = vec![(0.0, 0.0)];
+        while let Some(&(x, integral)) = samples.last().filter(|s| s.0 < length) {
+            let step = (GRADING_STEP * size(offset + x)).min(length - x);
+            let next = integral + step / size(offset + x + 0.5 * step);
+            samples.push((x + step, next));
+        }
+        let integral = samples[samples.len() - 1].1;
+        let gaps = (integral.round() as usize).max(1);
+        let mut points = Vec::with_capacity(gaps - 1);
+        let mut s = 0;
+        for gap in 1..gaps {
+            let target = integral * gap as f64 / gaps as f64;
+            while samples[s + 1].1 < target {
+                s += 1;
+            }
+            let ((x0, i0), (x1, i1)) = (samples[s], samples[s + 1]);
+            let x = x0 + (x1 - x0) * (target - i0) / (i1 - i0);
+            points.push(side[piece].lerp(side[piece + 1], x / length));
+        }
+        added.push(points);
+        offset += length;
+    }
+    added
 }
 
 /// Meshes the planar polygon `boundary` (vertices of `mesh`, counter-clockwise seen from the side
@@ -565,6 +613,31 @@ mod tests {
         let mesh = mesh_ruled(&surface, 5.0, 0.05);
         let analytic = TAU * 50.0 * 100.0;
         assert!((area(&mesh) - analytic).abs() / analytic < 1e-3);
+    }
+
+    #[test]
+    fn a_side_next_to_a_short_edge_is_graded_over_its_pieces() {
+        // A side of ten pieces of 10 after an edge of 0.01: gaps grow from about 0.01 by about
+        // the grading, over several pieces, and every piece keeps its end points.
+        let side: Vec<DVec3> = (0..=10)
+            .map(|k| DVec3::new(10.0 * k as f64, 0.0, 0.0))
+            .collect();
+        let added = graded_side(&side, 0.01, 10.0);
+        let mut xs = vec![0.0];
+        for (piece, points) in added.iter().enumerate() {
+            xs.extend(points.iter().map(|p| p.x));
+            xs.push(side[piece + 1].x);
+        }
+        let gaps: Vec<f64> = xs.windows(2).map(|w| w[1] - w[0]).collect();
+        assert!(gaps[0] < 0.02, "first gap {}", gaps[0]);
+        assert!(!added[1].is_empty(), "the grading reaches the second piece");
+        assert!(gaps.iter().all(|&g| g <= 10.0 + 1e-9));
+        // Within a piece gaps grow by the grading (with rounding); from one piece to the next
+        // the whole number of gaps per piece allows a larger step, below 2.
+        let growth = |gaps: &[f64]| gaps.windows(2).map(|w| w[1] / w[0]).fold(0.0, f64::max);
+        let first_piece = added[0].len() + 1;
+        assert!(growth(&gaps[..first_piece]) < 1.25, "{gaps:?}");
+        assert!(growth(&gaps) < 2.0, "{gaps:?}");
     }
 
     #[test]
