@@ -124,48 +124,54 @@ impl ScaledDomain {
         inside(centroid, &self.outer) && !self.holes.iter().any(|h| inside(centroid, h))
     }
 
-    /// For each inner face (by index), whether it lies in the domain. Faces are grouped into
-    /// regions that constraint edges bound, and each region is judged by its largest face, so a
-    /// sliver along a trim loop goes with its neighbours whatever its rounded centroid says.
+    /// For each inner face (by index), whether it lies in the domain (see [`classify_regions`]).
     fn classify(&self, cdt: &Cdt) -> Vec<bool> {
-        let size = cdt
-            .inner_faces()
-            .map(|f| f.fix().index() + 1)
-            .max()
-            .unwrap_or(0);
-        let mut region = vec![usize::MAX; size];
-        let mut region_inside = Vec::new();
-        for seed in cdt.inner_faces() {
-            if region[seed.fix().index()] != usize::MAX {
-                continue;
-            }
-            let label = region_inside.len();
-            region[seed.fix().index()] = label;
-            let mut stack = vec![seed];
-            let mut largest = (seed.area(), face_corners(seed));
-            while let Some(face) = stack.pop() {
-                if face.area() > largest.0 {
-                    largest = (face.area(), face_corners(face));
-                }
-                for edge in face.adjacent_edges() {
-                    if cdt.is_constraint_edge(edge.as_undirected().fix()) {
-                        continue;
-                    }
-                    if let Some(next) = edge.rev().face().as_inner()
-                        && region[next.fix().index()] == usize::MAX
-                    {
-                        region[next.fix().index()] = label;
-                        stack.push(next);
-                    }
-                }
-            }
-            region_inside.push(self.contains_face(largest.1));
-        }
-        region
-            .iter()
-            .map(|&label| label != usize::MAX && region_inside[label])
-            .collect()
+        classify_regions(cdt, |corners| self.contains_face(corners))
     }
+}
+
+/// For each inner face of `cdt` (by index), whether it lies in the region `contains` tells.
+/// Faces are grouped into regions that constraint edges bound, and each region is judged by its
+/// largest face, so a sliver along a boundary goes with its neighbours whatever its rounded
+/// centroid says.
+pub(super) fn classify_regions(cdt: &Cdt, contains: impl Fn([DVec2; 3]) -> bool) -> Vec<bool> {
+    let size = cdt
+        .inner_faces()
+        .map(|f| f.fix().index() + 1)
+        .max()
+        .unwrap_or(0);
+    let mut region = vec![usize::MAX; size];
+    let mut region_inside = Vec::new();
+    for seed in cdt.inner_faces() {
+        if region[seed.fix().index()] != usize::MAX {
+            continue;
+        }
+        let label = region_inside.len();
+        region[seed.fix().index()] = label;
+        let mut stack = vec![seed];
+        let mut largest = (seed.area(), face_corners(seed));
+        while let Some(face) = stack.pop() {
+            if face.area() > largest.0 {
+                largest = (face.area(), face_corners(face));
+            }
+            for edge in face.adjacent_edges() {
+                if cdt.is_constraint_edge(edge.as_undirected().fix()) {
+                    continue;
+                }
+                if let Some(next) = edge.rev().face().as_inner()
+                    && region[next.fix().index()] == usize::MAX
+                {
+                    region[next.fix().index()] = label;
+                    stack.push(next);
+                }
+            }
+        }
+        region_inside.push(contains(largest.1));
+    }
+    region
+        .iter()
+        .map(|&label| label != usize::MAX && region_inside[label])
+        .collect()
 }
 
 /// A triangle whose area is below this fraction of its longest edge squared, with two edges on
@@ -229,7 +235,10 @@ fn bounding_box(points: &[DVec2]) -> (DVec2, DVec2) {
     )
 }
 
-fn insert_point(cdt: &mut Cdt, point: DVec2) -> Result<FixedVertexHandle, TessellateError> {
+pub(super) fn insert_point(
+    cdt: &mut Cdt,
+    point: DVec2,
+) -> Result<FixedVertexHandle, TessellateError> {
     cdt.insert(Point2::new(point.x, point.y))
         .map_err(|_| TessellateError::BadParameterPoint {
             u: point.x,
@@ -282,7 +291,7 @@ fn patch_area_estimate(cdt: &Cdt) -> f64 {
 }
 
 /// Refines to the angle limit and the area of an equilateral triangle of side `mesh_size`.
-fn refine(cdt: &mut Cdt, mesh_size: f64, budget: usize, exclude_outer: bool) {
+pub(super) fn refine(cdt: &mut Cdt, mesh_size: f64, budget: usize, exclude_outer: bool) {
     let max_area = 3f64.sqrt() / 4.0 * mesh_size * mesh_size;
     let parameters = RefinementParameters::<f64>::new()
         .keep_constraint_edges()
