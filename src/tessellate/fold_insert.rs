@@ -227,7 +227,10 @@ fn split_polyline(
         let triangle = mesh.triangles[at.triangle];
         let t = triangle.map(|v| mesh.positions[v as usize]);
         let point = position(mesh, at);
-        let shortest = t[0].distance(t[1]).min(t[1].distance(t[2])).min(t[2].distance(t[0]));
+        let shortest = t[0]
+            .distance(t[1])
+            .min(t[1].distance(t[2]))
+            .min(t[2].distance(t[0]));
         let near_boundary = (0..3)
             .filter(|&k| on_boundary[triangle[k] as usize])
             .map(|k| point.distance(t[k]))
@@ -249,7 +252,9 @@ fn split_polyline(
         }
         let total = cumulative[LENGTH_SAMPLES];
         let at_length = |s: f64| {
-            let k = cumulative.partition_point(|&c| c <= s).clamp(1, LENGTH_SAMPLES);
+            let k = cumulative
+                .partition_point(|&c| c <= s)
+                .clamp(1, LENGTH_SAMPLES);
             let span = (cumulative[k] - cumulative[k - 1]).max(f64::MIN_POSITIVE);
             let fraction =
                 ((k - 1) as f64 + (s - cumulative[k - 1]) / span) / LENGTH_SAMPLES as f64;
@@ -501,12 +506,7 @@ fn retriangulate(
     let mut cdt = Cdt::new();
     let mut vertex_of: HashMap<usize, u32> = HashMap::new();
     for (&(a, b), _) in &boundary {
-        let mut chain = vec![(0.0, chart[&a])];
-        if let Some(points) = on_boundary.get_mut(&(a, b)) {
-            points.sort_by(|p, q| p.0.total_cmp(&q.0));
-            chain.extend(points.iter().copied());
-        }
-        chain.push((1.0, chart[&b]));
+        let chain = boundary_chain(chart[&a], chart[&b], on_boundary.get_mut(&(a, b)));
         let mut handles = Vec::with_capacity(chain.len());
         for &(_, point) in &chain {
             handles.push(insert_point(&mut cdt, point)?);
@@ -587,20 +587,90 @@ fn retriangulate(
     Ok(triangles)
 }
 
+/// The points of a cavity boundary edge from `a` to `b`: its ends, the polyline points on it (a
+/// fold line ending on the surface's boundary) and, on each side of such a point, points graded
+/// from [`BOUNDARY_SPLIT_RATIO`] times its nearer neighbour's distance by [`PIECE_GRADING`]:
+/// boundary edges are kept through refinement, and a long bit of one next to the polyline's first
+/// short piece would leave a thin triangle.
+fn boundary_chain(
+    a: DVec2,
+    b: DVec2,
+    fold_points: Option<&mut Vec<(f64, DVec2)>>,
+) -> Vec<(f64, DVec2)> {
+    let Some(points) = fold_points else {
+        return vec![(0.0, a), (1.0, b)];
+    };
+    points.sort_by(|p, q| p.0.total_cmp(&q.0));
+    let mut stops = vec![(0.0, false)];
+    stops.extend(points.iter().map(|p| (p.0, true)));
+    stops.push((1.0, false));
+    let first_step = |k: usize| {
+        let before = if k > 0 {
+            stops[k].0 - stops[k - 1].0
+        } else {
+            1.0
+        };
+        let after = stops.get(k + 1).map_or(1.0, |s| s.0 - stops[k].0);
+        BOUNDARY_SPLIT_RATIO * before.min(after)
+    };
+    let mut chain = vec![(0.0, a)];
+    for k in 0..stops.len() - 1 {
+        let ((t0, fold0), (t1, fold1)) = (stops[k], stops[k + 1]);
+        let start = fold0.then(|| first_step(k));
+        let end = fold1.then(|| first_step(k + 1));
+        for d in graded_points(t1 - t0, start, end) {
+            chain.push((t0 + d, a.lerp(b, t0 + d)));
+        }
+        let point = if fold1 { points[k].1 } else { b };
+        chain.push((t1, point));
+    }
+    chain
+}
+
+/// Points inside a gap of `length`, graded from its start (first step `start`) and from its
+/// end (first step `end`) by [`PIECE_GRADING`], meeting in its middle; no piece left shorter
+/// than the step before it.
+fn graded_points(length: f64, start: Option<f64>, end: Option<f64>) -> Vec<f64> {
+    let limit = if start.is_some() && end.is_some() {
+        length / 2.0
+    } else {
+        length
+    };
+    let march = |first: Option<f64>| {
+        let mut distances = Vec::new();
+        if let Some(mut step) = first {
+            let mut done = step;
+            while limit - done >= step {
+                distances.push(done);
+                step *= PIECE_GRADING;
+                done += step;
+            }
+        }
+        distances
+    };
+    let mut points = march(start);
+    points.extend(march(end).iter().rev().map(|d| length - d));
+    points
+}
+
 /// Adds the corners of a box around everything inserted so far. The cavity's boundary then is
 /// no hull edge: refinement would split a hull edge, and one between boundary vertices that are
 /// collinear but for round-off would add vertices without end in the sliver it leaves.
 fn surround_with_guard_box(cdt: &mut Cdt, mesh_size: f64) -> Result<(), TessellateError> {
-    let (low, high) = cdt.vertices().fold(
-        (DVec2::INFINITY, DVec2::NEG_INFINITY),
-        |(low, high), v| {
-            let p = DVec2::new(v.position().x, v.position().y);
-            (low.min(p), high.max(p))
-        },
-    );
+    let (low, high) =
+        cdt.vertices()
+            .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(low, high), v| {
+                let p = DVec2::new(v.position().x, v.position().y);
+                (low.min(p), high.max(p))
+            });
     let margin = GUARD_MARGIN * mesh_size;
     let (low, high) = (low - margin, high + margin);
-    for corner in [low, DVec2::new(high.x, low.y), high, DVec2::new(low.x, high.y)] {
+    for corner in [
+        low,
+        DVec2::new(high.x, low.y),
+        high,
+        DVec2::new(low.x, high.y),
+    ] {
         insert_point(cdt, corner)?;
     }
     Ok(())
@@ -658,7 +728,11 @@ fn chart_place(
         if weights[k].abs() <= CORNER_TOLERANCE && boundary.contains_key(&edge) {
             let (wa, wb) = (weights[(k + 1) % 3], weights[(k + 2) % 3]);
             let along_from_a = wb / (wa + wb);
-            let along = if a < b { along_from_a } else { 1.0 - along_from_a };
+            let along = if a < b {
+                along_from_a
+            } else {
+                1.0 - along_from_a
+            };
             let point = chart[&edge.0].lerp(chart[&edge.1], along);
             return ChartPlace::OnEdge { edge, along, point };
         }
@@ -737,20 +811,34 @@ mod tests {
     }
 
     #[test]
-    fn debug_cylinder() {
+    fn a_generator_fold_becomes_mesh_edges_and_keeps_the_area_and_the_shape() {
         let surface = cylinder_panel();
-        let Surface::Ruled(ruled) = &surface else { unreachable!() };
+        let Surface::Ruled(ruled) = &surface else {
+            unreachable!("a cylinder is ruled")
+        };
         let mut mesh = mesh_ruled(ruled, 6.0, 0.03);
         let before = area(&mesh);
         let domain = SurfaceDomain::new(&surface);
         let folds = vec![(0, vec![DVec2::new(61.3, 0.0), DVec2::new(61.3, 200.0)])];
-        insert_fold_polylines(&mut mesh, &domain, &folds, 6.0).unwrap();
-        let after = area(&mesh);
-        let small = mesh.triangles.iter().filter(|t| {
-            let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
-            (b - a).cross(c - a).length() < 1e-9
-        }).count();
-        let length: f64 = mesh.fold_edges.iter().map(|(e, _)| mesh.positions[e[0] as usize].distance(mesh.positions[e[1] as usize])).sum();
-        panic!("{before} {after} small {small} of {} folds {} length {length}", mesh.triangles.len(), mesh.fold_edges.len());
+        insert_fold_polylines(&mut mesh, &domain, &folds, 6.0).expect("inserts");
+        assert!((area(&mesh) - before).abs() / before < 1e-5);
+        let length: f64 = mesh
+            .fold_edges
+            .iter()
+            .map(|(e, _)| mesh.positions[e[0] as usize].distance(mesh.positions[e[1] as usize]))
+            .sum();
+        assert!((length - 200.0).abs() < 1e-9, "{length}");
+        let worst = mesh
+            .triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
+                [(a, b, c), (b, c, a), (c, a, b)]
+                    .map(|(p, q, r)| (q - p).angle_between(r - p).to_degrees())
+                    .into_iter()
+                    .fold(180.0, f64::min)
+            })
+            .fold(180.0, f64::min);
+        assert!(worst >= 25.0, "worst angle {worst}");
     }
 }

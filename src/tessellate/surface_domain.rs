@@ -19,7 +19,7 @@ use glam::{DVec2, DVec3};
 
 use super::ruled::rulings;
 use super::surface::{Frame, PatchSurface, Profile, RuledSurface, Section, Surface};
-use crate::geometry::inside;
+use crate::geometry::{distance_to_segment, inside};
 
 /// A domain point closer than this (degrees, or part units) to the domain's edge is on it.
 const EDGE_TOLERANCE: f64 = 1e-9;
@@ -227,8 +227,23 @@ impl SurfaceDomain {
                 )
             }),
             SurfaceDomain::Patch(patch) => {
-                let in_trim = inside(point, &patch.outer)
-                    && !patch.holes.iter().any(|hole| inside(point, hole));
+                let (low, high) = patch
+                    .outer
+                    .iter()
+                    .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(l, h), &p| {
+                        (l.min(p), h.max(p))
+                    });
+                let tolerance = EDGE_TOLERANCE * (high - low).length();
+                let on = |ring: &[DVec2]| {
+                    (0..ring.len()).any(|k| {
+                        distance_to_segment(point, ring[k], ring[(k + 1) % ring.len()]) <= tolerance
+                    })
+                };
+                let in_trim = (inside(point, &patch.outer) || on(&patch.outer))
+                    && !patch
+                        .holes
+                        .iter()
+                        .any(|hole| inside(point, hole) && !on(hole));
                 (!in_trim).then(|| {
                     format!(
                         "({}, {}) is outside the surface's trimmed domain",
