@@ -731,7 +731,7 @@ fn folds_on_an_oblique_cone_an_extrusion_a_loft_and_a_dome_are_carried_onto_the_
         "[[surface]]\nkind = \"loft\"\n\
          bottom = { shape = \"rectangle\", width = 200.0, depth = 200.0 }\n\
          top = { shape = \"circle\", diameter = 120.0, z = 150.0 }\n\n\
-         [[fold_line]]\nsurface = 0\npoints = [[-135.0, 75.0], [225.0, 75.0]]\n",
+         [[fold_line]]\nsurface = 0\npoints = [[0.0, 75.0], [360.0, 75.0]]\n",
     );
     // Halfway up, the section is the mean of the square and the circle (a Minkowski sum): its
     // perimeter is the mean of theirs.
@@ -739,7 +739,7 @@ fn folds_on_an_oblique_cone_an_extrusion_a_loft_and_a_dome_are_carried_onto_the_
     let lengths = fold_line_lengths(&loft.job.model, &loft.flattened.positions, 1);
     assert!(
         (lengths[0].length_3d - perimeter).abs() <= TAU * chord_of(&loft)
-            && lengths[0].error <= 5e-5,
+            && lengths[0].error <= 1e-4,
         "{:?} vs {perimeter}",
         lengths[0]
     );

@@ -5,8 +5,8 @@
 //! point or segment lies on the surface. The domains (`docs/part-format.md`):
 //! - cylinder, cone, loft: `u` the angle in degrees about the axis through the two sections'
 //!   centres (interpolated along the axis, so an oblique cone's rulings have constant `u`),
-//!   measured in the local frame from its x axis; `v` the local height `z`. A loft's angle runs
-//!   over the 360° that start at its seam ruling's bottom end;
+//!   measured in the local frame from its x axis (a loft's from its seam ruling at that height,
+//!   0 to 360); `v` the local height `z`;
 //! - revolution: `u` the angle in degrees, `v` the arc length along the profile from `start`;
 //! - extrusion: `u` the arc length along the profile from `start`, `v` the local height `z`;
 //! - polygon, bspline: their own parameters (the polygon's plane coordinates, the patch's knots).
@@ -43,6 +43,8 @@ pub enum SurfaceDomain {
         angles: [f64; 2],
         /// The height range at an angle (degrees), for mitred ends.
         bounds: HeightBounds,
+        /// A loft's seam ruling (local end points): angles are measured from it at each height.
+        seam: Option<[DVec3; 2]>,
     },
     /// A surface of revolution: angle and arc length along the profile.
     Revolution {
@@ -98,24 +100,24 @@ impl SurfaceDomain {
                 bounds: HeightBounds {
                     ends: [bottom, top].map(|c| (c.center.z, c.tilt, c.radius)),
                 },
+                seam: None,
             },
             Surface::Ruled(
                 loft @ RuledSurface::Loft {
                     frame, bottom, top, ..
                 },
             ) => {
-                let centres = [bottom, top].map(section_centre);
-                let seam = rulings(loft, f64::INFINITY, 0.0).bottom[0];
-                let local = local_point(frame, seam);
-                let start = (local.truncate() - centres[0]).to_angle().to_degrees();
+                let rulings = rulings(loft, f64::INFINITY, 0.0);
+                let seam = [rulings.bottom[0], rulings.top[0]].map(|p| local_point(frame, p));
                 SurfaceDomain::Polar {
                     frame: *frame,
-                    centres,
+                    centres: [bottom, top].map(section_centre),
                     heights: [bottom.z(), top.z()],
-                    angles: [start, start + 360.0],
+                    angles: [0.0, 360.0],
                     bounds: HeightBounds {
                         ends: [(bottom.z(), 0.0, 0.0), (top.z(), 0.0, 0.0)],
                     },
+                    seam: Some(seam),
                 }
             }
             Surface::Ruled(RuledSurface::Extrusion {
@@ -160,13 +162,18 @@ impl SurfaceDomain {
                 frame,
                 centres,
                 heights,
+                seam,
                 ..
             } => {
                 let local = local_point(frame, point);
                 let t = (local.z - heights[0]) / (heights[1] - heights[0]);
                 let centre = centres[0].lerp(centres[1], t);
-                let u = (local.truncate() - centre).to_angle().to_degrees();
-                (Some(u), local.z)
+                let angle = |p: DVec2| (p - centre).to_angle().to_degrees();
+                let from = seam.map_or(0.0, |[b, top]| {
+                    let s = (local.z - b.z) / (top.z - b.z);
+                    angle(b.truncate().lerp(top.truncate(), s))
+                });
+                (Some(angle(local.truncate()) - from), local.z)
             }
             SurfaceDomain::Revolution { frame, profile, .. } => {
                 let local = local_point(frame, point);
