@@ -792,3 +792,16 @@ fn a_fold_polyline_off_its_surface_or_through_a_trim_hole_exits_1_naming_it() {
         assert!(stderr.contains(expected), "{stderr}");
     }
 }
+
+#[test]
+fn crossing_fold_polylines_on_a_polygon_share_their_crossing() {
+    let result = flatten_part_text(
+        "[[surface]]\nkind = \"polygon\"\n\
+         points = [[0, 0, 0], [200, 0, 0], [200, 200, 0], [0, 200, 0]]\n\n\
+         [[fold_line]]\nsurface = 0\npoints = [[0.0, 0.0], [200.0, 200.0]]\n\n\
+         [[fold_line]]\nsurface = 0\npoints = [[0.0, 200.0], [200.0, 0.0]]\n",
+    );
+    let diagonal = 200.0 * 2f64.sqrt();
+    assert_fold(&result, 0, diagonal, 1e-9, 1e-9);
+    assert_fold(&result, 1, diagonal, 1e-9, 1e-9);
+}

@@ -28,7 +28,7 @@ use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 
 use super::TessellateError;
 use super::face_mesh::FaceMesh;
-use super::patch::{classify_regions, insert_point, refine};
+use super::patch::{classify_regions, insert_point, refine, surround_with_guard_box};
 use super::surface_domain::SurfaceDomain;
 use crate::geometry::distance_to_segment;
 
@@ -44,8 +44,6 @@ const INSIDE_TOLERANCE: f64 = 1e-9;
 const CORNER_TOLERANCE: f64 = 1e-9;
 /// A chart vertex within this fraction of the mesh size of a polyline piece is on it.
 const ON_POLYLINE_RATIO: f64 = 1e-7;
-/// The guard box around a cavity's chart is this many mesh sizes away from it.
-const GUARD_MARGIN: f64 = 2.0;
 /// Refinement may add at most this many vertices per expected triangle of the cavity's hull.
 const VERTEX_BUDGET_FACTOR: f64 = 20.0;
 
@@ -178,30 +176,41 @@ fn locate_on_mesh(
         })
 }
 
-/// The polylines with the points where they cross each other added to both (in the domain),
-/// so that a crossing is a point of both and no short piece is left next to it.
-fn with_crossings(folds: &[(u32, Vec<DVec2>)]) -> Vec<(u32, Vec<DVec2>)> {
+/// The polylines with the points where they cross each other added to both (in the domain):
+/// each crossing is computed once and is the same point of both, so that it becomes one vertex
+/// and no short piece is left next to it.
+pub(super) fn with_crossings(folds: &[(u32, Vec<DVec2>)]) -> Vec<(u32, Vec<DVec2>)> {
     let side = |a: DVec2, b: DVec2, c: DVec2| (b - a).perp_dot(c - a);
-    folds
+    // Per polyline and segment: the crossings on it as (fraction along it, point).
+    let mut found: Vec<Vec<Vec<(f64, DVec2)>>> = folds
         .iter()
-        .enumerate()
-        .map(|(index, (line, points))| {
-            let mut result = vec![points[0]];
-            for pair in points.windows(2) {
-                let (p, q) = (pair[0], pair[1]);
-                let mut crossings: Vec<f64> = Vec::new();
-                for (_, (_, other)) in folds.iter().enumerate().filter(|&(i, _)| i != index) {
-                    for o in other.windows(2) {
-                        let (d1, d2) = (side(o[0], o[1], p), side(o[0], o[1], q));
-                        let (d3, d4) = (side(p, q, o[0]), side(p, q, o[1]));
-                        if d1 * d2 < 0.0 && d3 * d4 < 0.0 {
-                            crossings.push(d1 / (d1 - d2));
-                        }
+        .map(|(_, points)| vec![Vec::new(); points.len().saturating_sub(1)])
+        .collect();
+    for first in 0..folds.len() {
+        for second in first + 1..folds.len() {
+            for (i, s) in folds[first].1.windows(2).enumerate() {
+                for (j, o) in folds[second].1.windows(2).enumerate() {
+                    let (d1, d2) = (side(o[0], o[1], s[0]), side(o[0], o[1], s[1]));
+                    let (d3, d4) = (side(s[0], s[1], o[0]), side(s[0], s[1], o[1]));
+                    if d1 * d2 < 0.0 && d3 * d4 < 0.0 {
+                        let (t, t_other) = (d1 / (d1 - d2), d3 / (d3 - d4));
+                        let point = s[0].lerp(s[1], t);
+                        found[first][i].push((t, point));
+                        found[second][j].push((t_other, point));
                     }
                 }
-                crossings.sort_by(f64::total_cmp);
-                result.extend(crossings.iter().map(|&t| p.lerp(q, t)));
-                result.push(q);
+            }
+        }
+    }
+    folds
+        .iter()
+        .zip(found)
+        .map(|((line, points), mut crossings)| {
+            let mut result = vec![points[0]];
+            for (k, q) in points.iter().skip(1).enumerate() {
+                crossings[k].sort_by(|a, b| a.0.total_cmp(&b.0));
+                result.extend(crossings[k].iter().map(|c| c.1));
+                result.push(*q);
             }
             (*line, result)
         })
@@ -651,29 +660,6 @@ fn graded_points(length: f64, start: Option<f64>, end: Option<f64>) -> Vec<f64> 
     let mut points = march(start);
     points.extend(march(end).iter().rev().map(|d| length - d));
     points
-}
-
-/// Adds the corners of a box around everything inserted so far. The cavity's boundary then is
-/// no hull edge: refinement would split a hull edge, and one between boundary vertices that are
-/// collinear but for round-off would add vertices without end in the sliver it leaves.
-fn surround_with_guard_box(cdt: &mut Cdt, mesh_size: f64) -> Result<(), TessellateError> {
-    let (low, high) =
-        cdt.vertices()
-            .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(low, high), v| {
-                let p = DVec2::new(v.position().x, v.position().y);
-                (low.min(p), high.max(p))
-            });
-    let margin = GUARD_MARGIN * mesh_size;
-    let (low, high) = (low - margin, high + margin);
-    for corner in [
-        low,
-        DVec2::new(high.x, low.y),
-        high,
-        DVec2::new(low.x, high.y),
-    ] {
-        insert_point(cdt, corner)?;
-    }
-    Ok(())
 }
 
 /// Where a polyline point goes in the chart.

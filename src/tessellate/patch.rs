@@ -22,6 +22,7 @@ use spade::{
 
 use super::TessellateError;
 use super::face_mesh::FaceMesh;
+use super::fold_insert::with_crossings;
 use super::surface::{PatchSurface, pieces_for_length};
 use crate::ingest::part::loops::inside;
 
@@ -35,6 +36,8 @@ const SPEED_SAMPLES: usize = 9;
 const LENGTH_SAMPLES: usize = 8;
 /// A vertex within this fraction of the mesh size (scaled domain) of a fold polyline is on it.
 const ON_POLYLINE_RATIO: f64 = 1e-7;
+/// The guard box around a triangulation is this many mesh sizes away from it.
+const GUARD_MARGIN: f64 = 2.0;
 /// Refinement may add at most this many vertices per expected triangle of the patch.
 const VERTEX_BUDGET_FACTOR: f64 = 20.0;
 
@@ -66,16 +69,26 @@ pub fn mesh_patch(
     let loops = std::iter::once(&patch.outer).chain(&patch.holes);
     for boundary in loops {
         let closed: Vec<DVec2> = boundary.iter().chain(boundary.first()).copied().collect();
-        insert_polyline(&mut cdt, patch, scale, &closed, mesh_size)?;
+        insert_polyline(
+            &mut cdt,
+            patch,
+            scale,
+            &closed,
+            mesh_size,
+            Crossings::Refused,
+        )?;
     }
     let mut fold_polylines = Vec::new();
-    for (line, points) in fold_lines {
-        insert_polyline(&mut cdt, patch, scale, points, mesh_size)?;
+    for (line, points) in &with_crossings(fold_lines) {
+        insert_polyline(&mut cdt, patch, scale, points, mesh_size, Crossings::Split)?;
         let scaled: Vec<DVec2> = points.iter().map(|&p| scale.scaled(p)).collect();
         fold_polylines.push((*line, scaled));
     }
     let expected_triangles =
         4.0 * patch_area_estimate(&cdt) / (3f64.sqrt() * mesh_size * mesh_size);
+    if !fold_lines.is_empty() {
+        surround_with_guard_box(&mut cdt, mesh_size)?;
+    }
     let budget = (VERTEX_BUDGET_FACTOR * expected_triangles.max(1.0)) as usize;
     // Spade tells inner from outer faces by the parity of constraint edges crossed, which an
     // interior fold polyline would flip: with fold lines the whole hull is refined and faces
@@ -246,6 +259,15 @@ pub(super) fn insert_point(
         })
 }
 
+/// What a polyline's constraint edges do where they cross earlier ones.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Crossings {
+    /// An error (trim loops must not cross).
+    Refused,
+    /// Both are split at the crossing, which becomes a vertex of both (fold polylines).
+    Split,
+}
+
 /// Inserts a polyline (parameter domain) split to the mesh size as constraint edges.
 fn insert_polyline(
     cdt: &mut Cdt,
@@ -253,6 +275,7 @@ fn insert_polyline(
     scale: DomainScale,
     points: &[DVec2],
     mesh_size: f64,
+    crossings: Crossings,
 ) -> Result<(), TessellateError> {
     for pair in points.windows(2) {
         let (from, to) = (pair[0], pair[1]);
@@ -262,7 +285,14 @@ fn insert_polyline(
         for k in 1..=pieces {
             let point = from.lerp(to, k as f64 / pieces as f64);
             let next = insert_point(cdt, scale.scaled(point))?;
-            if previous != next && cdt.try_add_constraint(previous, next).is_empty() {
+            let added = match crossings {
+                _ if previous == next => true,
+                Crossings::Refused => !cdt.try_add_constraint(previous, next).is_empty(),
+                Crossings::Split => !cdt
+                    .add_constraint_and_split(previous, next, |p| p)
+                    .is_empty(),
+            };
+            if !added {
                 return Err(TessellateError::CrossingConstraints {
                     u: point.x,
                     v: point.y,
@@ -270,6 +300,32 @@ fn insert_polyline(
             }
             previous = next;
         }
+    }
+    Ok(())
+}
+
+/// Adds the corners of a box around everything inserted so far. The domain's boundary then is
+/// no hull edge: refinement would split a hull edge, and one between boundary vertices that are
+/// collinear but for round-off would add vertices without end in the sliver it leaves.
+pub(super) fn surround_with_guard_box(
+    cdt: &mut Cdt,
+    mesh_size: f64,
+) -> Result<(), TessellateError> {
+    let (low, high) =
+        cdt.vertices()
+            .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(low, high), v| {
+                let p = DVec2::new(v.position().x, v.position().y);
+                (low.min(p), high.max(p))
+            });
+    let margin = GUARD_MARGIN * mesh_size;
+    let (low, high) = (low - margin, high + margin);
+    for corner in [
+        low,
+        DVec2::new(high.x, low.y),
+        high,
+        DVec2::new(low.x, high.y),
+    ] {
+        insert_point(cdt, corner)?;
     }
     Ok(())
 }
