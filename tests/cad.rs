@@ -658,3 +658,198 @@ fn the_cli_tessellates_a_part_and_rejects_bad_input_with_exit_1() {
         assert!(message.contains(expected), "{message}");
     }
 }
+
+/// Writes a part file in a temporary directory and flattens it through the library.
+fn flatten_part_text(text: &str) -> PartResult {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let path = directory.path().join("part.toml");
+    std::fs::write(&path, text).expect("writes");
+    let options = RunOptions::default();
+    let job = load_parts(&path, &options)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .remove(0);
+    flatten_part(job, &options, &NoProgress).expect("flattens")
+}
+
+/// Checks a fold line on a part: its 3D length against the analytic length of the curve within
+/// `allowed_3d`, its flat length against its 3D length within `allowed_error` (relative), and
+/// the tessellation's worst angle. The developable target is 1e-5; the re-triangulated band
+/// around a fold is not exactly developable (its triangles span several rulings), which costs
+/// 1e-5 to 6e-5 on a cone or an extrusion (measured, reported in docs/tessellation.md).
+fn assert_fold(
+    result: &PartResult,
+    line: usize,
+    analytic: f64,
+    allowed_3d: f64,
+    allowed_error: f64,
+) {
+    let lengths = fold_line_lengths(
+        &result.job.model,
+        &result.flattened.positions,
+        result.job.fold_line_count,
+    );
+    let fold = lengths[line];
+    assert!(
+        (fold.length_3d - analytic).abs() <= allowed_3d,
+        "fold {line}: 3D length {} vs analytic {analytic} (allowed {allowed_3d})",
+        fold.length_3d
+    );
+    assert!(
+        fold.error <= allowed_error,
+        "fold {line}: flat length {} vs 3D {}: error {}",
+        fold.length_flat,
+        fold.length_3d,
+        fold.error
+    );
+    let tessellation = result.job.tessellation.as_ref().expect("from surfaces");
+    assert!(
+        tessellation.minimum_angle >= MINIMUM_FOLD_MESH_ANGLE,
+        "worst angle {}",
+        tessellation.minimum_angle
+    );
+}
+
+/// The worst triangle angle of a mesh around fold polylines. The target is 20°; a fold ending
+/// on the surface's boundary close to a boundary vertex (the oblique cone's ruling at 30°) leaves
+/// 19.4° next to it, since the boundary edges are kept through refinement.
+const MINIMUM_FOLD_MESH_ANGLE: f64 = 19.0;
+
+fn chord_of(result: &PartResult) -> f64 {
+    result
+        .job
+        .tessellation
+        .as_ref()
+        .expect("from surfaces")
+        .chord
+}
+
+#[test]
+fn a_fold_along_a_cylinder_generator_keeps_its_length() {
+    let result = flatten_part_text(
+        "[[surface]]\nkind = \"cylinder\"\nradius = 150.0\nheight = 200.0\nangles = [0.0, 120.0]\n\n\
+         [[fold_line]]\nsurface = 0\npoints = [[61.3, 0.0], [61.3, 200.0]]\n",
+    );
+    // A generator is straight: its mesh polyline lies in the facets, within the chord.
+    assert_fold(&result, 0, 200.0, chord_of(&result), 1e-5);
+    assert_area(&result, 150.0 * 120f64.to_radians() * 200.0);
+}
+
+#[test]
+fn cone_folds_along_a_generator_and_a_circle_of_latitude_keep_their_lengths() {
+    let result = flatten_part_text(
+        "[[surface]]\nkind = \"cone\"\nbottom_radius = 100.0\ntop_radius = 50.0\nheight = 80.0\n\n\
+         [[fold_line]]\nsurface = 0\npoints = [[90.0, 0.0], [90.0, 80.0]]\n\n\
+         [[fold_line]]\nsurface = 0\npoints = [[0.0, 40.0], [360.0, 40.0]]\n",
+    );
+    let chord = chord_of(&result);
+    let slant = (80f64 * 80.0 + 50.0 * 50.0).sqrt();
+    assert_fold(&result, 0, slant, chord, 2e-5);
+    // The circle of latitude (radius 75) lies within the chord inside the surface: its length
+    // is short by at most 2π times the chord.
+    assert_fold(&result, 1, TAU * 75.0, TAU * chord, 3e-5);
+    assert_area(&result, PI * 150.0 * slant);
+}
+
+#[test]
+fn folds_on_an_oblique_cone_an_extrusion_a_loft_and_a_dome_are_carried_onto_the_mesh() {
+    let oblique = flatten_part_text(
+        "[[surface]]\nkind = \"cone\"\nbottom_radius = 100.0\ntop_radius = 50.0\nheight = 80.0\n\
+         top_offset = [20.0, 10.0]\n\n\
+         [[fold_line]]\nsurface = 0\npoints = [[30.0, 0.0], [30.0, 80.0]]\n",
+    );
+    // The ruling at angle a joins (100 cos a, 100 sin a, 0) and (20 + 50 cos a, 10 + 50 sin a, 80).
+    let a = 30f64.to_radians();
+    let ruling = glam::DVec3::new(20.0 - 50.0 * a.cos(), 10.0 - 50.0 * a.sin(), 80.0).length();
+    assert_fold(&oblique, 0, ruling, chord_of(&oblique), 3e-5);
+    let extrusion = flatten_part_text(
+        "[[surface]]\nkind = \"extrusion\"\nstart = [0.0, 0.0]\n\
+         profile = [{ to = [100.0, 0.0] }, { to = [150.0, 50.0], center = [100.0, 50.0] }]\n\
+         direction = [0.0, 0.0, 120.0]\n\n\
+         [[fold_line]]\nsurface = 0\npoints = [[0.0, 60.0], [178.53981633974483, 60.0]]\n",
+    );
+    // Along the profile at half height: 100 + a quarter circle of radius 50.
+    assert_fold(
+        &extrusion,
+        0,
+        100.0 + 25.0 * PI,
+        2.0 * chord_of(&extrusion),
+        1e-4,
+    );
+    let loft = flatten_part_text(
+        "[[surface]]\nkind = \"loft\"\n\
+         bottom = { shape = \"rectangle\", width = 200.0, depth = 200.0 }\n\
+         top = { shape = \"circle\", diameter = 120.0, z = 150.0 }\n\n\
+         [[fold_line]]\nsurface = 0\npoints = [[0.0, 75.0], [360.0, 75.0]]\n",
+    );
+    // Halfway up, the section is the mean of the square and the circle (a Minkowski sum): its
+    // perimeter is the mean of theirs.
+    let perimeter = (800.0 + TAU * 60.0) / 2.0;
+    let lengths = fold_line_lengths(&loft.job.model, &loft.flattened.positions, 1);
+    assert!(
+        (lengths[0].length_3d - perimeter).abs() <= TAU * chord_of(&loft)
+            && lengths[0].error <= 1e-4,
+        "{:?} vs {perimeter}",
+        lengths[0]
+    );
+    let dome = flatten_part_text(
+        "[[surface]]\nkind = \"revolution\"\nstart = [0.0, 120.0]\n\
+         profile = [{ to = [103.92304845413264, 60.0], center = [0.0, 0.0] }]\n\n\
+         [[fold_line]]\nsurface = 0\npoints = [[0.0, 60.0], [360.0, 60.0]]\n",
+    );
+    // 60 mm along the meridian from the pole: the parallel at 0.5 rad from the axis.
+    let parallel = TAU * 120.0 * 0.5f64.sin();
+    let tessellation = dome.job.tessellation.as_ref().expect("from surfaces");
+    let lengths = fold_line_lengths(&dome.job.model, &dome.flattened.positions, 1);
+    assert!(
+        (lengths[0].length_3d - parallel).abs() <= TAU * tessellation.chord
+            && tessellation.minimum_angle >= 20.0,
+        "{:?} vs {parallel}, worst angle {}",
+        lengths[0],
+        tessellation.minimum_angle
+    );
+}
+
+#[test]
+fn a_fold_polyline_off_its_surface_or_through_a_trim_hole_exits_1_naming_it() {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let cases = [
+        (
+            "[[surface]]\nkind = \"cylinder\"\nradius = 50.0\nheight = 100.0\n\n\
+             [[fold_line]]\nsurface = 0\npoints = [[0.0, 0.0], [90.0, 120.0]]\n",
+            "part.toml:8: field 'fold_line[0].points'",
+        ),
+        (
+            "[[surface]]\nkind = \"bspline\"\ndegree = [1, 1]\n\
+             control_points = [[[0, 0, 0], [0, 100, 0]], [[100, 0, 0], [100, 100, 10]]]\n\
+             trim = { holes = [[[0.4, 0.4], [0.6, 0.4], [0.6, 0.6], [0.4, 0.6]]] }\n\n\
+             [[fold_line]]\nsurface = 0\npoints = [[0.0, 0.5], [1.0, 0.5]]\n",
+            "part.toml:9: field 'fold_line[0].points'",
+        ),
+    ];
+    for (text, expected) in cases {
+        let path = directory.path().join("part.toml");
+        std::fs::write(&path, text).expect("writes");
+        let output = flatcut(&[
+            "flatten",
+            path.to_str().expect("utf-8"),
+            "-o",
+            directory.path().join("out").to_str().expect("utf-8"),
+        ]);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(1), "{stderr}");
+        assert!(stderr.contains(expected), "{stderr}");
+    }
+}
+
+#[test]
+fn crossing_fold_polylines_on_a_polygon_share_their_crossing() {
+    let result = flatten_part_text(
+        "[[surface]]\nkind = \"polygon\"\n\
+         points = [[0, 0, 0], [200, 0, 0], [200, 200, 0], [0, 200, 0]]\n\n\
+         [[fold_line]]\nsurface = 0\npoints = [[0.0, 0.0], [200.0, 200.0]]\n\n\
+         [[fold_line]]\nsurface = 0\npoints = [[0.0, 200.0], [200.0, 0.0]]\n",
+    );
+    let diagonal = 200.0 * 2f64.sqrt();
+    assert_fold(&result, 0, diagonal, 1e-9, 1e-9);
+    assert_fold(&result, 1, diagonal, 1e-9, 1e-9);
+}

@@ -15,11 +15,13 @@ pub mod brep;
 pub mod face_domain;
 pub mod face_mesh;
 pub mod fan;
+pub mod fold_insert;
 pub mod patch;
 pub mod revolution;
 pub mod ruled;
 pub mod strip;
 pub mod surface;
+pub mod surface_domain;
 pub mod weld;
 
 use std::f64::consts::TAU;
@@ -90,6 +92,14 @@ pub enum TessellateError {
          stay inside the trimmed domain"
     )]
     CrossingConstraints {
+        /// u.
+        u: f64,
+        /// v.
+        v: f64,
+    },
+    /// A fold polyline point is not on its surface.
+    #[error("the fold polyline point ({u}, {v}) is not on its surface")]
+    FoldOffSurface {
         /// u.
         u: f64,
         /// v.
@@ -261,26 +271,29 @@ fn mesh_surface(
     mesh_size: f64,
     chord: f64,
 ) -> Result<FaceMesh, TessellateError> {
-    Ok(match surface {
+    let folds: Vec<(u32, Vec<DVec2>)> = part
+        .fold_lines
+        .iter()
+        .enumerate()
+        .filter_map(|(line, fold)| match fold {
+            FoldLineGeometry::OnSurface { surface, points } if *surface == index => {
+                Some((line as u32, points.clone()))
+            }
+            _ => None,
+        })
+        .collect();
+    // Patches take fold polylines as constraints from the start; the structured meshes get
+    // them by a constrained re-triangulation around each polyline.
+    let mut mesh = match surface {
         Surface::Ruled(ruled) => ruled::mesh_ruled(ruled, mesh_size, chord),
         Surface::Revolution(revolution) => {
             revolution::mesh_revolution(revolution, mesh_size, chord)
         }
-        Surface::Patch(patch) => {
-            let folds: Vec<(u32, Vec<DVec2>)> = part
-                .fold_lines
-                .iter()
-                .enumerate()
-                .filter_map(|(line, fold)| match fold {
-                    FoldLineGeometry::OnSurface { surface, points } if *surface == index => {
-                        Some((line as u32, points.clone()))
-                    }
-                    _ => None,
-                })
-                .collect();
-            patch::mesh_patch(patch, &folds, mesh_size, chord)?
-        }
-    })
+        Surface::Patch(patch) => return patch::mesh_patch(patch, &folds, mesh_size, chord),
+    };
+    let domain = surface_domain::SurfaceDomain::new(surface);
+    fold_insert::insert_fold_polylines(&mut mesh, &domain, &folds, mesh_size)?;
+    Ok(mesh)
 }
 
 /// Tags the edges shared by the two surfaces of each `Between` fold line.

@@ -22,6 +22,7 @@ use spade::{
 
 use super::TessellateError;
 use super::face_mesh::FaceMesh;
+use super::fold_insert::with_crossings;
 use super::surface::{PatchSurface, pieces_for_length};
 use crate::ingest::part::loops::inside;
 
@@ -35,6 +36,8 @@ const SPEED_SAMPLES: usize = 9;
 const LENGTH_SAMPLES: usize = 8;
 /// A vertex within this fraction of the mesh size (scaled domain) of a fold polyline is on it.
 const ON_POLYLINE_RATIO: f64 = 1e-7;
+/// The guard box around a triangulation is this many mesh sizes away from it.
+const GUARD_MARGIN: f64 = 2.0;
 /// Refinement may add at most this many vertices per expected triangle of the patch.
 const VERTEX_BUDGET_FACTOR: f64 = 20.0;
 
@@ -66,16 +69,26 @@ pub fn mesh_patch(
     let loops = std::iter::once(&patch.outer).chain(&patch.holes);
     for boundary in loops {
         let closed: Vec<DVec2> = boundary.iter().chain(boundary.first()).copied().collect();
-        insert_polyline(&mut cdt, patch, scale, &closed, mesh_size)?;
+        insert_polyline(
+            &mut cdt,
+            patch,
+            scale,
+            &closed,
+            mesh_size,
+            Crossings::Refused,
+        )?;
     }
     let mut fold_polylines = Vec::new();
-    for (line, points) in fold_lines {
-        insert_polyline(&mut cdt, patch, scale, points, mesh_size)?;
+    for (line, points) in &with_crossings(fold_lines) {
+        insert_polyline(&mut cdt, patch, scale, points, mesh_size, Crossings::Split)?;
         let scaled: Vec<DVec2> = points.iter().map(|&p| scale.scaled(p)).collect();
         fold_polylines.push((*line, scaled));
     }
     let expected_triangles =
         4.0 * patch_area_estimate(&cdt) / (3f64.sqrt() * mesh_size * mesh_size);
+    if !fold_lines.is_empty() {
+        surround_with_guard_box(&mut cdt, mesh_size)?;
+    }
     let budget = (VERTEX_BUDGET_FACTOR * expected_triangles.max(1.0)) as usize;
     // Spade tells inner from outer faces by the parity of constraint edges crossed, which an
     // interior fold polyline would flip: with fold lines the whole hull is refined and faces
@@ -124,48 +137,54 @@ impl ScaledDomain {
         inside(centroid, &self.outer) && !self.holes.iter().any(|h| inside(centroid, h))
     }
 
-    /// For each inner face (by index), whether it lies in the domain. Faces are grouped into
-    /// regions that constraint edges bound, and each region is judged by its largest face, so a
-    /// sliver along a trim loop goes with its neighbours whatever its rounded centroid says.
+    /// For each inner face (by index), whether it lies in the domain (see [`classify_regions`]).
     fn classify(&self, cdt: &Cdt) -> Vec<bool> {
-        let size = cdt
-            .inner_faces()
-            .map(|f| f.fix().index() + 1)
-            .max()
-            .unwrap_or(0);
-        let mut region = vec![usize::MAX; size];
-        let mut region_inside = Vec::new();
-        for seed in cdt.inner_faces() {
-            if region[seed.fix().index()] != usize::MAX {
-                continue;
-            }
-            let label = region_inside.len();
-            region[seed.fix().index()] = label;
-            let mut stack = vec![seed];
-            let mut largest = (seed.area(), face_corners(seed));
-            while let Some(face) = stack.pop() {
-                if face.area() > largest.0 {
-                    largest = (face.area(), face_corners(face));
-                }
-                for edge in face.adjacent_edges() {
-                    if cdt.is_constraint_edge(edge.as_undirected().fix()) {
-                        continue;
-                    }
-                    if let Some(next) = edge.rev().face().as_inner()
-                        && region[next.fix().index()] == usize::MAX
-                    {
-                        region[next.fix().index()] = label;
-                        stack.push(next);
-                    }
-                }
-            }
-            region_inside.push(self.contains_face(largest.1));
-        }
-        region
-            .iter()
-            .map(|&label| label != usize::MAX && region_inside[label])
-            .collect()
+        classify_regions(cdt, |corners| self.contains_face(corners))
     }
+}
+
+/// For each inner face of `cdt` (by index), whether it lies in the region `contains` tells.
+/// Faces are grouped into regions that constraint edges bound, and each region is judged by its
+/// largest face, so a sliver along a boundary goes with its neighbours whatever its rounded
+/// centroid says.
+pub(super) fn classify_regions(cdt: &Cdt, contains: impl Fn([DVec2; 3]) -> bool) -> Vec<bool> {
+    let size = cdt
+        .inner_faces()
+        .map(|f| f.fix().index() + 1)
+        .max()
+        .unwrap_or(0);
+    let mut region = vec![usize::MAX; size];
+    let mut region_inside = Vec::new();
+    for seed in cdt.inner_faces() {
+        if region[seed.fix().index()] != usize::MAX {
+            continue;
+        }
+        let label = region_inside.len();
+        region[seed.fix().index()] = label;
+        let mut stack = vec![seed];
+        let mut largest = (seed.area(), face_corners(seed));
+        while let Some(face) = stack.pop() {
+            if face.area() > largest.0 {
+                largest = (face.area(), face_corners(face));
+            }
+            for edge in face.adjacent_edges() {
+                if cdt.is_constraint_edge(edge.as_undirected().fix()) {
+                    continue;
+                }
+                if let Some(next) = edge.rev().face().as_inner()
+                    && region[next.fix().index()] == usize::MAX
+                {
+                    region[next.fix().index()] = label;
+                    stack.push(next);
+                }
+            }
+        }
+        region_inside.push(contains(largest.1));
+    }
+    region
+        .iter()
+        .map(|&label| label != usize::MAX && region_inside[label])
+        .collect()
 }
 
 /// A triangle whose area is below this fraction of its longest edge squared, with two edges on
@@ -229,12 +248,24 @@ fn bounding_box(points: &[DVec2]) -> (DVec2, DVec2) {
     )
 }
 
-fn insert_point(cdt: &mut Cdt, point: DVec2) -> Result<FixedVertexHandle, TessellateError> {
+pub(super) fn insert_point(
+    cdt: &mut Cdt,
+    point: DVec2,
+) -> Result<FixedVertexHandle, TessellateError> {
     cdt.insert(Point2::new(point.x, point.y))
         .map_err(|_| TessellateError::BadParameterPoint {
             u: point.x,
             v: point.y,
         })
+}
+
+/// What a polyline's constraint edges do where they cross earlier ones.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Crossings {
+    /// An error (trim loops must not cross).
+    Refused,
+    /// Both are split at the crossing, which becomes a vertex of both (fold polylines).
+    Split,
 }
 
 /// Inserts a polyline (parameter domain) split to the mesh size as constraint edges.
@@ -244,6 +275,7 @@ fn insert_polyline(
     scale: DomainScale,
     points: &[DVec2],
     mesh_size: f64,
+    crossings: Crossings,
 ) -> Result<(), TessellateError> {
     for pair in points.windows(2) {
         let (from, to) = (pair[0], pair[1]);
@@ -253,7 +285,14 @@ fn insert_polyline(
         for k in 1..=pieces {
             let point = from.lerp(to, k as f64 / pieces as f64);
             let next = insert_point(cdt, scale.scaled(point))?;
-            if previous != next && cdt.try_add_constraint(previous, next).is_empty() {
+            let added = match crossings {
+                _ if previous == next => true,
+                Crossings::Refused => !cdt.try_add_constraint(previous, next).is_empty(),
+                Crossings::Split => !cdt
+                    .add_constraint_and_split(previous, next, |p| p)
+                    .is_empty(),
+            };
+            if !added {
                 return Err(TessellateError::CrossingConstraints {
                     u: point.x,
                     v: point.y,
@@ -261,6 +300,32 @@ fn insert_polyline(
             }
             previous = next;
         }
+    }
+    Ok(())
+}
+
+/// Adds the corners of a box around everything inserted so far. The domain's boundary then is
+/// no hull edge: refinement would split a hull edge, and one between boundary vertices that are
+/// collinear but for round-off would add vertices without end in the sliver it leaves.
+pub(super) fn surround_with_guard_box(
+    cdt: &mut Cdt,
+    mesh_size: f64,
+) -> Result<(), TessellateError> {
+    let (low, high) =
+        cdt.vertices()
+            .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(low, high), v| {
+                let p = DVec2::new(v.position().x, v.position().y);
+                (low.min(p), high.max(p))
+            });
+    let margin = GUARD_MARGIN * mesh_size;
+    let (low, high) = (low - margin, high + margin);
+    for corner in [
+        low,
+        DVec2::new(high.x, low.y),
+        high,
+        DVec2::new(low.x, high.y),
+    ] {
+        insert_point(cdt, corner)?;
     }
     Ok(())
 }
@@ -282,7 +347,7 @@ fn patch_area_estimate(cdt: &Cdt) -> f64 {
 }
 
 /// Refines to the angle limit and the area of an equilateral triangle of side `mesh_size`.
-fn refine(cdt: &mut Cdt, mesh_size: f64, budget: usize, exclude_outer: bool) {
+pub(super) fn refine(cdt: &mut Cdt, mesh_size: f64, budget: usize, exclude_outer: bool) {
     let max_area = 3f64.sqrt() / 4.0 * mesh_size * mesh_size;
     let parameters = RefinementParameters::<f64>::new()
         .keep_constraint_edges()

@@ -120,6 +120,91 @@ impl Profile {
     }
 }
 
+impl Profile {
+    /// The segments with their start points, in order.
+    fn pieces(&self) -> impl Iterator<Item = (DVec2, ProfileSegment)> + '_ {
+        let starts = std::iter::once(self.start).chain(self.segments.iter().map(|s| s.end()));
+        starts.zip(self.segments.iter().copied())
+    }
+
+    /// The profile's length.
+    pub fn length(&self) -> f64 {
+        self.pieces().map(|(from, s)| s.length(from)).sum()
+    }
+
+    /// Whether the profile ends at its start (a closed section).
+    pub fn is_closed(&self, tolerance: f64) -> bool {
+        self.segments
+            .last()
+            .is_some_and(|s| s.end().distance(self.start) <= tolerance)
+    }
+
+    /// The arc length from the start to the profile point nearest to `point`.
+    pub fn nearest_arc_length(&self, point: DVec2) -> f64 {
+        let mut best = (f64::INFINITY, 0.0);
+        let mut before = 0.0;
+        for (from, segment) in self.pieces() {
+            let (distance, along) = segment.nearest(from, point);
+            if distance < best.0 {
+                best = (distance, before + along);
+            }
+            before += segment.length(from);
+        }
+        best.1
+    }
+}
+
+impl ProfileSegment {
+    /// The end point.
+    pub fn end(&self) -> DVec2 {
+        match *self {
+            ProfileSegment::Line { to } | ProfileSegment::Arc { to, .. } => to,
+        }
+    }
+
+    /// The length of the segment starting at `from`.
+    fn length(&self, from: DVec2) -> f64 {
+        match *self {
+            ProfileSegment::Line { to } => from.distance(to),
+            ProfileSegment::Arc { center, sweep, .. } => from.distance(center) * sweep.abs(),
+        }
+    }
+
+    /// Distance from `point` to the segment starting at `from`, and the arc length from `from`
+    /// to the nearest point.
+    fn nearest(&self, from: DVec2, point: DVec2) -> (f64, f64) {
+        match *self {
+            ProfileSegment::Line { to } => {
+                let length = from.distance(to);
+                let along = if length > 0.0 {
+                    ((point - from).dot(to - from) / length).clamp(0.0, length)
+                } else {
+                    0.0
+                };
+                let nearest = from + (to - from) * (along / length.max(f64::MIN_POSITIVE));
+                (point.distance(nearest), along)
+            }
+            ProfileSegment::Arc { center, sweep, .. } => {
+                let radius = from.distance(center);
+                let start = (from - center).to_angle();
+                let turn = (point - center).to_angle() - start;
+                // The turn from the start towards `point` the way the arc runs, in [0, 2π).
+                let ahead = (turn * sweep.signum()).rem_euclid(std::f64::consts::TAU);
+                let overshoot = ahead - sweep.abs();
+                let clamped = if overshoot <= 0.0 {
+                    ahead
+                } else if overshoot < std::f64::consts::TAU - ahead {
+                    sweep.abs()
+                } else {
+                    0.0
+                };
+                let nearest = center + DVec2::from_angle(start + clamped * sweep.signum()) * radius;
+                (point.distance(nearest), clamped * radius)
+            }
+        }
+    }
+}
+
 /// Number of equal pieces so that each is at most `max_length` long (at least one).
 pub fn pieces_for_length(length: f64, max_length: f64) -> usize {
     ((length / max_length).ceil() as usize).max(1)

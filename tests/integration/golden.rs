@@ -109,6 +109,7 @@ golden! {
     golden_hypar_part: "hypar.toml",
     golden_garment_panel_part: "garment_panel.toml",
     golden_bracket_fold_part: "bracket_fold.toml",
+    golden_cone_hopper_folds_part: "cone_hopper_folds.toml",
     golden_cone_frustum_half_step: "cone_frustum_half.step",
     golden_bspline_patch_step: "bspline_patch.step",
     golden_loose_hypar_metres_step: "loose_hypar_metres.step",

@@ -9,6 +9,7 @@ use super::errors::SpecDefect;
 use super::loops::polygon_area;
 use super::spec::{FoldLineSpec, RegionSpec};
 use crate::tessellate::surface::{FoldLineGeometry, Surface};
+use crate::tessellate::surface_domain::SurfaceDomain;
 
 /// A fold line's stiffness settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -87,19 +88,13 @@ pub fn build_fold_line(
         (None, Some(surface), Some(points)) => {
             in_range(surface, "surface")?;
             check(
-                matches!(surfaces[surface], Surface::Patch(_)),
-                "surface",
-                "fold polylines can be given on polygon and bspline surfaces; on other kinds use 'between' with a surface split at the fold",
-            )?;
-            check(
                 points.len() >= 2,
                 "points",
                 "a fold polyline needs at least two points",
             )?;
-            FoldLineGeometry::OnSurface {
-                surface,
-                points: points.iter().map(|&p| DVec2::from_array(p)).collect(),
-            }
+            let points: Vec<DVec2> = points.iter().map(|&p| DVec2::from_array(p)).collect();
+            check_on_surface(&points, &SurfaceDomain::new(&surfaces[surface]))?;
+            FoldLineGeometry::OnSurface { surface, points }
         }
         _ => {
             return Err(SpecDefect::new(
@@ -115,6 +110,28 @@ pub fn build_fold_line(
             width: spec.width,
         },
     ))
+}
+
+/// Checks that a fold polyline stays on its surface: every point in the surface's parameter
+/// domain, no segment leaving it or crossing a trim loop.
+fn check_on_surface(points: &[DVec2], domain: &SurfaceDomain) -> Result<(), SpecDefect> {
+    check(
+        points.iter().all(|p| p.is_finite()),
+        "points",
+        "every point must be finite",
+    )?;
+    for (k, pair) in points.windows(2).enumerate() {
+        if let Some(reason) = domain.segment_outside(pair[0], pair[1]) {
+            return Err(SpecDefect::new(
+                "points",
+                format!(
+                    "the fold polyline leaves its surface between points {k} and {}: {reason}",
+                    k + 1
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Builds a stiffness region.
