@@ -261,7 +261,8 @@ fn a_closed_torus_gives_a_valid_pattern() {
     let accuracy = result.flattened.stats.accuracy;
     assert_eq!(accuracy.flipped, 0, "{accuracy:?}");
     assert!(!accuracy.overlap, "the outline never crosses itself");
-    // Measured: 2.22 % / 1.16 % after 20 cuts (12 × 12 quads); 3.43 % / 1.61 % at 16 × 16.
+    // Measured: 1.81 % / 0.94 % after 15 cuts (12 × 12 quads); 6.17 % / 2.62 % after 10 at
+    // 16 × 16 (docs/cutting.md).
     assert!(error(&accuracy) < 0.025, "{accuracy:?}");
 }
 
@@ -316,7 +317,7 @@ fn a_closed_sphere_is_halved_and_cut_to_tolerance_in_one_piece() {
     let accuracy = result.flattened.stats.accuracy;
     assert_eq!(accuracy.flipped, 0, "{accuracy:?}");
     assert!(!accuracy.overlap, "the outline never crosses itself");
-    // Measured: 0.987 % / 0.639 % after 20 cuts (the 12 × 24 sphere: 0.988 % / 0.617 %, 27).
+    // Measured: 0.975 % / 0.694 % after 16 cuts (the 12 × 24 sphere: 0.984 % / 0.595 %, 24).
     assert_eq!(result.stop, CutStop::ToleranceMet);
     assert!(error(&accuracy) <= 0.01, "{accuracy:?}");
 }
