@@ -5,7 +5,7 @@ capcyl.obj (capped cylinder R 30, h 80, 24 around, 8 rows, 4 lid rings, 720), bo
 
 Usage: python3 bench/closed_meshes.py DIR
 """
-import math, sys
+import math, os, sys
 def write(path, V, F):
     with open(path, "w") as f:
         for v in V: f.write("v %.9f %.9f %.9f\n" % v)
@@ -86,7 +86,7 @@ def box(sx,sy,sz,n):
 def tetrahedron():
     return [(0,0,0),(1,0,0),(0,1,0),(0,0,1)],[(0,2,1),(0,1,3),(1,2,3),(0,3,2)]
 if __name__=="__main__":
-    d=sys.argv[1]
+    d=sys.argv[1]; os.makedirs(d, exist_ok=True)
     for name,fn in (("sphere",sphere),("torus",torus),("capcyl",capped_cylinder),
                     ("box",lambda: box(60,40,30,6)),("tetrahedron",tetrahedron)):
         V,F=fn(); write("%s/%s.obj"%(d,name),V,F); print(name,len(F))
