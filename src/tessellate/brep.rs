@@ -35,7 +35,7 @@ use truck_meshalgo::prelude::*;
 use truck_stepio::r#in::alias::{Curve3D, Surface as StepSurface};
 use truck_topology::compress::{CompressedFace, CompressedShell};
 
-use super::face_domain::{BoundaryLoop, FaceSurface, face_domain};
+use super::face_domain::{BoundaryLoop, FaceSurface, PoleToPole, face_domain};
 use super::patch::mesh_patch;
 use super::surface::{PatchGeometry, PatchSurface};
 use crate::mesh::TriangleSoup;
@@ -85,6 +85,13 @@ pub fn shells_size(shells: &[StepShell]) -> f64 {
                 }
             }
         }
+        let closed_faces = shell.faces.iter().filter(|face| has_no_edge(face));
+        for closed in closed_faces.filter_map(|face| PoleToPole::of(&face.surface)) {
+            for p in closed.grid_points().into_iter().filter(|p| p.is_finite()) {
+                low = low.min(p);
+                high = high.max(p);
+            }
+        }
     }
     let size = (high - low).length();
     if size.is_finite() { size } else { 0.0 }
@@ -130,13 +137,15 @@ pub fn mesh_shell(
             face: index,
             message,
         };
-        let loops = face_loops(face, &edges, size).map_err(error)?;
-        let face_mesh = catch_unwind(AssertUnwindSafe(|| {
-            mesh_face(face, &loops, face_sizes[index], chord, size)
-        }))
-        .map_err(|_| error("the face could not be tessellated".into()))?
-        .map_err(error)?;
-        append_face(soup, &face_mesh, first_source + index as u32);
+        let pieces = face_pieces(face, &edges, face_sizes[index], chord, size).map_err(error)?;
+        for loops in &pieces {
+            let face_mesh = catch_unwind(AssertUnwindSafe(|| {
+                mesh_face(face, loops, face_sizes[index], chord, size)
+            }))
+            .map_err(|_| error("the face could not be tessellated".into()))?
+            .map_err(error)?;
+            append_face(soup, &face_mesh, first_source + index as u32);
+        }
     }
     Ok(())
 }
@@ -157,16 +166,16 @@ fn face_mesh_sizes(
         .faces
         .iter()
         .map(|face| {
-            let curvature = face_loops(face, edges, size)
-                .ok()
-                .and_then(|loops| {
-                    catch_unwind(AssertUnwindSafe(|| {
-                        face_domain(&face.surface, &loops, size)
-                    }))
-                    .ok()?
-                    .ok()
+            let curvature = face_pieces(face, edges, mesh_size, chord, size)
+                .unwrap_or_default()
+                .iter()
+                .filter_map(|loops| {
+                    catch_unwind(AssertUnwindSafe(|| face_domain(&face.surface, loops, size)))
+                        .ok()?
+                        .ok()
                 })
-                .map_or(0.0, |domain| domain.curvature);
+                .map(|domain| domain.curvature)
+                .fold(0.0, f64::max);
             if curvature > 0.0 {
                 mesh_size.min((6.0 * chord / curvature).sqrt())
             } else {
@@ -224,8 +233,19 @@ fn append_face(soup: &mut TriangleSoup, face: &MeshedFace, source: u32) {
 
 /// Samples an edge's curve from `ends.0` to `ends.1` (see the module documentation).
 fn sample_edge(curve: &Curve3D, ends: (DVec3, DVec3), mesh_size: f64, chord: f64) -> Vec<DVec3> {
-    let point = |t: f64| to_dvec(curve.subs(t));
-    let (start, end) = edge_range(curve, ends, mesh_size);
+    let range = edge_range(curve, ends, mesh_size);
+    sample_curve(|t| to_dvec(curve.subs(t)), range, ends, mesh_size, chord)
+}
+
+/// Samples `point` over the parameter `range` in equal steps, each piece at most
+/// [`EDGE_PIECE_RATIO`] of the mesh size and within the chord, the ends exactly `ends`.
+fn sample_curve(
+    point: impl Fn(f64) -> DVec3,
+    (start, end): (f64, f64),
+    ends: (DVec3, DVec3),
+    mesh_size: f64,
+    chord: f64,
+) -> Vec<DVec3> {
     let closed = ends.0.distance(ends.1) <= f64::EPSILON * ends.0.length().max(1.0);
     let minimum = if closed { 3 } else { 1 };
     let longest = EDGE_PIECE_RATIO * mesh_size;
@@ -272,6 +292,61 @@ fn edge_range(curve: &Curve3D, ends: (DVec3, DVec3), mesh_size: f64) -> (f64, f6
             .unwrap_or(own)
     };
     (nearest(ends.0, start), nearest(ends.1, end))
+}
+
+/// Whether a face has no boundary edge (STEP's vertex loop, which truck-stepio drops).
+fn has_no_edge(face: &CompressedFace<StepSurface>) -> bool {
+    face.boundaries.iter().all(|boundary| boundary.is_empty())
+}
+
+/// The boundary loops of each piece a face is meshed in: its own loops, or for a face with no
+/// edge on a surface closed from pole to pole (a full sphere) the two caps of [`PoleToPole`],
+/// their middle parallel and seam meridians sampled like edges to `mesh_size` and the chord.
+fn face_pieces(
+    face: &CompressedFace<StepSurface>,
+    edges: &[Vec<DVec3>],
+    mesh_size: f64,
+    chord: f64,
+    size: f64,
+) -> Result<Vec<Vec<BoundaryLoop>>, String> {
+    if !has_no_edge(face) {
+        return Ok(vec![face_loops(face, edges, size)?]);
+    }
+    let closed = PoleToPole::of(&face.surface).ok_or_else(|| {
+        "it has no boundary edge (only a vertex loop) and its surface is not closed from pole \
+         to pole (flatcut meshes a boundary-less face only on a full sphere or closed surface of \
+         revolution)"
+            .to_string()
+    })?;
+    let seam = closed.parallel(0.0);
+    let parallel = sample_curve(
+        |s| closed.parallel(s),
+        (0.0, 1.0),
+        (seam, seam),
+        mesh_size,
+        chord,
+    );
+    let caps = (0..2).map(|pole| {
+        let tip = closed.meridian(pole, 1.0);
+        let meridian = sample_curve(
+            |s| closed.meridian(pole, s),
+            (0.0, 1.0),
+            (seam, tip),
+            mesh_size,
+            chord,
+        );
+        // The parallel (its last point is the seam again), out along the meridian to the pole
+        // and back.
+        let mut points = parallel.clone();
+        points.extend_from_slice(&meridian[1..]);
+        points.extend(meridian[1..meridian.len() - 1].iter().rev());
+        let edge_starts = vec![0, parallel.len() - 1, parallel.len() + meridian.len() - 2];
+        vec![BoundaryLoop {
+            points,
+            edge_starts,
+        }]
+    });
+    Ok(caps.collect())
 }
 
 /// The face's boundary loops as points on the surface, each point once (a loop does not repeat
