@@ -392,9 +392,9 @@ fn freecad_step_faces_keep_their_area_and_angles() {
 }
 
 /// FreeCAD STEP samples on surfaces of revolution, with Open CASCADE's areas (mm²) and the worst
-/// angle each reaches today: a hemisphere (its pole meshed in the polar map) and a quarter
-/// torus reach 20°; a cone through its apex and a revolved B-spline profile ingest with their
-/// areas but not yet with 20° (the apex's triangles, native B-spline parameters).
+/// angle each must reach: a hemisphere and a full sphere and spheroid (their poles meshed in the
+/// polar map), a quarter torus and a revolved B-spline profile (in Mercator coordinates) and a
+/// cone through its apex (its seam graded toward the apex) all reach 20°.
 const REVOLUTION_SAMPLES: [(&str, f64, f64); 6] = [
     ("hemisphere_freecad.step", 40212.385966, STEP_MINIMUM_ANGLE),
     (
@@ -402,8 +402,12 @@ const REVOLUTION_SAMPLES: [(&str, f64, f64); 6] = [
         24674.011003,
         STEP_MINIMUM_ANGLE,
     ),
-    ("cone_apex_freecad.step", 33291.904316, 5.0),
-    ("vase_revolved_freecad.step", 74115.845005, 15.0),
+    ("cone_apex_freecad.step", 33291.904316, STEP_MINIMUM_ANGLE),
+    (
+        "vase_revolved_freecad.step",
+        74115.845005,
+        STEP_MINIMUM_ANGLE,
+    ),
     ("sphere_freecad.step", 31415.926536, STEP_MINIMUM_ANGLE),
     ("spheroid_freecad.step", 11136.124110, STEP_MINIMUM_ANGLE),
 ];

@@ -35,7 +35,7 @@ use truck_meshalgo::prelude::*;
 use truck_stepio::r#in::alias::{Curve3D, Surface as StepSurface};
 use truck_topology::compress::{CompressedFace, CompressedShell};
 
-use super::face_domain::{BoundaryLoop, FaceSurface, PoleToPole, face_domain};
+use super::face_domain::{BoundaryLoop, FaceSurface, PoleToPole, apex_curvature, face_domain};
 use super::patch::mesh_patch;
 use super::surface::{PatchGeometry, PatchSurface};
 use crate::mesh::TriangleSoup;
@@ -50,6 +50,8 @@ pub const EDGE_PIECE_RATIO: f64 = 0.8;
 const SIZE_SAMPLES: usize = 16;
 /// At most this many pieces per edge (a runaway count means a broken curve).
 const MAX_EDGE_PIECES: usize = 200_000;
+/// Bisection steps placing a sample at its distance from a cone's apex.
+const APEX_BISECTION_STEPS: usize = 60;
 /// Rounds of the edge piece count search.
 const EDGE_ROUNDS: usize = 12;
 /// Boundary vertices within this fraction of the face's domain size of a boundary sample are
@@ -131,7 +133,19 @@ pub fn mesh_shell(
             }
         }
     }
-    let edges = sample_all(&edge_sizes);
+    let apexes = edge_apexes(shell, size);
+    let edges: Vec<Vec<DVec3>> = (0..shell.edges.len())
+        .map(|e| match apexes[e] {
+            Some(apex) => sample_toward_apex(
+                &shell.edges[e].curve,
+                vertices(e),
+                apex,
+                edge_sizes[e],
+                chord,
+            ),
+            None => sample_edge(&shell.edges[e].curve, vertices(e), edge_sizes[e], chord),
+        })
+        .collect();
     for (index, face) in shell.faces.iter().enumerate() {
         let error = |message: String| FaceError {
             face: index,
@@ -229,6 +243,103 @@ fn append_face(soup: &mut TriangleSoup, face: &MeshedFace, source: u32) {
         .extend(face.triangles.iter().map(|t| t.map(|v| v + offset)));
     soup.face_sources
         .extend(std::iter::repeat_n(source, face.triangles.len()));
+}
+
+/// An edge end at a cone's apex: which end (`true` the first vertex) and the cone's `κ d`
+/// (see [`apex_curvature`]).
+type EdgeApex = (bool, f64);
+
+/// For each edge, the end at which it meets the apex of one of its faces' cones, if any.
+fn edge_apexes(shell: &StepShell, size: f64) -> Vec<Option<EdgeApex>> {
+    let mut apexes = vec![None; shell.edges.len()];
+    for face in &shell.faces {
+        for edge in face.boundaries.iter().flatten() {
+            let Some(slot) = apexes.get_mut(edge.index) else {
+                continue;
+            };
+            let (a, b) = shell.edges[edge.index].vertices;
+            let (a, b) = (to_dvec(shell.vertices[a]), to_dvec(shell.vertices[b]));
+            let found = catch_unwind(AssertUnwindSafe(|| {
+                apex_curvature(&face.surface, a, b, size)
+                    .map(|product| (true, product))
+                    .or_else(|| apex_curvature(&face.surface, b, a, size).map(|p| (false, p)))
+            }))
+            .ok()
+            .flatten();
+            if let Some((at_start, product)) = found {
+                let largest = slot.map_or(product, |(_, other): EdgeApex| other.max(product));
+                *slot = Some((at_start, largest));
+            }
+        }
+    }
+    apexes
+}
+
+/// Samples an edge that ends at a cone's apex with pieces graded to the cone's curvature: a
+/// triangle of side `h` at distance `d` from the apex strays `κ h² / 6` with `κ = (κ d) / d`,
+/// so pieces there are at most [`EDGE_PIECE_RATIO`] of `√(6 chord d / (κ d))` (and of the mesh
+/// size), placed at equal steps of `∫ 1 / size` along the distance from the apex. Both sides of
+/// the cone's seam use these points, so the mesher meets pieces as small as its triangles at the
+/// apex.
+fn sample_toward_apex(
+    curve: &Curve3D,
+    ends: (DVec3, DVec3),
+    (at_start, product): EdgeApex,
+    mesh_size: f64,
+    chord: f64,
+) -> Vec<DVec3> {
+    let (start, end) = edge_range(curve, ends, mesh_size);
+    let (apex, far, t_apex, t_far) = if at_start {
+        (ends.0, ends.1, start, end)
+    } else {
+        (ends.1, ends.0, end, start)
+    };
+    let longest = EDGE_PIECE_RATIO * mesh_size;
+    let slope = EDGE_PIECE_RATIO * (6.0 * chord / product).sqrt();
+    // Pieces `slope √d` up to `d_c`, then `longest`; `w` is ∫ 1 / size over the distance.
+    let d_c = (longest / slope).powi(2);
+    let w_c = 2.0 * d_c.sqrt() / slope;
+    let weight = |d: f64| {
+        if d < d_c {
+            2.0 * d.sqrt() / slope
+        } else {
+            w_c + (d - d_c) / longest
+        }
+    };
+    let distance_of = |w: f64| {
+        if w < w_c {
+            (0.5 * slope * w).powi(2)
+        } else {
+            d_c + (w - w_c) * longest
+        }
+    };
+    let total = far.distance(apex);
+    let pieces = (weight(total).ceil() as usize).clamp(1, MAX_EDGE_PIECES);
+    let parameter_at = |d: f64| {
+        // The distance from the apex grows along the edge (a ruling): bisection.
+        let (mut low, mut high) = (t_apex, t_far);
+        for _ in 0..APEX_BISECTION_STEPS {
+            let middle = 0.5 * (low + high);
+            if to_dvec(curve.subs(middle)).distance(apex) < d {
+                low = middle;
+            } else {
+                high = middle;
+            }
+        }
+        0.5 * (low + high)
+    };
+    let mut points: Vec<DVec3> = (0..=pieces)
+        .map(|k| {
+            let d = distance_of(weight(total) * k as f64 / pieces as f64);
+            to_dvec(curve.subs(parameter_at(d)))
+        })
+        .collect();
+    points[0] = apex;
+    points[pieces] = far;
+    if !at_start {
+        points.reverse();
+    }
+    points
 }
 
 /// Samples an edge's curve from `ends.0` to `ends.1` (see the module documentation).
