@@ -13,10 +13,13 @@
 //!    late Steiner points near the boundary. Every edge is then sampled once (`sample_edge`):
 //!    equal parameter steps, as many as keep each piece shorter than [`EDGE_PIECE_RATIO`] of the
 //!    smaller mesh size of its faces and within the chord tolerance of the curve, the ends
-//!    exactly at the edge's vertices.
+//!    exactly at the edge's vertices; an edge ending at a cone's apex is graded toward it
+//!    (`sample_toward_apex`). A face with no edge on a surface closed from pole to pole (a full
+//!    sphere) is meshed as two caps ([`PoleToPole`]).
 //! 2. Each face's boundary loops (its edges' samples, in loop order) are mapped into a domain in
 //!    which lengths approximate surface lengths ([`super::face_domain`]: cones developed,
-//!    cylinders unrolled, other surfaces in their own parameters, periodic parameters unwrapped).
+//!    cylinders unrolled, poles in polar coordinates, surfaces of revolution in Mercator
+//!    coordinates, other surfaces in their own parameters, periodic parameters unwrapped).
 //! 3. The trimmed domain is meshed by the patch mesher ([`super::patch::mesh_patch`]: spade's
 //!    constrained Delaunay refinement to the mesh size, the chord and a 25° minimum angle, the
 //!    boundary samples kept as constraint edges).

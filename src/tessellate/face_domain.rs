@@ -12,9 +12,13 @@
 //!   the distance from the apex): a conformal map, so angles are the surface's and lengths scale
 //!   smoothly; rulings and circles are straight lines along the axes (a polar development would
 //!   put a ruling's points off one line by round-off, and the mesher would make slivers there).
-//!   Faces that reach their apex keep their own parameters.
-//! - Other surfaces (planes, B-splines, NURBS, spheres, tori, swept curves) keep their own
-//!   parameters; the patch mesher scales them by the mean surface speeds.
+//!   Faces that reach their apex are mapped in polar coordinates about it (below).
+//! - A face through a pole of a surface of revolution (a sphere's pole, a cone's apex) is mapped
+//!   to conformal polar coordinates about the pole ([`DomainMap::Polar`]).
+//! - Other faces of spheres, tori and revolved curves are mapped to Mercator coordinates
+//!   ([`DomainMap::Mercator`]): conformal, parallels and meridians straight.
+//! - Other surfaces (planes, B-splines, NURBS, extrusions) keep their own parameters; the patch
+//!   mesher scales them by the mean surface speeds.
 //!
 //! Boundary points are inverted into the surface's parameters (truck's search, then Gauss-Newton
 //! from the previous point of the loop), and periodic parameters are unwrapped along each loop so
@@ -1116,6 +1120,29 @@ mod tests {
         for native in [DVec2::new(0.0, 0.1), DVec2::new(60.0, 6.0)] {
             let back = map.native_of(map.domain_of(native));
             assert!(back.distance(native) < 1e-9, "{native} -> {back}");
+        }
+    }
+
+    #[test]
+    fn a_mercator_map_round_trips_and_its_derivatives_match() {
+        let t: Vec<f64> = (0..=8).map(|i| 0.25 * i as f64).collect();
+        let y: Vec<f64> = t.iter().map(|t| 3.0 * t + t * t).collect();
+        let map = DomainMap::Mercator(MercatorMap {
+            angular: Axis::U,
+            radius0: 40.0,
+            t,
+            y,
+        });
+        for native in [DVec2::new(0.3, 0.1), DVec2::new(5.9, 1.6)] {
+            let domain = map.domain_of(native);
+            assert!(map.native_of(domain).distance(native) < 1e-12);
+            let (dx, dy) = map.native_derivatives(domain);
+            let step = 1e-7;
+            let along = |offset: DVec2| {
+                (map.native_of(domain + offset) - map.native_of(domain - offset)) / (2.0 * step)
+            };
+            assert!(along(DVec2::X * step).distance(dx) < 1e-6, "{dx}");
+            assert!(along(DVec2::Y * step).distance(dy) < 1e-6, "{dy}");
         }
     }
 
