@@ -400,7 +400,7 @@ impl PoleToPole {
             }
             None => (finite(range.0)?, finite(range.1)?),
         };
-        if !(t1 > t0) {
+        if t1.partial_cmp(&t0) != Some(std::cmp::Ordering::Greater) {
             return None;
         }
         let closed = PoleToPole {
