@@ -392,18 +392,24 @@ fn freecad_step_faces_keep_their_area_and_angles() {
 }
 
 /// FreeCAD STEP samples on surfaces of revolution, with Open CASCADE's areas (mm²) and the worst
-/// angle each reaches today: a hemisphere (its pole meshed in the polar map) and a quarter
-/// torus reach 20°; a cone through its apex and a revolved B-spline profile ingest with their
-/// areas but not yet with 20° (the apex's triangles, native B-spline parameters).
-const REVOLUTION_SAMPLES: [(&str, f64, f64); 4] = [
+/// angle each must reach: a hemisphere and a full sphere and spheroid (their poles meshed in the
+/// polar map), a quarter torus and a revolved B-spline profile (in Mercator coordinates) and a
+/// cone through its apex (its seam graded toward the apex) all reach 20°.
+const REVOLUTION_SAMPLES: [(&str, f64, f64); 6] = [
     ("hemisphere_freecad.step", 40212.385966, STEP_MINIMUM_ANGLE),
     (
         "torus_quarter_freecad.step",
         24674.011003,
         STEP_MINIMUM_ANGLE,
     ),
-    ("cone_apex_freecad.step", 33291.904316, 5.0),
-    ("vase_revolved_freecad.step", 74115.845005, 15.0),
+    ("cone_apex_freecad.step", 33291.904316, STEP_MINIMUM_ANGLE),
+    (
+        "vase_revolved_freecad.step",
+        74115.845005,
+        STEP_MINIMUM_ANGLE,
+    ),
+    ("sphere_freecad.step", 31415.926536, STEP_MINIMUM_ANGLE),
+    ("spheroid_freecad.step", 11136.124110, STEP_MINIMUM_ANGLE),
 ];
 
 #[test]
@@ -434,6 +440,31 @@ fn a_hemisphere_is_one_disk_through_its_pole() {
         (top - 80.0).abs() < 0.03,
         "the mesh stops short of the pole: {top}"
     );
+}
+
+#[test]
+fn a_full_sphere_bounded_by_a_vertex_loop_is_one_closed_surface() {
+    // FreeCAD writes a whole sphere as one face bounded by a VERTEX_LOOP only (no edge).
+    let jobs = load_parts(&sample("sphere_freecad.step"), &RunOptions::default()).expect("loads");
+    assert_eq!(jobs.len(), 1);
+    let model = &jobs[0].model;
+    assert!(
+        model.boundary_loops().is_empty(),
+        "the two caps weld into a closed surface"
+    );
+    // Every vertex is on the sphere (radius 50 mm about the origin).
+    let worst = model
+        .positions()
+        .iter()
+        .map(|p| (p.length() - 50.0).abs())
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-9, "a vertex is {worst} mm off the sphere");
+    // Both poles are covered (within the chord, 0.01 mm here).
+    let (low, high) = model
+        .positions()
+        .iter()
+        .fold((0.0_f64, 0.0_f64), |(l, h), p| (l.min(p.z), h.max(p.z)));
+    assert!(low < -49.99 && high > 49.99, "z from {low} to {high}");
 }
 
 #[test]

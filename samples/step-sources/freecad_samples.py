@@ -24,6 +24,11 @@ Run from the repository root, headless:
   CONICAL_SURFACE face through its apex and a plane disk, AP214, millimetres.
 - torus_quarter_freecad.step: a quarter of a torus (radii 100 and 25 mm), the toroidal face
   only, TOROIDAL_SURFACE, AP214, millimetres.
+- sphere_freecad.step: a full sphere (radius 50 mm), one SPHERICAL_SURFACE face bounded by a
+  VERTEX_LOOP at its south pole only (no edge at all), AP214, millimetres.
+- spheroid_freecad.step: a prolate spheroid (semi-axes 40 mm along the axis, 25 mm across): a half
+  ellipse revolved a full turn, one face on a SURFACE_OF_REVOLUTION of the whole ELLIPSE bounded
+  by a VERTEX_LOOP only, AP214, millimetres.
 - vase_revolved_freecad.step: a solid of revolution whose side is a B-spline profile revolved
   a full turn (SURFACE_OF_REVOLUTION) between two plane disks, AP214, millimetres.
 
@@ -120,6 +125,21 @@ def vase_revolved():
     return Part.Face(wire).revolve(vector(0, 0, 0), vector(0, 0, 1), 360)
 
 
+def sphere_full():
+    return Part.Shell(Part.makeSphere(50.0).Faces)
+
+
+def spheroid():
+    vector = FreeCAD.Vector
+    # Major semi-axis (40 mm) along z, minor (25 mm) along x; the half with x > 0 is revolved.
+    ellipse = Part.Ellipse(vector(0, 0, 40), vector(25, 0, 0), vector(0, 0, 0))
+    start = 0.0 if ellipse.value(math.pi / 2).x > 0 else math.pi
+    arc = Part.ArcOfEllipse(ellipse, start, start + math.pi)
+    axis = Part.LineSegment(arc.EndPoint, arc.StartPoint)
+    half = Part.Face(Part.Wire([arc.toShape(), axis.toShape()]))
+    return Part.Shell(half.revolve(vector(0, 0, 0), vector(0, 0, 1), 360).Faces)
+
+
 def main():
     if UNIT == "mm":
         export(cone_frustum_side(), "cone_frustum_freecad.step")
@@ -128,6 +148,8 @@ def main():
         export(Part.makeCone(60.0, 0.0, 100.0), "cone_apex_freecad.step")
         export(torus_quarter(), "torus_quarter_freecad.step")
         export(vase_revolved(), "vase_revolved_freecad.step")
+        export(sphere_full(), "sphere_freecad.step")
+        export(spheroid(), "spheroid_freecad.step")
         environment = dict(os.environ, FLATCUT_SAMPLE_UNIT="in")
         subprocess.run([shutil.which("freecadcmd"), SCRIPT], env=environment, check=True)
     else:

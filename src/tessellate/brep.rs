@@ -13,10 +13,13 @@
 //!    late Steiner points near the boundary. Every edge is then sampled once (`sample_edge`):
 //!    equal parameter steps, as many as keep each piece shorter than [`EDGE_PIECE_RATIO`] of the
 //!    smaller mesh size of its faces and within the chord tolerance of the curve, the ends
-//!    exactly at the edge's vertices.
+//!    exactly at the edge's vertices; an edge ending at a cone's apex is graded toward it
+//!    (`sample_toward_apex`). A face with no edge on a surface closed from pole to pole (a full
+//!    sphere) is meshed as two caps ([`PoleToPole`]).
 //! 2. Each face's boundary loops (its edges' samples, in loop order) are mapped into a domain in
 //!    which lengths approximate surface lengths ([`super::face_domain`]: cones developed,
-//!    cylinders unrolled, other surfaces in their own parameters, periodic parameters unwrapped).
+//!    cylinders unrolled, poles in polar coordinates, surfaces of revolution in Mercator
+//!    coordinates, other surfaces in their own parameters, periodic parameters unwrapped).
 //! 3. The trimmed domain is meshed by the patch mesher ([`super::patch::mesh_patch`]: spade's
 //!    constrained Delaunay refinement to the mesh size, the chord and a 25° minimum angle, the
 //!    boundary samples kept as constraint edges).
@@ -35,7 +38,7 @@ use truck_meshalgo::prelude::*;
 use truck_stepio::r#in::alias::{Curve3D, Surface as StepSurface};
 use truck_topology::compress::{CompressedFace, CompressedShell};
 
-use super::face_domain::{BoundaryLoop, FaceSurface, face_domain};
+use super::face_domain::{BoundaryLoop, FaceSurface, PoleToPole, apex_curvature, face_domain};
 use super::patch::mesh_patch;
 use super::surface::{PatchGeometry, PatchSurface};
 use crate::mesh::TriangleSoup;
@@ -50,6 +53,8 @@ pub const EDGE_PIECE_RATIO: f64 = 0.8;
 const SIZE_SAMPLES: usize = 16;
 /// At most this many pieces per edge (a runaway count means a broken curve).
 const MAX_EDGE_PIECES: usize = 200_000;
+/// Bisection steps placing a sample at its distance from a cone's apex.
+const APEX_BISECTION_STEPS: usize = 60;
 /// Rounds of the edge piece count search.
 const EDGE_ROUNDS: usize = 12;
 /// Boundary vertices within this fraction of the face's domain size of a boundary sample are
@@ -83,6 +88,13 @@ pub fn shells_size(shells: &[StepShell]) -> f64 {
                     low = low.min(p);
                     high = high.max(p);
                 }
+            }
+        }
+        let closed_faces = shell.faces.iter().filter(|face| has_no_edge(face));
+        for closed in closed_faces.filter_map(|face| PoleToPole::of(&face.surface)) {
+            for p in closed.grid_points().into_iter().filter(|p| p.is_finite()) {
+                low = low.min(p);
+                high = high.max(p);
             }
         }
     }
@@ -124,19 +136,33 @@ pub fn mesh_shell(
             }
         }
     }
-    let edges = sample_all(&edge_sizes);
+    let apexes = edge_apexes(shell, size);
+    let edges: Vec<Vec<DVec3>> = (0..shell.edges.len())
+        .map(|e| match apexes[e] {
+            Some(apex) => sample_toward_apex(
+                &shell.edges[e].curve,
+                vertices(e),
+                apex,
+                edge_sizes[e],
+                chord,
+            ),
+            None => sample_edge(&shell.edges[e].curve, vertices(e), edge_sizes[e], chord),
+        })
+        .collect();
     for (index, face) in shell.faces.iter().enumerate() {
         let error = |message: String| FaceError {
             face: index,
             message,
         };
-        let loops = face_loops(face, &edges, size).map_err(error)?;
-        let face_mesh = catch_unwind(AssertUnwindSafe(|| {
-            mesh_face(face, &loops, face_sizes[index], chord, size)
-        }))
-        .map_err(|_| error("the face could not be tessellated".into()))?
-        .map_err(error)?;
-        append_face(soup, &face_mesh, first_source + index as u32);
+        let pieces = face_pieces(face, &edges, face_sizes[index], chord, size).map_err(error)?;
+        for loops in &pieces {
+            let face_mesh = catch_unwind(AssertUnwindSafe(|| {
+                mesh_face(face, loops, face_sizes[index], chord, size)
+            }))
+            .map_err(|_| error("the face could not be tessellated".into()))?
+            .map_err(error)?;
+            append_face(soup, &face_mesh, first_source + index as u32);
+        }
     }
     Ok(())
 }
@@ -157,16 +183,16 @@ fn face_mesh_sizes(
         .faces
         .iter()
         .map(|face| {
-            let curvature = face_loops(face, edges, size)
-                .ok()
-                .and_then(|loops| {
-                    catch_unwind(AssertUnwindSafe(|| {
-                        face_domain(&face.surface, &loops, size)
-                    }))
-                    .ok()?
-                    .ok()
+            let curvature = face_pieces(face, edges, mesh_size, chord, size)
+                .unwrap_or_default()
+                .iter()
+                .filter_map(|loops| {
+                    catch_unwind(AssertUnwindSafe(|| face_domain(&face.surface, loops, size)))
+                        .ok()?
+                        .ok()
                 })
-                .map_or(0.0, |domain| domain.curvature);
+                .map(|domain| domain.curvature)
+                .fold(0.0, f64::max);
             if curvature > 0.0 {
                 mesh_size.min((6.0 * chord / curvature).sqrt())
             } else {
@@ -222,10 +248,118 @@ fn append_face(soup: &mut TriangleSoup, face: &MeshedFace, source: u32) {
         .extend(std::iter::repeat_n(source, face.triangles.len()));
 }
 
+/// An edge end at a cone's apex: which end (`true` the first vertex) and the cone's `κ d`
+/// (see [`apex_curvature`]).
+type EdgeApex = (bool, f64);
+
+/// For each edge, the end at which it meets the apex of one of its faces' cones, if any.
+fn edge_apexes(shell: &StepShell, size: f64) -> Vec<Option<EdgeApex>> {
+    let mut apexes = vec![None; shell.edges.len()];
+    for face in &shell.faces {
+        for edge in face.boundaries.iter().flatten() {
+            let Some(slot) = apexes.get_mut(edge.index) else {
+                continue;
+            };
+            let (a, b) = shell.edges[edge.index].vertices;
+            let (a, b) = (to_dvec(shell.vertices[a]), to_dvec(shell.vertices[b]));
+            let found = catch_unwind(AssertUnwindSafe(|| {
+                apex_curvature(&face.surface, a, b, size)
+                    .map(|product| (true, product))
+                    .or_else(|| apex_curvature(&face.surface, b, a, size).map(|p| (false, p)))
+            }))
+            .ok()
+            .flatten();
+            if let Some((at_start, product)) = found {
+                let largest = slot.map_or(product, |(_, other): EdgeApex| other.max(product));
+                *slot = Some((at_start, largest));
+            }
+        }
+    }
+    apexes
+}
+
+/// Samples an edge that ends at a cone's apex with pieces graded to the cone's curvature: a
+/// triangle of side `h` at distance `d` from the apex strays `κ h² / 6` with `κ = (κ d) / d`,
+/// so pieces there are at most [`EDGE_PIECE_RATIO`] of `√(6 chord d / (κ d))` (and of the mesh
+/// size), placed at equal steps of `∫ 1 / size` along the distance from the apex. Both sides of
+/// the cone's seam use these points, so the mesher meets pieces as small as its triangles at the
+/// apex.
+fn sample_toward_apex(
+    curve: &Curve3D,
+    ends: (DVec3, DVec3),
+    (at_start, product): EdgeApex,
+    mesh_size: f64,
+    chord: f64,
+) -> Vec<DVec3> {
+    let (start, end) = edge_range(curve, ends, mesh_size);
+    let (apex, far, t_apex, t_far) = if at_start {
+        (ends.0, ends.1, start, end)
+    } else {
+        (ends.1, ends.0, end, start)
+    };
+    let longest = EDGE_PIECE_RATIO * mesh_size;
+    let slope = EDGE_PIECE_RATIO * (6.0 * chord / product).sqrt();
+    // Pieces `slope √d` up to `d_c`, then `longest`; `w` is ∫ 1 / size over the distance.
+    let d_c = (longest / slope).powi(2);
+    let w_c = 2.0 * d_c.sqrt() / slope;
+    let weight = |d: f64| {
+        if d < d_c {
+            2.0 * d.sqrt() / slope
+        } else {
+            w_c + (d - d_c) / longest
+        }
+    };
+    let distance_of = |w: f64| {
+        if w < w_c {
+            (0.5 * slope * w).powi(2)
+        } else {
+            d_c + (w - w_c) * longest
+        }
+    };
+    let total = far.distance(apex);
+    let pieces = (weight(total).ceil() as usize).clamp(1, MAX_EDGE_PIECES);
+    let parameter_at = |d: f64| {
+        // The distance from the apex grows along the edge (a ruling): bisection.
+        let (mut low, mut high) = (t_apex, t_far);
+        for _ in 0..APEX_BISECTION_STEPS {
+            let middle = 0.5 * (low + high);
+            if to_dvec(curve.subs(middle)).distance(apex) < d {
+                low = middle;
+            } else {
+                high = middle;
+            }
+        }
+        0.5 * (low + high)
+    };
+    let mut points: Vec<DVec3> = (0..=pieces)
+        .map(|k| {
+            let d = distance_of(weight(total) * k as f64 / pieces as f64);
+            to_dvec(curve.subs(parameter_at(d)))
+        })
+        .collect();
+    points[0] = apex;
+    points[pieces] = far;
+    if !at_start {
+        points.reverse();
+    }
+    points
+}
+
 /// Samples an edge's curve from `ends.0` to `ends.1` (see the module documentation).
 fn sample_edge(curve: &Curve3D, ends: (DVec3, DVec3), mesh_size: f64, chord: f64) -> Vec<DVec3> {
-    let point = |t: f64| to_dvec(curve.subs(t));
-    let (start, end) = edge_range(curve, ends, mesh_size);
+    let range = edge_range(curve, ends, mesh_size);
+    sample_curve(|t| to_dvec(curve.subs(t)), range, ends, mesh_size, chord)
+}
+
+/// Samples `point` over the parameter `range` in equal steps, each piece at most
+/// [`EDGE_PIECE_RATIO`] of the mesh size and within the chord, the ends exactly `ends`.
+fn sample_curve(
+    point: impl Fn(f64) -> DVec3,
+    (start, end): (f64, f64),
+    ends: (DVec3, DVec3),
+    mesh_size: f64,
+    chord: f64,
+) -> Vec<DVec3> {
     let closed = ends.0.distance(ends.1) <= f64::EPSILON * ends.0.length().max(1.0);
     let minimum = if closed { 3 } else { 1 };
     let longest = EDGE_PIECE_RATIO * mesh_size;
@@ -272,6 +406,61 @@ fn edge_range(curve: &Curve3D, ends: (DVec3, DVec3), mesh_size: f64) -> (f64, f6
             .unwrap_or(own)
     };
     (nearest(ends.0, start), nearest(ends.1, end))
+}
+
+/// Whether a face has no boundary edge (STEP's vertex loop, which truck-stepio drops).
+fn has_no_edge(face: &CompressedFace<StepSurface>) -> bool {
+    face.boundaries.iter().all(|boundary| boundary.is_empty())
+}
+
+/// The boundary loops of each piece a face is meshed in: its own loops, or for a face with no
+/// edge on a surface closed from pole to pole (a full sphere) the two caps of [`PoleToPole`],
+/// their middle parallel and seam meridians sampled like edges to `mesh_size` and the chord.
+fn face_pieces(
+    face: &CompressedFace<StepSurface>,
+    edges: &[Vec<DVec3>],
+    mesh_size: f64,
+    chord: f64,
+    size: f64,
+) -> Result<Vec<Vec<BoundaryLoop>>, String> {
+    if !has_no_edge(face) {
+        return Ok(vec![face_loops(face, edges, size)?]);
+    }
+    let closed = PoleToPole::of(&face.surface).ok_or_else(|| {
+        "it has no boundary edge (only a vertex loop) and its surface is not closed from pole \
+         to pole (flatcut meshes a boundary-less face only on a full sphere or closed surface of \
+         revolution)"
+            .to_string()
+    })?;
+    let seam = closed.parallel(0.0);
+    let parallel = sample_curve(
+        |s| closed.parallel(s),
+        (0.0, 1.0),
+        (seam, seam),
+        mesh_size,
+        chord,
+    );
+    let caps = (0..2).map(|pole| {
+        let tip = closed.meridian(pole, 1.0);
+        let meridian = sample_curve(
+            |s| closed.meridian(pole, s),
+            (0.0, 1.0),
+            (seam, tip),
+            mesh_size,
+            chord,
+        );
+        // The parallel (its last point is the seam again), out along the meridian to the pole
+        // and back.
+        let mut points = parallel.clone();
+        points.extend_from_slice(&meridian[1..]);
+        points.extend(meridian[1..meridian.len() - 1].iter().rev());
+        let edge_starts = vec![0, parallel.len() - 1, parallel.len() + meridian.len() - 2];
+        vec![BoundaryLoop {
+            points,
+            edge_starts,
+        }]
+    });
+    Ok(caps.collect())
 }
 
 /// The face's boundary loops as points on the surface, each point once (a loop does not repeat

@@ -12,9 +12,13 @@
 //!   the distance from the apex): a conformal map, so angles are the surface's and lengths scale
 //!   smoothly; rulings and circles are straight lines along the axes (a polar development would
 //!   put a ruling's points off one line by round-off, and the mesher would make slivers there).
-//!   Faces that reach their apex keep their own parameters.
-//! - Other surfaces (planes, B-splines, NURBS, spheres, tori, swept curves) keep their own
-//!   parameters; the patch mesher scales them by the mean surface speeds.
+//!   Faces that reach their apex are mapped in polar coordinates about it (below).
+//! - A face through a pole of a surface of revolution (a sphere's pole, a cone's apex) is mapped
+//!   to conformal polar coordinates about the pole ([`DomainMap::Polar`]).
+//! - Other faces of spheres, tori and revolved curves are mapped to Mercator coordinates
+//!   ([`DomainMap::Mercator`]): conformal, parallels and meridians straight.
+//! - Other surfaces (planes, B-splines, NURBS, extrusions) keep their own parameters; the patch
+//!   mesher scales them by the mean surface speeds.
 //!
 //! Boundary points are inverted into the surface's parameters (truck's search, then Gauss-Newton
 //! from the previous point of the loop), and periodic parameters are unwrapped along each loop so
@@ -24,7 +28,7 @@ use std::ops::Bound;
 
 use glam::{DVec2, DVec3};
 use truck_meshalgo::prelude::*;
-use truck_stepio::r#in::alias::{ElementarySurface, Surface as StepSurface};
+use truck_stepio::r#in::alias::{ElementarySurface, Surface as StepSurface, SweptCurve};
 
 use super::surface::MappedSurface;
 
@@ -89,6 +93,24 @@ enum DomainMap {
     /// at a smooth pole, the sine of the half-angle at a cone's apex (where the map is the
     /// cone's development). The pole is the origin, so triangles keep their shape up to it.
     Polar(PolarMap),
+    /// A face of a surface of revolution away from its poles (a torus, a sphere's zone, a
+    /// revolved profile) in Mercator coordinates `(r₀ θ, r₀ ∫ s / r dt)` (`r` the parallel's
+    /// radius, `s` the meridian's speed, `r₀` the face's largest radius): a conformal map, so
+    /// angles are the surface's; parallels and meridians are straight lines along the axes and
+    /// lengths scale by `r / r₀`.
+    Mercator(MercatorMap),
+}
+
+/// The table of a [`DomainMap::Mercator`] map.
+#[derive(Debug, Clone, PartialEq)]
+struct MercatorMap {
+    angular: Axis,
+    /// `r₀`: the domain's length per angle about the axis.
+    radius0: f64,
+    /// Parameter `t` at the samples (increasing).
+    t: Vec<f64>,
+    /// `y(t)` at the samples (increasing).
+    y: Vec<f64>,
 }
 
 /// The table of a [`DomainMap::Polar`] map.
@@ -181,6 +203,13 @@ impl DomainMap {
                 let (t, angle) = polar.angular.split(native);
                 DVec2::from_angle(polar.c * (angle - polar.angle0)) * polar.radius_of(t)
             }
+            DomainMap::Mercator(ref mercator) => {
+                let (t, angle) = mercator.angular.split(native);
+                DVec2::new(
+                    mercator.radius0 * angle,
+                    interpolate(&mercator.t, &mercator.y, t),
+                )
+            }
         }
     }
 
@@ -212,6 +241,10 @@ impl DomainMap {
                     .angular
                     .join(polar.t_of(domain.length()), polar.angle0 + angle / polar.c)
             }
+            DomainMap::Mercator(ref mercator) => mercator.angular.join(
+                interpolate(&mercator.y, &mercator.t, domain.y),
+                domain.x / mercator.radius0,
+            ),
         }
     }
 
@@ -250,6 +283,17 @@ impl DomainMap {
                     polar.angular.join(t, angle - (angle / turn).round() * turn) / (2.0 * step)
                 };
                 (difference(DVec2::X * step), difference(DVec2::Y * step))
+            }
+            DomainMap::Mercator(ref mercator) => {
+                // The slope of the interpolated table, so derivatives match `native_of`.
+                let (t, y) = (&mercator.t, &mercator.y);
+                let k = y.partition_point(|&v| v < domain.y).clamp(1, y.len() - 1);
+                (
+                    mercator.angular.join(0.0, 1.0 / mercator.radius0),
+                    mercator
+                        .angular
+                        .join((t[k] - t[k - 1]) / (y[k] - y[k - 1]), 0.0),
+                )
             }
         }
     }
@@ -297,6 +341,158 @@ fn native_derivatives(surface: &StepSurface, native: DVec2) -> (DVec3, DVec3) {
     let u = surface.uder(native.x, native.y);
     let v = surface.vder(native.x, native.y);
     (DVec3::new(u.x, u.y, u.z), DVec3::new(v.x, v.y, v.z))
+}
+
+/// Samples along the meridian when a surface is checked for poles at both ends.
+const MERIDIAN_SAMPLES: usize = 16;
+/// Steps of the golden-section search for a pole along a periodic meridian.
+const GOLDEN_SECTION_STEPS: usize = 80;
+
+/// A surface closed on itself from pole to pole: periodic in its angle about an axis, its other
+/// parameter running between two poles (a full sphere, a closed surface of revolution). STEP
+/// writes a face covering such a surface with a vertex loop only (no edge), so flatcut splits it
+/// along its middle parallel into two caps, each bounded by that parallel and a seam meridian out
+/// to its pole and back (the layout of a hemisphere's face), and meshes each cap in the polar map.
+#[derive(Debug, Clone)]
+pub struct PoleToPole {
+    surface: StepSurface,
+    angular: Axis,
+    period: f64,
+    /// The meridian parameter at the two poles.
+    poles: [f64; 2],
+    /// Angle of the seam meridian (the parallel's start).
+    angle0: f64,
+}
+
+impl PoleToPole {
+    /// The surface's pole-to-pole structure, if it has one: a periodic angle whose parallel's
+    /// radius `|∂S/∂θ|` vanishes (relative to its largest) at two values of the other parameter,
+    /// the ends of its range, or, when that parameter is periodic too (a full ellipse revolved
+    /// covers its ellipsoid twice), two consecutive zeros over one period.
+    pub fn of(surface: &StepSurface) -> Option<Self> {
+        let periods = [surface.u_period(), surface.v_period()];
+        let (u, v) = surface.parameter_range();
+        [
+            (Axis::U, periods[0], v, periods[1]),
+            (Axis::V, periods[1], u, periods[0]),
+        ]
+        .into_iter()
+        .find_map(|(angular, period, range, meridian_period)| {
+            Self::about(surface, angular, period?, range, meridian_period)
+        })
+    }
+
+    fn about(
+        surface: &StepSurface,
+        angular: Axis,
+        period: f64,
+        range: (Bound<f64>, Bound<f64>),
+        meridian_period: Option<f64>,
+    ) -> Option<Self> {
+        let finite = |bound: Bound<f64>| match bound {
+            Bound::Included(t) | Bound::Excluded(t) => Some(t).filter(|t| t.is_finite()),
+            Bound::Unbounded => None,
+        };
+        let (t0, t1) = match meridian_period {
+            Some(meridian_period) => {
+                let start = finite(range.0).unwrap_or(0.0);
+                (start, start + meridian_period)
+            }
+            None => (finite(range.0)?, finite(range.1)?),
+        };
+        if t1.partial_cmp(&t0) != Some(std::cmp::Ordering::Greater) {
+            return None;
+        }
+        let closed = PoleToPole {
+            surface: surface.clone(),
+            angular,
+            period,
+            poles: [t0, t1],
+            angle0: 0.0,
+        };
+        let step = (t1 - t0) / MERIDIAN_SAMPLES as f64;
+        let radii: Vec<f64> = (0..=MERIDIAN_SAMPLES)
+            .map(|i| closed.parallel_radius(t0 + step * i as f64))
+            .collect();
+        let largest = radii.iter().copied().fold(0.0_f64, f64::max);
+        if !(largest > 0.0 && largest.is_finite()) {
+            return None;
+        }
+        let is_pole = |t: f64| closed.parallel_radius(t) <= POLE_RATIO * largest;
+        let poles = match meridian_period {
+            None => [t0, t1],
+            Some(_) => {
+                let count = MERIDIAN_SAMPLES;
+                let mut zeros = (0..count)
+                    .filter(|&i| {
+                        radii[i] <= radii[(i + count - 1) % count] && radii[i] <= radii[i + 1]
+                    })
+                    .map(|i| {
+                        let t = t0 + step * i as f64;
+                        closed.smallest_radius(t - step, t + step)
+                    })
+                    .filter(|&t| is_pole(t));
+                let first = zeros.next()?;
+                let second = zeros.find(|&t| t - first > 0.5 * step)?;
+                [first, second]
+            }
+        };
+        (is_pole(poles[0]) && is_pole(poles[1])).then_some(PoleToPole { poles, ..closed })
+    }
+
+    /// The parameter in `[low, high]` where the parallel's radius is smallest (golden section).
+    fn smallest_radius(&self, mut low: f64, mut high: f64) -> f64 {
+        let ratio = 0.5 * (5.0_f64.sqrt() - 1.0);
+        for _ in 0..GOLDEN_SECTION_STEPS {
+            let a = high - ratio * (high - low);
+            let b = low + ratio * (high - low);
+            if self.parallel_radius(a) <= self.parallel_radius(b) {
+                high = b;
+            } else {
+                low = a;
+            }
+        }
+        0.5 * (low + high)
+    }
+
+    fn parallel_radius(&self, t: f64) -> f64 {
+        let (su, sv) = native_derivatives(&self.surface, self.angular.join(t, self.angle0));
+        match self.angular {
+            Axis::U => su.length(),
+            Axis::V => sv.length(),
+        }
+    }
+
+    fn middle(&self) -> f64 {
+        0.5 * (self.poles[0] + self.poles[1])
+    }
+
+    /// The point of the middle parallel at `s` of the way round (0 and 1 on the seam).
+    pub fn parallel(&self, s: f64) -> DVec3 {
+        let angle = self.angle0 + self.period * s;
+        native_point(&self.surface, self.angular.join(self.middle(), angle))
+    }
+
+    /// The point of the seam meridian at `s` of the way from the middle parallel to pole
+    /// `pole` (0 or 1).
+    pub fn meridian(&self, pole: usize, s: f64) -> DVec3 {
+        let t = self.middle() + (self.poles[pole] - self.middle()) * s;
+        native_point(&self.surface, self.angular.join(t, self.angle0))
+    }
+
+    /// Points on a grid of parallels and meridians (for the part's size).
+    pub fn grid_points(&self) -> Vec<DVec3> {
+        let count = MERIDIAN_SAMPLES;
+        let mut points = Vec::with_capacity((count + 1) * (count + 1));
+        for i in 0..=count {
+            let t = self.poles[0] + (self.poles[1] - self.poles[0]) * i as f64 / count as f64;
+            for j in 0..=count {
+                let angle = self.angle0 + self.period * j as f64 / count as f64;
+                points.push(native_point(&self.surface, self.angular.join(t, angle)));
+            }
+        }
+        points
+    }
 }
 
 /// Relative spread of a parameter along an edge below which the edge lies on an iso-parameter
@@ -389,29 +585,65 @@ fn largest_curvature(
                     continue;
                 }
             }
-            let vector = |v: Vector3| DVec3::new(v.x, v.y, v.z);
-            let (su, sv) = native_derivatives(surface, p);
-            let (suu, suv, svv) = (
-                vector(surface.uuder(p.x, p.y)),
-                vector(surface.uvder(p.x, p.y)),
-                vector(surface.vvder(p.x, p.y)),
-            );
-            let normal = su.cross(sv).normalize_or_zero();
-            let (e, f, g) = (su.dot(su), su.dot(sv), sv.dot(sv));
-            let (l, m, n) = (suu.dot(normal), suv.dot(normal), svv.dot(normal));
-            let area = e * g - f * f;
-            if area.partial_cmp(&(f64::EPSILON * e * g)) != Some(std::cmp::Ordering::Greater) {
-                continue;
-            }
-            let mean = (e * n + g * l - 2.0 * f * m) / (2.0 * area);
-            let gauss = (l * n - m * m) / area;
-            let curvature = mean.abs() + (mean * mean - gauss).max(0.0).sqrt();
-            if curvature.is_finite() {
+            if let Some(curvature) = principal_curvature(surface, p) {
                 largest = largest.max(curvature);
             }
         }
     }
     largest
+}
+
+/// The largest principal curvature `|H| + √(H² − K)` at parameters `p` (none where the surface
+/// is singular).
+fn principal_curvature(surface: &StepSurface, p: DVec2) -> Option<f64> {
+    let vector = |v: Vector3| DVec3::new(v.x, v.y, v.z);
+    let (su, sv) = native_derivatives(surface, p);
+    let (suu, suv, svv) = (
+        vector(surface.uuder(p.x, p.y)),
+        vector(surface.uvder(p.x, p.y)),
+        vector(surface.vvder(p.x, p.y)),
+    );
+    let normal = su.cross(sv).normalize_or_zero();
+    let (e, f, g) = (su.dot(su), su.dot(sv), sv.dot(sv));
+    let (l, m, n) = (suu.dot(normal), suv.dot(normal), svv.dot(normal));
+    let area = e * g - f * f;
+    if area.partial_cmp(&(f64::EPSILON * e * g)) != Some(std::cmp::Ordering::Greater) {
+        return None;
+    }
+    let mean = (e * n + g * l - 2.0 * f * m) / (2.0 * area);
+    let gauss = (l * n - m * m) / area;
+    Some(mean.abs() + (mean * mean - gauss).max(0.0).sqrt()).filter(|c| c.is_finite())
+}
+
+/// For a cone and `apex` its apex (a point where the parallel's radius vanishes): the product
+/// `κ d` of the cone's largest curvature and the distance from the apex, constant along the
+/// cone (`1 / tan` of its half-angle), measured at `far` (a point of the cone away from the
+/// apex). `None` on other surfaces and points.
+pub fn apex_curvature(surface: &StepSurface, apex: DVec3, far: DVec3, size: f64) -> Option<f64> {
+    let StepSurface::ElementarySurface(elementary) = surface else {
+        return None;
+    };
+    if !matches!(elementary.as_ref(), ElementarySurface::ConicalSurface(_)) {
+        return None;
+    }
+    let periods = [surface.u_period(), surface.v_period()];
+    let tolerance = INVERSION_TOLERANCE_RATIO * size;
+    let on_surface = |point: DVec3| {
+        global_inversion(surface, point, periods, [None, None])
+            .filter(|&p| native_point(surface, p).distance(point) <= tolerance)
+    };
+    let at_apex = on_surface(apex)?;
+    let (su, sv) = native_derivatives(surface, at_apex);
+    let angular_speed = match periods {
+        [Some(_), None] => su.length(),
+        [None, Some(_)] => sv.length(),
+        _ => return None,
+    };
+    if angular_speed > POLE_RATIO * size {
+        return None;
+    }
+    let product = principal_curvature(surface, on_surface(far)?)? * far.distance(apex);
+    (product > 0.0 && product.is_finite()).then_some(product)
 }
 
 /// Each parameter's range where evaluation must stay inside it (B-spline and NURBS surfaces, not
@@ -720,6 +952,9 @@ fn domain_map(
     native_loops: &[Vec<DVec2>],
     periods: [Option<f64>; 2],
 ) -> DomainMap {
+    if let Some(mercator) = mercator_map(surface, native_loops) {
+        return mercator;
+    }
     let StepSurface::ElementarySurface(elementary) = surface else {
         return DomainMap::Native;
     };
@@ -777,6 +1012,98 @@ fn domain_map(
     }
 }
 
+/// Relative change of a surface of revolution's parallel radius and meridian speed along a
+/// parallel below which the angular parameter is the angle about its axis.
+const REVOLUTION_TOLERANCE: f64 = 1e-9;
+
+/// Whether `surface` is a sphere, a torus or a revolved curve (the surfaces the Mercator map is
+/// for; cylinders and cones have their own maps).
+fn is_revolution(surface: &StepSurface) -> bool {
+    match surface {
+        StepSurface::ElementarySurface(elementary) => matches!(
+            elementary.as_ref(),
+            ElementarySurface::Sphere(_) | ElementarySurface::ToroidalSurface(_)
+        ),
+        StepSurface::SweptCurve(swept) => matches!(swept.as_ref(), SweptCurve::RevolutedCurve(_)),
+        _ => false,
+    }
+}
+
+/// The periodic parameter of a surface of revolution that is its angle about the axis: along
+/// it, the parallel's radius `|∂S/∂θ|` and the meridian's speed `|∂S/∂t|` do not change (a
+/// torus's tube angle has a constant speed but the other parameter's speed changes along it).
+fn revolution_angle(surface: &StepSurface, at: DVec2) -> Option<Axis> {
+    [(Axis::U, surface.u_period()), (Axis::V, surface.v_period())]
+        .into_iter()
+        .filter(|(_, period)| period.is_some())
+        .map(|(axis, _)| axis)
+        .find(|&axis| {
+            let (t, angle) = axis.split(at);
+            let speeds = |angle: f64| {
+                let (su, sv) = native_derivatives(surface, axis.join(t, angle));
+                match axis {
+                    Axis::U => DVec2::new(su.length(), sv.length()),
+                    Axis::V => DVec2::new(sv.length(), su.length()),
+                }
+            };
+            let reference = speeds(angle);
+            let scale = reference.max_element();
+            scale > 0.0
+                && [0.7, 2.1, 4.4].iter().all(|&turn| {
+                    (speeds(angle + turn) - reference).abs().max_element()
+                        <= REVOLUTION_TOLERANCE * scale
+                })
+        })
+}
+
+/// The Mercator map of a face of a surface of revolution that stays away from its poles (see
+/// [`DomainMap::Mercator`]), tabulated over the loops' range of the meridian parameter.
+fn mercator_map(surface: &StepSurface, native_loops: &[Vec<DVec2>]) -> Option<DomainMap> {
+    if !is_revolution(surface) {
+        return None;
+    }
+    let first = *native_loops.first()?.first()?;
+    let angular = revolution_angle(surface, first)?;
+    let angle0 = angular.split(first).1;
+    let (low, high) = native_loops
+        .iter()
+        .flatten()
+        .map(|&p| angular.split(p).0)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), t| {
+            (low.min(t), high.max(t))
+        });
+    let step = (high - low) / POLAR_SAMPLES as f64;
+    if !(step.is_finite() && step > 0.0) {
+        return None;
+    }
+    let radius_speed = |t: f64| {
+        let (su, sv) = native_derivatives(surface, angular.join(t, angle0));
+        match angular {
+            Axis::U => (su.length(), sv.length()),
+            Axis::V => (sv.length(), su.length()),
+        }
+    };
+    let t: Vec<f64> = (0..=POLAR_SAMPLES).map(|i| low + step * i as f64).collect();
+    let radius0 = t.iter().map(|&t| radius_speed(t).0).fold(0.0_f64, f64::max);
+    let mut y = Vec::with_capacity(t.len());
+    let mut total = 0.0;
+    y.push(total);
+    for &sample in &t[..POLAR_SAMPLES] {
+        let (radius, speed) = radius_speed(sample + 0.5 * step);
+        total += radius0 * speed * step / radius;
+        y.push(total);
+    }
+    if !y.iter().all(|v| v.is_finite()) || y.windows(2).any(|w| w[1] <= w[0]) {
+        return None;
+    }
+    Some(DomainMap::Mercator(MercatorMap {
+        angular,
+        radius0,
+        t,
+        y,
+    }))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -793,6 +1120,29 @@ mod tests {
         for native in [DVec2::new(0.0, 0.1), DVec2::new(60.0, 6.0)] {
             let back = map.native_of(map.domain_of(native));
             assert!(back.distance(native) < 1e-9, "{native} -> {back}");
+        }
+    }
+
+    #[test]
+    fn a_mercator_map_round_trips_and_its_derivatives_match() {
+        let t: Vec<f64> = (0..=8).map(|i| 0.25 * i as f64).collect();
+        let y: Vec<f64> = t.iter().map(|t| 3.0 * t + t * t).collect();
+        let map = DomainMap::Mercator(MercatorMap {
+            angular: Axis::U,
+            radius0: 40.0,
+            t,
+            y,
+        });
+        for native in [DVec2::new(0.3, 0.1), DVec2::new(5.9, 1.6)] {
+            let domain = map.domain_of(native);
+            assert!(map.native_of(domain).distance(native) < 1e-12);
+            let (dx, dy) = map.native_derivatives(domain);
+            let step = 1e-7;
+            let along = |offset: DVec2| {
+                (map.native_of(domain + offset) - map.native_of(domain - offset)) / (2.0 * step)
+            };
+            assert!(along(DVec2::X * step).distance(dx) < 1e-6, "{dx}");
+            assert!(along(DVec2::Y * step).distance(dy) < 1e-6, "{dy}");
         }
     }
 
