@@ -14,9 +14,9 @@
 //!   put a ruling's points off one line by round-off, and the mesher would make slivers there).
 //!   Faces that reach their apex are mapped in polar coordinates about it (below).
 //! - A face through a pole of a surface of revolution (a sphere's pole, a cone's apex) is mapped
-//!   to conformal polar coordinates about the pole ([`DomainMap::Polar`]).
+//!   to conformal polar coordinates about the pole (`DomainMap::Polar`).
 //! - Other faces of spheres, tori and revolved curves are mapped to Mercator coordinates
-//!   ([`DomainMap::Mercator`]): conformal, parallels and meridians straight.
+//!   (`DomainMap::Mercator`): conformal, parallels and meridians straight.
 //! - Other surfaces (planes, B-splines, NURBS, extrusions) keep their own parameters; the patch
 //!   mesher scales them by the mean surface speeds.
 //!
