@@ -2,7 +2,8 @@
 //!
 //! Triangles are taken in breadth-first order across shared edges from a seed near the middle of
 //! the surface (the midpoint of a longest breadth-first path in the face graph, so the pattern
-//! grows outwards evenly). The seed is laid with its first edge on the x axis. Each later triangle
+//! grows outwards evenly; if that pattern has flipped triangles, the face farthest from the
+//! boundary is tried as the seed too, see [`init_flatten()`]). The seed is laid with its first edge on the x axis. Each later triangle
 //! shares a placed edge with the triangle it was reached from; its third vertex is placed at the
 //! intersection of the circles around the edge's ends with the 3D edge lengths as radii, on the
 //! side that keeps the triangle counter-clockwise (unconstrained flattening, Fig. 4). When the
@@ -21,6 +22,7 @@
 
 use glam::DVec2;
 
+use super::accuracy::flipped_triangles;
 use super::energy_release::{EnergyRelease, ReleaseParameters};
 use super::springs::SpringSystem;
 use crate::mesh::{FacetModel, NONE, compressed_rows};
@@ -53,13 +55,43 @@ pub enum InitRelease {
 
 /// Builds the initial pattern. `springs` must be the model's spring system. The model must have
 /// a boundary (a closed surface is cut open first).
+///
+/// The pattern grows from the middle of a longest breadth-first path. When that pattern has
+/// flipped triangles (the path can run along the boundary, as on a hemisphere, whose opposite
+/// rim points are joined by equally long paths over the pole and along the rim; growing from
+/// the rim folds the pattern), it is grown again from the face farthest from the boundary and
+/// the one with fewer flipped triangles is kept (the first on a tie).
 pub fn init_flatten(
     model: &FacetModel,
     springs: &SpringSystem,
     release: InitRelease,
     progress: &dyn Progress,
 ) -> Vec<DVec2> {
-    let order = breadth_first_order(model);
+    let first = grow_pattern(model, springs, path_middle_face(model), release, progress);
+    let first_flipped = flipped_triangles(model, &first);
+    if first_flipped == 0 {
+        return first;
+    }
+    let second = grow_pattern(model, springs, innermost_face(model), release, progress);
+    if flipped_triangles(model, &second) < first_flipped {
+        second
+    } else {
+        first
+    }
+}
+
+/// The pattern grown triangle by triangle in breadth-first order from `seed`.
+fn grow_pattern(
+    model: &FacetModel,
+    springs: &SpringSystem,
+    seed: u32,
+    release: InitRelease,
+    progress: &dyn Progress,
+) -> Vec<DVec2> {
+    let order: Vec<(u32, u32)> = breadth_first(model, seed)
+        .into_iter()
+        .map(|visit| (visit.face, visit.via_edge))
+        .collect();
     let mut placer = Placer::new(model, springs);
     let energy = EnergyRelease::new(model, springs);
     let mut system = energy.empty_system();
@@ -86,9 +118,8 @@ pub fn init_flatten(
     placer.positions
 }
 
-/// Triangles in breadth-first order from a central seed, each with the edge it was reached
-/// through ([`NONE`] for the seed).
-fn breadth_first_order(model: &FacetModel) -> Vec<(u32, u32)> {
+/// The face in the middle of a longest breadth-first path in the face graph.
+fn path_middle_face(model: &FacetModel) -> u32 {
     let far = breadth_first(model, 0).last().map_or(0, |visit| visit.face);
     let visits = breadth_first(model, far);
     let mut parent = vec![NONE; model.triangle_count()];
@@ -102,11 +133,22 @@ fn breadth_first_order(model: &FacetModel) -> Vec<(u32, u32)> {
             up => path.push(up),
         }
     }
-    let seed = path[path.len() / 2];
-    breadth_first(model, seed)
-        .into_iter()
-        .map(|visit| (visit.face, visit.via_edge))
-        .collect()
+    path[path.len() / 2]
+}
+
+/// The face farthest from the boundary in the face graph (the last one a breadth-first search
+/// from every boundary face reaches).
+fn innermost_face(model: &FacetModel) -> u32 {
+    let boundary_faces: Vec<u32> = (0..model.triangle_count() as u32)
+        .filter(|&f| {
+            model.face_edges()[f as usize]
+                .iter()
+                .any(|&e| model.is_boundary_edge(e as usize))
+        })
+        .collect();
+    breadth_first_from(model, &boundary_faces)
+        .last()
+        .map_or(0, |visit| visit.face)
 }
 
 /// One face reached by a breadth-first search in the face graph.
@@ -118,13 +160,23 @@ struct Visit {
 
 /// Breadth-first search in the face graph from `start`, in visiting order.
 fn breadth_first(model: &FacetModel, start: u32) -> Vec<Visit> {
+    breadth_first_from(model, &[start])
+}
+
+/// Breadth-first search in the face graph from all of `starts` at once, in visiting order.
+fn breadth_first_from(model: &FacetModel, starts: &[u32]) -> Vec<Visit> {
     let mut visited = vec![false; model.triangle_count()];
-    let mut visits = vec![Visit {
-        face: start,
-        parent: NONE,
-        via_edge: NONE,
-    }];
-    visited[start as usize] = true;
+    let mut visits: Vec<Visit> = starts
+        .iter()
+        .map(|&face| Visit {
+            face,
+            parent: NONE,
+            via_edge: NONE,
+        })
+        .collect();
+    for &start in starts {
+        visited[start as usize] = true;
+    }
     let mut next = 0;
     while next < visits.len() {
         let f = visits[next].face;
