@@ -261,9 +261,10 @@ fn a_closed_torus_gives_a_valid_pattern() {
     let accuracy = result.flattened.stats.accuracy;
     assert_eq!(accuracy.flipped, 0, "{accuracy:?}");
     assert!(!accuracy.overlap, "the outline never crosses itself");
-    // Measured: 1.81 % / 0.94 % after 15 cuts (12 × 12 quads); 6.17 % / 2.62 % after 10 at
-    // 16 × 16 (docs/cutting.md).
-    assert!(error(&accuracy) < 0.025, "{accuracy:?}");
+    // Measured: 2.85 % / 1.36 % (12 × 12 quads); 1.37 % / 0.79 % after 19 cuts at 16 × 16
+    // (docs/cutting.md). The greedy loop's result on a torus moves with its first cuts (1.81 %
+    // at 12 × 12 before the initial pattern regrew from the innermost face when it folds).
+    assert!(error(&accuracy) < 0.03, "{accuracy:?}");
 }
 
 /// A closed UV sphere of radius 50: `rings` bands of latitude (`rings − 1` circles and the two
