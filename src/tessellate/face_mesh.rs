@@ -19,6 +19,17 @@ pub struct FaceMesh {
 }
 
 impl FaceMesh {
+    /// The total area of the triangles (part units squared).
+    pub fn area(&self) -> f64 {
+        self.triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|v| self.positions[v as usize]);
+                0.5 * (b - a).cross(c - a).length()
+            })
+            .sum()
+    }
+
     /// Adds a vertex with a zero parameter and returns its index.
     pub fn add_vertex(&mut self, position: DVec3) -> u32 {
         self.positions.push(position);

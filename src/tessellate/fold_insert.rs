@@ -786,16 +786,6 @@ mod tests {
         })
     }
 
-    fn area(mesh: &FaceMesh) -> f64 {
-        mesh.triangles
-            .iter()
-            .map(|t| {
-                let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
-                0.5 * (b - a).cross(c - a).length()
-            })
-            .sum()
-    }
-
     #[test]
     fn a_generator_fold_becomes_mesh_edges_and_keeps_the_area_and_the_shape() {
         let surface = cylinder_panel();
@@ -803,11 +793,11 @@ mod tests {
             unreachable!("a cylinder is ruled")
         };
         let mut mesh = mesh_ruled(ruled, 6.0, 0.03);
-        let before = area(&mesh);
+        let before = mesh.area();
         let domain = SurfaceDomain::new(&surface);
         let folds = vec![(0, vec![DVec2::new(61.3, 0.0), DVec2::new(61.3, 200.0)])];
         insert_fold_polylines(&mut mesh, &domain, &folds, 6.0).expect("inserts");
-        assert!((area(&mesh) - before).abs() / before < 1e-5);
+        assert!((mesh.area() - before).abs() / before < 1e-5);
         let length: f64 = mesh
             .fold_edges
             .iter()

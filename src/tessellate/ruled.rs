@@ -584,16 +584,6 @@ mod tests {
     use super::*;
     use crate::tessellate::surface::RuledCircle;
 
-    fn area(mesh: &FaceMesh) -> f64 {
-        mesh.triangles
-            .iter()
-            .map(|t| {
-                let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
-                0.5 * (b - a).cross(c - a).length()
-            })
-            .sum()
-    }
-
     #[test]
     fn a_cylinder_strip_has_the_area_of_its_polygon() {
         let surface = RuledSurface::Circular {
@@ -612,7 +602,7 @@ mod tests {
         };
         let mesh = mesh_ruled(&surface, 5.0, 0.05);
         let analytic = TAU * 50.0 * 100.0;
-        assert!((area(&mesh) - analytic).abs() / analytic < 1e-3);
+        assert!((mesh.area() - analytic).abs() / analytic < 1e-3);
     }
 
     #[test]
