@@ -18,6 +18,20 @@ use glam::DVec3;
 
 /// Errors of an exact development: round-off only.
 const ISOMETRIC: f64 = 1e-6;
+/// The facet model of a generated surface (`what` names it if it is invalid).
+fn facet_model(positions: Vec<DVec3>, triangles: Vec<[u32; 3]>, what: &str) -> FacetModel {
+    let soup = TriangleSoup::new(positions, triangles);
+    validate(&soup)
+        .unwrap_or_else(|defects| panic!("invalid {what}: {defects:?}"))
+        .components
+        .remove(0)
+}
+
+/// Splits the quad `[a, b, c, d]` (counter-clockwise) into two triangles along `a c`.
+fn push_quad(triangles: &mut Vec<[u32; 3]>, [a, b, c, d]: [u32; 4]) {
+    triangles.push([a, b, c]);
+    triangles.push([a, c, d]);
+}
 
 fn sample(name: &str) -> FacetModel {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -88,8 +102,7 @@ fn closed_box(size: DVec3, n: u32) -> FacetModel {
             }
         }
     }
-    let soup = TriangleSoup::new(positions, triangles);
-    validate(&soup).expect("valid box").components.remove(0)
+    facet_model(positions, triangles, "box")
 }
 
 /// A spherical cap of radius 100 and polar half-angle `half_angle` (degrees): `rings` rings at
@@ -146,8 +159,7 @@ fn spherical_cap(half_angle: f64, rings: u32) -> FacetModel {
             }
         }
     }
-    let soup = TriangleSoup::new(positions, triangles);
-    validate(&soup).expect("valid cap").components.remove(0)
+    facet_model(positions, triangles, "cap")
 }
 
 /// A torus (genus 1) with `n × n` quads.
@@ -172,12 +184,13 @@ fn torus(n: u32) -> FacetModel {
     let mut triangles = Vec::new();
     for i in 0..n {
         for j in 0..n {
-            triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-            triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            push_quad(
+                &mut triangles,
+                [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)],
+            );
         }
     }
-    let soup = TriangleSoup::new(positions, triangles);
-    validate(&soup).expect("valid torus").components.remove(0)
+    facet_model(positions, triangles, "torus")
 }
 
 #[test]
@@ -296,12 +309,13 @@ fn uv_sphere(rings: u32, segments: u32) -> FacetModel {
     }
     for i in 1..rings - 1 {
         for j in 0..segments {
-            triangles.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
-            triangles.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            push_quad(
+                &mut triangles,
+                [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)],
+            );
         }
     }
-    let soup = TriangleSoup::new(positions, triangles);
-    validate(&soup).expect("valid sphere").components.remove(0)
+    facet_model(positions, triangles, "sphere")
 }
 
 #[test]
