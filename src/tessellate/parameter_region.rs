@@ -65,6 +65,8 @@ impl ParameterRegion {
         let overlaps = self.u_overlaps(from.x, to.x, self.tolerance)
             && to.y.min(high.y) - from.y.max(low.y) > self.tolerance;
         let [u, v] = self.axis_names();
+        // Rounded to 9 decimals, so that 120 degrees is not printed as 119.99999999999999.
+        let [from, to, low, high] = [from, to, low, high].map(|p| (p * 1e9).round() / 1e9);
         (!overlaps).then(|| {
             format!(
                 "the region ({u} from {} to {}, {v} from {} to {}) lies off its surface, whose \
