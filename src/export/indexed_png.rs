@@ -98,7 +98,8 @@ fn palette(histogram: &[Entry]) -> Vec<[u8; 3]> {
         return histogram.iter().map(|entry| entry.rgb).collect();
     }
     let mut entries = histogram.to_vec();
-    let mut boxes: Vec<std::ops::Range<usize>> = Vec::from([0..entries.len()]);
+    let mut boxes = Vec::with_capacity(PALETTE_SIZE);
+    boxes.push(0..entries.len());
     while boxes.len() < PALETTE_SIZE {
         let (worst, error) = boxes
             .iter()
