@@ -44,25 +44,24 @@ pub fn encode_indexed_png(pixmap: &Pixmap) -> Result<Vec<u8>, png::EncodingError
             pack([colour.red(), colour.green(), colour.blue()])
         })
         .collect();
-    let histogram = histogram(&packed);
+    let runs = runs(&packed);
+    let histogram = histogram(&runs);
     let palette = palette(&histogram);
     let nearest: Vec<u8> = histogram
         .iter()
         .map(|entry| nearest_index(entry.rgb, &palette))
         .collect();
-    let indices: Vec<u8> = packed
-        .iter()
-        .map(|&colour| {
-            let position = histogram.partition_point(|entry| pack(entry.rgb) < colour);
-            nearest[position]
-        })
-        .collect();
+    let mut indices = Vec::with_capacity(packed.len());
+    for &(colour, length) in &runs {
+        let position = histogram.partition_point(|entry| pack(entry.rgb) < colour);
+        indices.extend(std::iter::repeat_n(nearest[position], length as usize));
+    }
     let mut bytes = Vec::new();
     let mut encoder = png::Encoder::new(&mut bytes, pixmap.width(), pixmap.height());
     encoder.set_color(png::ColorType::Indexed);
     encoder.set_depth(png::BitDepth::Eight);
     encoder.set_palette(palette.concat());
-    encoder.set_compression(png::Compression::High);
+    encoder.set_compression(png::Compression::Balanced);
     encoder.set_filter(png::Filter::NoFilter);
     let mut writer = encoder.write_header()?;
     writer.write_image_data(&indices)?;
@@ -74,17 +73,31 @@ fn pack([red, green, blue]: [u8; 3]) -> u32 {
     (u32::from(red) << 16) | (u32::from(green) << 8) | u32::from(blue)
 }
 
+/// Runs of equal colours in pixel order: `(packed colour, length)`. A picture of large flat and
+/// smooth areas has far fewer runs than pixels, so the histogram and the indices are made from
+/// runs.
+fn runs(packed: &[u32]) -> Vec<(u32, u32)> {
+    let mut runs: Vec<(u32, u32)> = Vec::new();
+    for &colour in packed {
+        match runs.last_mut() {
+            Some((last, length)) if *last == colour => *length += 1,
+            _ => runs.push((colour, 1)),
+        }
+    }
+    runs
+}
+
 /// The distinct colours of the picture with their pixel counts, sorted by packed colour.
-fn histogram(packed: &[u32]) -> Vec<Entry> {
-    let mut sorted = packed.to_vec();
+fn histogram(runs: &[(u32, u32)]) -> Vec<Entry> {
+    let mut sorted = runs.to_vec();
     sorted.sort_unstable();
     let mut entries: Vec<Entry> = Vec::new();
-    for colour in sorted {
+    for (colour, length) in sorted {
         match entries.last_mut() {
-            Some(last) if pack(last.rgb) == colour => last.count += 1,
+            Some(last) if pack(last.rgb) == colour => last.count += u64::from(length),
             _ => entries.push(Entry {
                 rgb: [(colour >> 16) as u8, (colour >> 8) as u8, colour as u8],
-                count: 1,
+                count: u64::from(length),
             }),
         }
     }
