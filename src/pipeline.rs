@@ -11,10 +11,12 @@ use crate::cut::{Cut, CutConstraints, CutOptions, CutStop, Seam, UncutPattern, c
 use crate::error::Error;
 use crate::flatten::orient::orient;
 use crate::flatten::{FlattenOptions, Flattened, Stiffness};
-use crate::ingest::part::{PartAttributes, PartInput, RegionShape, loops::inside};
+use crate::ingest::part::{PartAttributes, PartInput, RegionShape};
 use crate::ingest::{Input, read_cut_sidecar, read_input};
 use crate::mesh::{FacetModel, TriangleSoup, validate};
 use crate::progress::Progress;
+use crate::tessellate::parameter_region::ParameterRegion;
+use crate::tessellate::surface_domain::SurfaceDomain;
 use crate::tessellate::{TessellateOptions, Tessellation, tessellate};
 use crate::units::Units;
 
@@ -163,6 +165,14 @@ fn load_part_file(
             stiffness.raise_near_fold_line(model, line as u32, width / 2.0, fold.factor);
         }
         for region in &part.regions {
+            let members = match &region.shape {
+                RegionShape::Parameter { surface, polygon } => {
+                    let domain = SurfaceDomain::new(&part.cad.surfaces[*surface]);
+                    ParameterRegion::new(domain, polygon.clone())
+                        .vertices_inside(&tessellation.welded, *surface as u32)
+                }
+                RegionShape::Box { .. } => Vec::new(),
+            };
             stiffness.raise_where(region.factor, |edge| {
                 let [a, b] = model.edges()[edge].map(|v| model.positions()[v as usize]);
                 match &region.shape {
@@ -170,12 +180,9 @@ fn load_part_file(
                         let midpoint = (a + b) * 0.5;
                         midpoint.cmpge(*min).all() && midpoint.cmple(*max).all()
                     }
-                    RegionShape::Parameter { surface, polygon } => [a, b].iter().all(|&p| {
-                        lookup.find(p).is_some_and(|v| {
-                            tessellation.welded.vertex_faces[v] == *surface as u32
-                                && inside(tessellation.welded.vertex_parameters[v], polygon)
-                        })
-                    }),
+                    RegionShape::Parameter { .. } => [a, b]
+                        .iter()
+                        .all(|&p| lookup.find(p).is_some_and(|v| members[v])),
                 }
             });
         }

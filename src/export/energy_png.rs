@@ -15,6 +15,7 @@ use tiny_skia::{Color, Pixmap};
 use super::colormap::{ColorScale, ScaleMapping};
 use super::energy_layout::Layout;
 use super::energy_panel::{LineStyles, draw_panel};
+use super::indexed_png::encode_indexed_png;
 use super::legend::{LegendText, draw_legend, format_percent, format_value};
 use super::text::Typeface;
 use crate::flatten::SpringSystem;
@@ -241,7 +242,7 @@ pub fn render_energy_png(
         &levels,
     );
     layout.draw_key(&mut pixmap, &typeface, &styles, &map.length_units);
-    encode_opaque_png(&pixmap).map_err(|error| EnergyPngError::Image(error.to_string()))
+    encode_indexed_png(&pixmap).map_err(|error| EnergyPngError::Image(error.to_string()))
 }
 
 /// The panels in drawing order (before cutting first), each with its caption.
@@ -268,29 +269,6 @@ fn floor_note() -> String {
         "top: energy at strain {}",
         strain.trim_start_matches("1.00×")
     )
-}
-
-/// Encodes an opaque pixmap as an 8-bit RGB PNG with fast compression: several times faster than
-/// tiny-skia's own encoder (RGBA, balanced compression) for a slightly larger file. Alpha is
-/// dropped, which is exact for an opaque image (premultiplied and plain colours are then equal).
-fn encode_opaque_png(pixmap: &Pixmap) -> Result<Vec<u8>, png::EncodingError> {
-    let rgb: Vec<u8> = pixmap
-        .pixels()
-        .iter()
-        .flat_map(|pixel| {
-            let colour = pixel.demultiply();
-            [colour.red(), colour.green(), colour.blue()]
-        })
-        .collect();
-    let mut bytes = Vec::new();
-    let mut encoder = png::Encoder::new(&mut bytes, pixmap.width(), pixmap.height());
-    encoder.set_color(png::ColorType::Rgb);
-    encoder.set_depth(png::BitDepth::Eight);
-    encoder.set_compression(png::Compression::Fast);
-    let mut writer = encoder.write_header()?;
-    writer.write_image_data(&rgb)?;
-    writer.finish()?;
-    Ok(bytes)
 }
 
 /// Checks sizes, indices and values of one map.

@@ -18,6 +18,7 @@ pub mod energy_panel;
 pub mod energy_png;
 mod errors;
 pub mod fold_polylines;
+pub mod indexed_png;
 pub mod legend;
 pub mod obj;
 mod part_contours;

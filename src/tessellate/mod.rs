@@ -16,6 +16,7 @@ pub mod face_domain;
 pub mod face_mesh;
 pub mod fan;
 pub mod fold_insert;
+pub mod parameter_region;
 pub mod patch;
 pub mod revolution;
 pub mod ruled;

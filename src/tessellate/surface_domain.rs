@@ -197,6 +197,43 @@ impl SurfaceDomain {
         (u.map(|u| self.wrapped(u)), v)
     }
 
+    /// The smallest box `[low, high]` holding the whole domain (`u`, `v`).
+    pub fn range(&self) -> [DVec2; 2] {
+        match self {
+            SurfaceDomain::Polar { angles, bounds, .. } => {
+                let heights = bounds.ends.map(|(height, tilt, radius)| {
+                    let reach = radius * tilt.tan().abs();
+                    [height - reach, height + reach]
+                });
+                let (low, high) = heights
+                    .iter()
+                    .flatten()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), &z| {
+                        (low.min(z), high.max(z))
+                    });
+                [DVec2::new(angles[0], low), DVec2::new(angles[1], high)]
+            }
+            SurfaceDomain::Revolution {
+                angles, profile, ..
+            } => [
+                DVec2::new(angles[0], 0.0),
+                DVec2::new(angles[1], profile.length()),
+            ],
+            SurfaceDomain::Extrusion {
+                profile, direction, ..
+            } => [
+                DVec2::new(0.0, direction.z.min(0.0)),
+                DVec2::new(profile.length(), direction.z.max(0.0)),
+            ],
+            SurfaceDomain::Patch(patch) => patch
+                .outer
+                .iter()
+                .fold([DVec2::INFINITY, DVec2::NEG_INFINITY], |[low, high], &p| {
+                    [low.min(p), high.max(p)]
+                }),
+        }
+    }
+
     /// `u` moved by whole periods into `[start, start + period)`.
     pub fn wrapped(&self, u: f64) -> f64 {
         match self.period() {
@@ -234,12 +271,7 @@ impl SurfaceDomain {
                 )
             }),
             SurfaceDomain::Patch(patch) => {
-                let (low, high) = patch
-                    .outer
-                    .iter()
-                    .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(l, h), &p| {
-                        (l.min(p), h.max(p))
-                    });
+                let [low, high] = self.range();
                 let tolerance = EDGE_TOLERANCE * (high - low).length();
                 let on = |ring: &[DVec2]| {
                     (0..ring.len()).any(|k| {

@@ -7,20 +7,35 @@
 //! merged, so a seam that a face keeps open (a full turn) stays open. Deterministic: vertices are
 //! visited in a sorted order and merged into the lowest index.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use super::face_mesh::FaceMesh;
 use crate::mesh::{FoldEdge, TriangleSoup};
 
-/// A welded soup and, per soup vertex, the face it came from and its parameter-domain position.
+/// A welded soup and, per soup vertex, the faces it came from with its parameter-domain
+/// position on each.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Welded {
     /// The soup.
     pub soup: TriangleSoup,
-    /// Per vertex: the face (surface index) that produced it (the lowest when welded).
-    pub vertex_faces: Vec<u32>,
-    /// Per vertex: its parameter-domain coordinates on that face.
-    pub vertex_parameters: Vec<glam::DVec2>,
+    /// `(soup vertex, face, parameters on that face)` for every face vertex welded into a soup
+    /// vertex (a vertex on an edge two faces share has two), sorted by vertex then face.
+    pub vertex_sources: Vec<(u32, u32, DVec2)>,
+}
+
+impl Welded {
+    /// The parameter-domain coordinates of soup vertex `vertex` on face `face`, if that face
+    /// produced it (patches carry real parameters; structured meshes zero).
+    pub fn parameters_on(&self, vertex: usize, face: u32) -> Option<DVec2> {
+        let key = (vertex as u32, face);
+        let index = self
+            .vertex_sources
+            .partition_point(|&(v, f, _)| (v, f) < key);
+        self.vertex_sources
+            .get(index)
+            .filter(|&&(v, f, _)| (v, f) == key)
+            .map(|&(_, _, parameters)| parameters)
+    }
 }
 
 /// Welds `faces` (see the module documentation); `weld` says, per face, whether it may be welded
@@ -64,9 +79,29 @@ pub fn weld_faces(faces: &[FaceMesh], weld: bool, tolerance: f64) -> Welded {
             face_sources,
             fold_edges,
         },
-        owners,
-        parameters,
+        &representative,
+        &owners,
+        &parameters,
     )
+}
+
+/// `(soup vertex, face, parameters)` of every input vertex that reached the soup, sorted, one per
+/// soup vertex and face (the first of a face's vertices welded into one).
+fn vertex_sources(
+    representative: &[u32],
+    new_index: &[u32],
+    owners: &[u32],
+    parameters: &[DVec2],
+) -> Vec<(u32, u32, DVec2)> {
+    let mut sources: Vec<(u32, u32, DVec2)> = (0..representative.len())
+        .filter_map(|v| {
+            let kept = new_index[representative[v] as usize];
+            (kept != u32::MAX).then_some((kept, owners[v], parameters[v]))
+        })
+        .collect();
+    sources.sort_by_key(|&(vertex, face, _)| (vertex, face));
+    sources.dedup_by_key(|&mut (vertex, face, _)| (vertex, face));
+    sources
 }
 
 /// For each vertex, the lowest-numbered vertex of another face within `tolerance` (or itself).
@@ -106,8 +141,14 @@ fn merge_close_vertices(positions: &[DVec3], owners: &[u32], tolerance: f64) -> 
     representative
 }
 
-/// Drops unreferenced vertices, renumbering in ascending order.
-fn compact(soup: TriangleSoup, owners: Vec<u32>, parameters: Vec<glam::DVec2>) -> Welded {
+/// Drops unreferenced vertices, renumbering in ascending order; `representative` maps each input
+/// vertex to the vertex it was welded into.
+fn compact(
+    soup: TriangleSoup,
+    representative: &[u32],
+    owners: &[u32],
+    parameters: &[DVec2],
+) -> Welded {
     let mut new_index = vec![u32::MAX; soup.positions.len()];
     for t in &soup.triangles {
         for &v in t {
@@ -142,8 +183,7 @@ fn compact(soup: TriangleSoup, owners: Vec<u32>, parameters: Vec<glam::DVec2>) -
             face_sources: soup.face_sources,
             fold_edges,
         },
-        vertex_faces: kept.iter().map(|&v| owners[v]).collect(),
-        vertex_parameters: kept.iter().map(|&v| parameters[v]).collect(),
+        vertex_sources: vertex_sources(representative, &new_index, owners, parameters),
     }
 }
 
@@ -165,6 +205,15 @@ mod tests {
         let welded = weld_faces(&[square(0.0), square(1.0)], true, 1e-9);
         assert_eq!(welded.soup.positions.len(), 6);
         assert_eq!(welded.soup.face_sources, vec![0, 0, 1, 1]);
+        let shared = (0..6)
+            .filter(|&v| {
+                welded.parameters_on(v, 0).is_some() && welded.parameters_on(v, 1).is_some()
+            })
+            .count();
+        assert_eq!(
+            shared, 2,
+            "the shared edge's two vertices come from both faces"
+        );
     }
 
     #[test]

@@ -1,6 +1,6 @@
 //! Fold lines and stiffness regions of a part file, checked and converted: a fold line is a
-//! polyline in a patch's parameter domain or the edge two surfaces share; a region is a 3D box or
-//! a polygon in a patch's parameter domain.
+//! polyline in a surface's parameter domain or the edge two surfaces share; a region is a 3D box
+//! or a polygon in a surface's parameter domain.
 
 use glam::{DVec2, DVec3};
 
@@ -8,6 +8,7 @@ use super::build::{check, positive};
 use super::errors::SpecDefect;
 use super::loops::polygon_area;
 use super::spec::{FoldLineSpec, RegionSpec};
+use crate::tessellate::parameter_region::ParameterRegion;
 use crate::tessellate::surface::{FoldLineGeometry, Surface};
 use crate::tessellate::surface_domain::SurfaceDomain;
 
@@ -134,6 +135,31 @@ fn check_on_surface(points: &[DVec2], domain: &SurfaceDomain) -> Result<(), Spec
     Ok(())
 }
 
+/// The corners of a `parameter_box` `[u_min, v_min, u_max, v_max]`; on a periodic `u` (an angle,
+/// a closed extrusion profile) `u_max < u_min` runs through the seam, to `u_max` plus a period.
+fn box_polygon(corners: [f64; 4], domain: &SurfaceDomain) -> Result<Vec<DVec2>, SpecDefect> {
+    let [u0, v0, mut u1, v1] = corners;
+    check(
+        v1 > v0,
+        "parameter_box",
+        format!("v_max ({v1}) must exceed v_min ({v0})"),
+    )?;
+    match domain.period() {
+        Some((_, period)) if u1 < u0 => u1 += period,
+        _ => check(
+            u1 > u0,
+            "parameter_box",
+            format!("u_max ({u1}) must exceed u_min ({u0})"),
+        )?,
+    }
+    Ok(vec![
+        DVec2::new(u0, v0),
+        DVec2::new(u1, v0),
+        DVec2::new(u1, v1),
+        DVec2::new(u0, v1),
+    ])
+}
+
 /// Builds a stiffness region.
 pub fn build_region(
     spec: &RegionSpec,
@@ -163,31 +189,37 @@ pub fn build_region(
         (None, None, Some(surface), polygon, parameter_box)
             if polygon.is_some() != parameter_box.is_some() =>
         {
-            check(
-                matches!(surfaces.get(surface), Some(Surface::Patch(_))),
-                "surface",
-                format!(
-                    "surface {surface} is not a polygon or bspline surface: parameter-domain \
-                     regions are given on those; use box_min and box_max elsewhere"
+            let Some(surface_geometry) = surfaces.get(surface) else {
+                return Err(SpecDefect::new(
+                    "surface",
+                    format!(
+                        "surface {surface} does not exist (there are {} surfaces, numbered from 0)",
+                        surfaces.len()
+                    ),
+                ));
+            };
+            let domain = SurfaceDomain::new(surface_geometry);
+            let (polygon, field) = match (polygon, parameter_box) {
+                (Some(points), _) => (
+                    points.iter().map(|&p| DVec2::from_array(p)).collect(),
+                    "polygon",
                 ),
-            )?;
-            let polygon = match (polygon, parameter_box) {
-                (Some(points), _) => points.iter().map(|&p| DVec2::from_array(p)).collect(),
-                (None, Some([u0, v0, u1, v1])) => {
-                    vec![
-                        DVec2::new(u0, v0),
-                        DVec2::new(u1, v0),
-                        DVec2::new(u1, v1),
-                        DVec2::new(u0, v1),
-                    ]
-                }
-                (None, None) => Vec::new(),
+                (None, Some(corners)) => (box_polygon(corners, &domain)?, "parameter_box"),
+                (None, None) => (Vec::new(), "polygon"),
             };
             check(
+                polygon.iter().all(|p| p.is_finite()),
+                field,
+                "every coordinate must be finite",
+            )?;
+            check(
                 polygon.len() >= 3 && polygon_area(&polygon).abs() > 0.0,
-                "polygon",
+                field,
                 "needs at least three points enclosing an area",
             )?;
+            if let Some(reason) = ParameterRegion::new(domain, polygon.clone()).off_domain() {
+                return Err(SpecDefect::new(field, reason));
+            }
             RegionShape::Parameter { surface, polygon }
         }
         _ => {
