@@ -8,8 +8,11 @@ pub enum NestError {
     /// Nothing to place: no items, or every quantity is zero.
     #[error("nothing to nest: give at least one part with a quantity of 1 or more")]
     EmptyInput,
-    /// The stock has a zero, negative or non-finite dimension.
-    #[error("the stock {dimension} is {value}: give a positive, finite size in mm")]
+    /// The stock has a zero, negative, non-finite or absurdly large dimension.
+    #[error(
+        "the stock {dimension} is {value}: give a positive size in mm, at most {} mm",
+        crate::nest::search::MAXIMUM_STOCK_MM
+    )]
     InvalidStock {
         /// Which dimension (`sheet width`, `sheet height`, `roll width`).
         dimension: &'static str,
