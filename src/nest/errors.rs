@@ -22,8 +22,12 @@ pub enum NestError {
     /// The gap is negative or not finite.
     #[error("the gap is {0} mm: give a gap of 0 mm or more")]
     InvalidGap(f64),
-    /// The rotation step is zero, negative, not finite, or larger than a full turn.
-    #[error("part '{item}': rotation step {step} degrees is invalid: give a step in (0, 360]")]
+    /// The rotation step is below [`crate::nest::MINIMUM_ROTATION_STEP_DEGREES`], not finite, or
+    /// larger than a full turn.
+    #[error(
+        "part '{item}': rotation step {step} degrees is invalid: give a step in [{}, 360]",
+        crate::nest::MINIMUM_ROTATION_STEP_DEGREES
+    )]
     InvalidRotationStep {
         /// The part's name.
         item: String,
