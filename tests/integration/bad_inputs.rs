@@ -154,6 +154,29 @@ fn absurd_stock_and_rotation_step() {
     }
 }
 
+/// A chord tolerance far below the part's size is refused (1e-12 mm refined without end).
+#[test]
+fn absurd_chord() {
+    let input = crate::util::sample("cone_frustum.toml");
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let mesh = directory.path().join("mesh.obj");
+    let output = flatcut(&[
+        "tessellate",
+        path(&input),
+        "-o",
+        path(&mesh),
+        "--chord",
+        "1e-12",
+    ]);
+    let message = stderr(&output);
+    assert_eq!(output.status.code(), Some(1), "{message}");
+    assert!(
+        message.contains("cone_frustum.toml") && message.contains("the chord at least"),
+        "{message}"
+    );
+    assert!(!mesh.exists());
+}
+
 #[test]
 fn missing_file() {
     let output = flatcut(&[
