@@ -177,6 +177,31 @@ fn absurd_chord() {
     assert!(!mesh.exists());
 }
 
+/// Two parts of one name: the second's files would overwrite the first's.
+#[test]
+fn two_parts_of_one_name() {
+    let (mesh, part) = (
+        crate::util::sample("cone_frustum.obj"),
+        crate::util::sample("cone_frustum.toml"),
+    );
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let output_directory = directory.path().join("out");
+    let output = flatcut(&[
+        "flatten",
+        path(&mesh),
+        path(&part),
+        "-o",
+        path(&output_directory),
+    ]);
+    let message = stderr(&output);
+    assert_eq!(output.status.code(), Some(1), "{message}");
+    assert!(
+        message.contains("cone_frustum.toml: part 'cone_frustum' has the name of a part from"),
+        "{message}"
+    );
+    assert!(!output_directory.exists());
+}
+
 #[test]
 fn missing_file() {
     let output = flatcut(&[
