@@ -441,13 +441,17 @@ mod tests {
         let error = error_of(&CONE.replace("height = 80.0", "height = \"80 mm\""));
         assert_eq!(error.line, Some(7), "{error}");
         assert_eq!(error.field, "surface[0].height", "{error}");
-        let grid = "[[surface]]\nkind = \"bspline\"\ndegree = [1, -1]\ncontrol_points = [\n  [[0,0,0],[1,0,0]],\n  [[0,1,0],[1,1,\"x\"]],\n]\n";
+        let grid = "[[surface]]\nkind = \"bspline\"\ndegree = [1, -1]\ncontrol_points = [\n  [[0,0,0],[1,0,0]],\n  [[0,1,0],[1,1,0]],\n]\n";
         let error = error_of(grid);
         assert_eq!(
             (error.line, error.field.as_str()),
             (Some(3), "surface[0].degree")
         );
-        let error = error_of(&grid.replace("[1, -1]", "[1, 1]"));
+        let error = error_of(
+            &grid
+                .replace("[1, -1]", "[1, 1]")
+                .replace("1,1,0]", "1,1,\"x\"]"),
+        );
         assert_eq!(
             (error.line, error.field.as_str()),
             (Some(6), "surface[0].control_points")
@@ -500,7 +504,7 @@ mod tests {
             ),
             (
                 "[{ to = [0.0, 50.0] }, { to = [50.0, 100.0] }]",
-                "surface[0].profile[1]",
+                "surface[0].profile[0]",
                 "meets the axis",
             ),
             (
