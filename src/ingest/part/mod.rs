@@ -508,7 +508,7 @@ mod tests {
                 "meets the axis",
             ),
             (
-                "[{ to = [50.0, 100.0], center = [0.0, 50.0], clockwise = false }]",
+                "[{ to = [50.0, 100.0], center = [0.0, 50.0], clockwise = true }]",
                 "surface[0].profile[0]",
                 "crosses the axis",
             ),
