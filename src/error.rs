@@ -59,17 +59,21 @@ pub enum Error {
         /// The operating system's reason.
         source: std::io::Error,
     },
-    /// A part's cut file could not be drawn.
-    #[error("part '{part}': cannot write its DXF: {source}")]
+    /// A part's cut file (or a sheet's) could not be drawn.
+    #[error("{path}: part '{part}': cannot write its DXF: {source}")]
     Export {
+        /// The input file the part came from (the sheet's file for a sheet).
+        path: PathBuf,
         /// The part's name.
         part: String,
         /// Why.
         source: ExportError,
     },
     /// A part's energy map could not be drawn.
-    #[error("part '{part}': cannot draw its energy map: {source}")]
+    #[error("{path}: part '{part}': cannot draw its energy map: {source}")]
     EnergyMap {
+        /// The input file the part came from.
+        path: PathBuf,
         /// The part's name.
         part: String,
         /// Why.

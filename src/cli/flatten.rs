@@ -12,7 +12,7 @@ use flatcut::export::report::{PartReport, Report};
 use flatcut::export::{DEFAULT_CHORD_TOLERANCE, DxfOptions, DxfVersion, write_atomically};
 use flatcut::flatten::{FlattenOptions, Solver};
 use flatcut::nest::{NestOptions, Rotations};
-use flatcut::pipeline::{PartResult, RunOptions, flatten_part, load_parts};
+use flatcut::pipeline::{PartJob, PartResult, RunOptions, flatten_part, load_parts};
 use flatcut::progress::Progress;
 use flatcut::units::Units;
 
@@ -135,6 +135,23 @@ pub struct Nesting {
     pub mirror: bool,
 }
 
+/// Refuses two parts of the same name: the second's files would overwrite the first's.
+fn check_distinct_names(jobs: &[PartJob]) -> anyhow::Result<()> {
+    for (index, job) in jobs.iter().enumerate() {
+        if let Some(earlier) = jobs[..index].iter().find(|other| other.name == job.name) {
+            anyhow::bail!(
+                "{}: part '{}' has the name of a part from {}: its output files would overwrite \
+                 the other's; give one of them another name (`name = ...` in a part file, or \
+                 rename the file)",
+                job.source.display(),
+                job.name,
+                earlier.source.display()
+            );
+        }
+    }
+    Ok(())
+}
+
 /// Runs `flatten`, or `run` when `nesting` is given: every input is read and checked before
 /// anything is written.
 pub fn run(
@@ -149,6 +166,7 @@ pub fn run(
     for input in &args.inputs {
         jobs.extend(load_parts(input, &options)?);
     }
+    check_distinct_names(&jobs)?;
     for job in &jobs {
         for warning in &job.warnings {
             eprintln!("flatcut: warning: {}: {warning}", job.source.display());

@@ -62,8 +62,22 @@ pub fn main() -> ExitCode {
         Ok(Outcome::Success) => ExitCode::from(EXIT_SUCCESS),
         Ok(Outcome::OverTolerance) => ExitCode::from(EXIT_OVER_TOLERANCE),
         Err(error) => {
-            eprintln!("flatcut: error: {error:#}");
+            eprintln!("flatcut: error: {}", error_message(&error));
             ExitCode::from(EXIT_FAILURE)
         }
     }
+}
+
+/// The error and its causes, joined by `: `, leaving out a cause whose text the message already
+/// holds (library errors print their reason and also report it as their source).
+fn error_message(error: &anyhow::Error) -> String {
+    let mut message = error.to_string();
+    for cause in error.chain().skip(1) {
+        let text = cause.to_string();
+        if !message.contains(&text) {
+            message.push_str(": ");
+            message.push_str(&text);
+        }
+    }
+    message
 }

@@ -61,11 +61,13 @@ pub fn write_part_files(
     );
     let dxf =
         write_part_dxf(&part_drawing(result), &options.dxf).map_err(|source| Error::Export {
+            path: job.source.clone(),
             part: job.name.clone(),
             source,
         })?;
     let png = energy_png(result, spring_constant, &options.energy).map_err(|source| {
         Error::EnergyMap {
+            path: job.source.clone(),
             part: job.name.clone(),
             source,
         }

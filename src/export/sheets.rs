@@ -74,6 +74,7 @@ pub fn write_sheet_files(
     for sheet in sheets {
         let stem = format!("sheet-{:03}", sheet.index);
         let export_error = |source| Error::Export {
+            path: folder.join(format!("{stem}.dxf")),
             part: stem.clone(),
             source,
         };

@@ -72,6 +72,7 @@ fn parse_ascii(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, FormatDefect> {
         .map_err(|_| FormatDefect::Binary("ASCII STL holds non-UTF-8 bytes".into()))?;
     let mut triangles = Vec::new();
     let mut corners: Vec<DVec3> = Vec::with_capacity(3);
+    let mut ended = false;
     for (index, raw) in text.lines().enumerate() {
         let line = index + 1;
         let mut words = raw.split_whitespace();
@@ -97,8 +98,22 @@ fn parse_ascii(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, FormatDefect> {
                         })?;
                 triangles.push(triangle);
             }
+            Some("endsolid") => ended = true,
             _ => {}
         }
+    }
+    let lines = text.lines().count();
+    if !corners.is_empty() {
+        return Err(FormatDefect::Line {
+            line: lines,
+            message: "the file ends inside a facet (no 'endloop'): it is truncated".into(),
+        });
+    }
+    if !ended && !triangles.is_empty() {
+        return Err(FormatDefect::Line {
+            line: lines,
+            message: "the ASCII STL has no 'endsolid' line: it is truncated".into(),
+        });
     }
     Ok(triangles)
 }
@@ -187,6 +202,13 @@ mod tests {
             parse_stl(text.as_bytes()).expect("ascii").triangles.len(),
             1
         );
+        for cut in [
+            text.len() - 14,
+            text.find("vertex 0 1 0").expect("third corner"),
+        ] {
+            let error = parse_stl(&text.as_bytes()[..cut]).expect_err("truncated ascii");
+            assert!(error.to_string().contains("truncated"), "{error}");
+        }
         let mut bytes = binary_stl(&[[[0., 0., 0.], [1., 0., 0.], [1., 1., 0.]]]);
         bytes.truncate(100);
         assert!(matches!(parse_stl(&bytes), Err(FormatDefect::Binary(_))));

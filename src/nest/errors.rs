@@ -8,8 +8,11 @@ pub enum NestError {
     /// Nothing to place: no items, or every quantity is zero.
     #[error("nothing to nest: give at least one part with a quantity of 1 or more")]
     EmptyInput,
-    /// The stock has a zero, negative or non-finite dimension.
-    #[error("the stock {dimension} is {value}: give a positive, finite size in mm")]
+    /// The stock has a zero, negative, non-finite or absurdly large dimension.
+    #[error(
+        "the stock {dimension} is {value}: give a positive size in mm, at most {} mm",
+        crate::nest::search::MAXIMUM_STOCK_MM
+    )]
     InvalidStock {
         /// Which dimension (`sheet width`, `sheet height`, `roll width`).
         dimension: &'static str,
@@ -19,8 +22,12 @@ pub enum NestError {
     /// The gap is negative or not finite.
     #[error("the gap is {0} mm: give a gap of 0 mm or more")]
     InvalidGap(f64),
-    /// The rotation step is zero, negative, not finite, or larger than a full turn.
-    #[error("part '{item}': rotation step {step} degrees is invalid: give a step in (0, 360]")]
+    /// The rotation step is below [`crate::nest::MINIMUM_ROTATION_STEP_DEGREES`], not finite, or
+    /// larger than a full turn.
+    #[error(
+        "part '{item}': rotation step {step} degrees is invalid: give a step in [{}, 360]",
+        crate::nest::MINIMUM_ROTATION_STEP_DEGREES
+    )]
     InvalidRotationStep {
         /// The part's name.
         item: String,

@@ -41,6 +41,10 @@ pub const DEFAULT_SEED: u64 = 0;
 /// Number of evenly spaced rotations tried for a part whose rotation is [`Rotations::Free`].
 pub const FREE_ROTATION_SAMPLES: u32 = 24;
 
+/// The smallest rotation step accepted, degrees: 360 orientations per part (a step of 1e-9
+/// asked for 3.6e11 and aborted on memory).
+pub const MINIMUM_ROTATION_STEP_DEGREES: f64 = 1.0;
+
 /// Which rotations a part may take, in degrees counter-clockwise about its own origin.
 ///
 /// A part with a grain direction ([`NestItem::grain_degrees`]) ignores its `Rotations`: it is only
@@ -59,7 +63,8 @@ pub enum Rotations {
 impl Rotations {
     /// The distinct angles the search tries, each in [0, 360), in increasing order.
     ///
-    /// Returns `None` for an empty list, a non-finite angle, or a step outside (0, 360].
+    /// Returns `None` for an empty list, a non-finite angle, or a step outside
+    /// [[`MINIMUM_ROTATION_STEP_DEGREES`], 360].
     pub fn angles(&self) -> Option<Vec<f64>> {
         let mut angles: Vec<f64> = match self {
             Rotations::Fixed(list) => {
@@ -69,7 +74,7 @@ impl Rotations {
                 list.iter().map(|angle| angle.rem_euclid(360.0)).collect()
             }
             Rotations::Step(step) => {
-                if !step.is_finite() || *step <= 0.0 || *step > 360.0 {
+                if !step.is_finite() || *step < MINIMUM_ROTATION_STEP_DEGREES || *step > 360.0 {
                     return None;
                 }
                 let count = (360.0 / step - ANGLE_TOLERANCE_DEGREES).ceil().max(1.0) as u32;

@@ -906,9 +906,13 @@ fn bounds(ring: &[DVec2]) -> (DVec2, DVec2) {
     )
 }
 
+/// The largest stock dimension accepted, mm (100 m): the collision engine's geometry is single
+/// precision, and sheet previews are drawn to scale.
+pub const MAXIMUM_STOCK_MM: f64 = 1e5;
+
 fn validate_stock(options: &NestOptions) -> Result<(f64, Option<f64>), NestError> {
     let check = |dimension: &'static str, value: f64| {
-        if value.is_finite() && value > 0.0 {
+        if value.is_finite() && value > 0.0 && value <= MAXIMUM_STOCK_MM {
             Ok(value)
         } else {
             Err(NestError::InvalidStock { dimension, value })

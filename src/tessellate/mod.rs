@@ -45,6 +45,10 @@ pub const DEFAULT_CHORD_RATIO: f64 = 1e-4;
 /// The smallest mesh size accepted, as a fraction of the bounding diagonal (bounds the
 /// triangle count near four million).
 pub const MINIMUM_MESH_SIZE_RATIO: f64 = 1.0 / 2000.0;
+/// The smallest chord tolerance accepted, as a fraction of the bounding diagonal: on a curve of
+/// radius half the diagonal it asks for edges near the smallest mesh size (a chord of 1e-12 mm
+/// refined without end).
+pub const MINIMUM_CHORD_RATIO: f64 = 1e-7;
 /// Vertices of different faces closer than this fraction of the diagonal are welded.
 pub const WELD_TOLERANCE_RATIO: f64 = 1e-7;
 /// Angular samples of a circle when the part's size is estimated.
@@ -65,8 +69,9 @@ pub struct TessellateOptions {
 pub enum TessellateError {
     /// The mesh size or chord tolerance is not a positive length, or too small for the part.
     #[error(
-        "the mesh size {mesh_size} and chord {chord} must be positive and the mesh size at least \
-         {minimum} for a part of this size; give a larger --mesh-size"
+        "the mesh size {mesh_size} and chord {chord} must be positive, the mesh size at least \
+         {minimum} and the chord at least {minimum_chord} for a part of this size; give a larger \
+         --mesh-size or --chord"
     )]
     BadSize {
         /// The mesh size used.
@@ -75,6 +80,8 @@ pub enum TessellateError {
         chord: f64,
         /// The smallest mesh size accepted.
         minimum: f64,
+        /// The smallest chord tolerance accepted.
+        minimum_chord: f64,
     },
     /// A patch's derivatives vanish: it has no area.
     #[error("a patch is degenerate (its derivatives vanish); check its control points")]
@@ -230,11 +237,18 @@ pub fn sizes_for_diagonal(
     let mesh_size = options.mesh_size.unwrap_or(size / DEFAULT_DIVISIONS);
     let chord = options.chord.unwrap_or(size * DEFAULT_CHORD_RATIO);
     let minimum = size * MINIMUM_MESH_SIZE_RATIO;
-    if !(mesh_size.is_finite() && mesh_size >= minimum && chord.is_finite() && chord > 0.0) {
+    let minimum_chord = size * MINIMUM_CHORD_RATIO;
+    if !(mesh_size.is_finite()
+        && mesh_size >= minimum
+        && chord.is_finite()
+        && chord > 0.0
+        && chord >= minimum_chord)
+    {
         return Err(TessellateError::BadSize {
             mesh_size,
             chord,
             minimum,
+            minimum_chord,
         });
     }
     Ok((mesh_size, chord))

@@ -118,6 +118,91 @@ fn surface_with_a_handle_and_a_boundary() {
 }
 
 #[test]
+fn truncated_ascii_stl() {
+    let facet = "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
+    let whole = format!("solid t\n{facet}{facet}endsolid t\n");
+    let cut_inside_a_facet = &whole[..whole.rfind("vertex 0 1 0").expect("last corner")];
+    refuses("cut.stl", cut_inside_a_facet.as_bytes(), "truncated");
+    let cut_between_facets = &whole[..whole.rfind("endsolid").expect("end")];
+    refuses("short.stl", cut_between_facets.as_bytes(), "truncated");
+}
+
+/// Absurd nesting options are refused before the search starts (a 1e12 mm sheet hung it, a
+/// rotation step of 1e-9 degrees aborted on memory).
+#[test]
+fn absurd_stock_and_rotation_step() {
+    let input = crate::util::sample("cone_frustum.obj");
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let output_directory = directory.path().join("out");
+    for (options, expected) in [
+        (["--sheet", "1e12x1000"], "sheet width is 1000000000000"),
+        (["--roll", "1e12"], "roll width is 1000000000000"),
+        (
+            ["--rotations", "step:1e-9"],
+            "rotation step 0.000000001 degrees",
+        ),
+    ] {
+        let mut arguments = vec!["run", path(&input), "-o", path(&output_directory)];
+        arguments.extend(options);
+        if options[0] == "--rotations" {
+            arguments.extend(["--sheet", "1500x1000"]);
+        }
+        let output = flatcut(&arguments);
+        let message = stderr(&output);
+        assert_eq!(output.status.code(), Some(1), "{options:?}: {message}");
+        assert!(message.contains(expected), "{options:?}: {message}");
+    }
+}
+
+/// A chord tolerance far below the part's size is refused (1e-12 mm refined without end).
+#[test]
+fn absurd_chord() {
+    let input = crate::util::sample("cone_frustum.toml");
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let mesh = directory.path().join("mesh.obj");
+    let output = flatcut(&[
+        "tessellate",
+        path(&input),
+        "-o",
+        path(&mesh),
+        "--chord",
+        "1e-12",
+    ]);
+    let message = stderr(&output);
+    assert_eq!(output.status.code(), Some(1), "{message}");
+    assert!(
+        message.contains("cone_frustum.toml") && message.contains("the chord at least"),
+        "{message}"
+    );
+    assert!(!mesh.exists());
+}
+
+/// Two parts of one name: the second's files would overwrite the first's.
+#[test]
+fn two_parts_of_one_name() {
+    let (mesh, part) = (
+        crate::util::sample("cone_frustum.obj"),
+        crate::util::sample("cone_frustum.toml"),
+    );
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let output_directory = directory.path().join("out");
+    let output = flatcut(&[
+        "flatten",
+        path(&mesh),
+        path(&part),
+        "-o",
+        path(&output_directory),
+    ]);
+    let message = stderr(&output);
+    assert_eq!(output.status.code(), Some(1), "{message}");
+    assert!(
+        message.contains("cone_frustum.toml: part 'cone_frustum' has the name of a part from"),
+        "{message}"
+    );
+    assert!(!output_directory.exists());
+}
+
+#[test]
 fn missing_file() {
     let output = flatcut(&[
         "flatten",
@@ -126,10 +211,15 @@ fn missing_file() {
         "/tmp/flatcut-never-written",
     ]);
     assert_eq!(output.status.code(), Some(1));
+    let message = stderr(&output);
     assert!(
-        stderr(&output).contains("/nonexistent/part.obj: cannot read"),
-        "{}",
-        stderr(&output)
+        message.contains("/nonexistent/part.obj: cannot read"),
+        "{message}"
+    );
+    assert_eq!(
+        message.matches("No such file").count(),
+        1,
+        "the reason is given once: {message}"
     );
 }
 

@@ -122,7 +122,10 @@ fn check_on_surface(points: &[DVec2], domain: &SurfaceDomain) -> Result<(), Spec
         "every point must be finite",
     )?;
     for (k, pair) in points.windows(2).enumerate() {
-        if let Some(reason) = domain.segment_outside(pair[0], pair[1]) {
+        if let Some(reason) = domain
+            .segment_outside(pair[0], pair[1])
+            .or_else(|| along_edge(domain, pair[0], pair[1]))
+        {
             return Err(SpecDefect::new(
                 "points",
                 format!(
@@ -131,6 +134,17 @@ fn check_on_surface(points: &[DVec2], domain: &SurfaceDomain) -> Result<(), Spec
                 ),
             ));
         }
+    }
+    for (k, turn) in points.windows(3).enumerate() {
+        let (a, b) = (turn[1] - turn[0], turn[2] - turn[1]);
+        check(
+            !(a.dot(b) < 0.0 && a.perp_dot(b).abs() <= EDGE_PROBE * a.length() * b.length()),
+            "points",
+            format!(
+                "the fold polyline turns straight back over itself at point {}",
+                k + 1
+            ),
+        )?;
     }
     Ok(())
 }
@@ -158,6 +172,32 @@ fn box_polygon(corners: [f64; 4], domain: &SurfaceDomain) -> Result<Vec<DVec2>, 
         DVec2::new(u1, v1),
         DVec2::new(u0, v1),
     ])
+}
+
+/// Relative step of the probes that find a fold segment lying on the edge of its domain.
+const EDGE_PROBE: f64 = 1e-6;
+
+/// Why the segment `from`-`to` runs along the edge (a rim, a side or the seam) of a cylinder's,
+/// cone's, loft's, revolution's or extrusion's domain, if it does: its midpoint has a point off
+/// the domain within a relative [`EDGE_PROBE`] step. Such a fold would give the edge's triangles
+/// no width. (Polygon and B-spline domains take folds on their boundary.)
+fn along_edge(domain: &SurfaceDomain, from: DVec2, to: DVec2) -> Option<String> {
+    if matches!(domain, SurfaceDomain::Patch(_)) {
+        return None;
+    }
+    let middle = (from + to) / 2.0;
+    let step = (DVec2::ONE + middle.abs() + DVec2::splat(from.distance(to))) * EDGE_PROBE;
+    let probes = [DVec2::X, DVec2::NEG_X, DVec2::Y, DVec2::NEG_Y].map(|d| middle + d * step);
+    probes
+        .iter()
+        .any(|&p| domain.outside(p).is_some())
+        .then(|| {
+            format!(
+                "the segment from ({}, {}) to ({}, {}) runs along the surface's edge or seam; \
+                 move it inside (a fold between two surfaces is given with 'between')",
+                from.x, from.y, to.x, to.y
+            )
+        })
 }
 
 /// Builds a stiffness region.

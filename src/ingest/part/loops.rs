@@ -30,6 +30,8 @@ pub fn check_loops(
             .map(|(i, h)| (format!("{holes_field}[{i}]"), h)),
     );
     let named: Vec<(String, &Vec<DVec2>)> = loops.collect();
+    let size = extent(&outer);
+    let tolerance = LOOP_TOLERANCE * size;
     for (field, points) in &named {
         check(
             points.len() >= 3,
@@ -37,9 +39,10 @@ pub fn check_loops(
             "a loop needs at least three points",
         )?;
         check(
-            points.iter().all(|p| p.is_finite()) && polygon_area(points).abs() > 0.0,
+            points.iter().all(|p| p.is_finite())
+                && polygon_area(points).abs() > tolerance * extent(points),
             field,
-            "the loop has no area",
+            "the loop has (almost) no area",
         )?;
         check(
             !self_intersects(points),
@@ -53,11 +56,21 @@ pub fn check_loops(
             field,
             "the hole must lie inside the outer boundary",
         )?;
+        check(
+            loop_distance(hole, &outer) > tolerance,
+            field,
+            "the hole touches the outer boundary; keep it apart, or make it a notch of the outer boundary",
+        )?;
         for (_, other) in named.iter().skip(i + 1) {
             check(
                 !loops_cross(hole, other) && !inside(hole[0], other) && !inside(other[0], hole),
                 field,
                 "two holes overlap",
+            )?;
+            check(
+                loop_distance(hole, other) > tolerance,
+                field,
+                "two holes touch; keep them apart or join them into one hole",
             )?;
         }
     }
@@ -65,6 +78,30 @@ pub fn check_loops(
         outer.reverse();
     }
     Ok((outer, holes))
+}
+
+/// Loops closer than this fraction of the outer loop's size touch.
+const LOOP_TOLERANCE: f64 = 1e-6;
+
+/// The larger side of the loop's bounding box.
+fn extent(points: &[DVec2]) -> f64 {
+    let (low, high) = points
+        .iter()
+        .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(l, h), &p| {
+            (l.min(p), h.max(p))
+        });
+    (high - low).max_element()
+}
+
+/// The smallest distance from a corner of either loop to an edge of the other.
+fn loop_distance(a: &[DVec2], b: &[DVec2]) -> f64 {
+    let corner_to_edges = |corners: &[DVec2], ring: &[DVec2]| {
+        corners
+            .iter()
+            .flat_map(|&p| segments(ring).map(move |(s, t)| distance_to_segment(p, s, t)))
+            .fold(f64::INFINITY, f64::min)
+    };
+    corner_to_edges(a, b).min(corner_to_edges(b, a))
 }
 
 fn segments(points: &[DVec2]) -> impl Iterator<Item = (DVec2, DVec2)> + '_ {
@@ -92,6 +129,7 @@ fn loops_cross(a: &[DVec2], b: &[DVec2]) -> bool {
     segments(a).any(|s| segments(b).any(|t| segments_cross(s, t)))
 }
 
+use crate::geometry::distance_to_segment;
 pub use crate::geometry::inside;
 
 #[cfg(test)]

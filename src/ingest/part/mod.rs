@@ -121,8 +121,20 @@ fn check_header(path: &Path, text: &str, spec: &PartSpec) -> Result<(), PartErro
         field: field.into(),
         message,
     };
+    // Top-level keys precede the first table.
+    let header = &text[..table_end(text, 0)];
+    let key_span = |key: &str| find_key(header, key).map(|at| at..at + key.len());
     if spec.quantity == 0 {
-        return Err(error("quantity", "must be at least 1".into(), None));
+        return Err(error(
+            "quantity",
+            "must be at least 1".into(),
+            key_span("quantity"),
+        ));
+    }
+    if let Some(name) = &spec.name
+        && let Some(defect) = name_defect(name)
+    {
+        return Err(error("name", defect, key_span("name")));
     }
     if let Some(thickness) = &spec.thickness {
         let value = *thickness.get_ref();
@@ -135,11 +147,37 @@ fn check_header(path: &Path, text: &str, spec: &PartSpec) -> Result<(), PartErro
         }
     }
     if let Some(grain) = spec.grain
-        && (DVec3::from_array(grain).length().is_nan() || DVec3::from_array(grain).length() <= 0.0)
+        && DVec3::from_array(grain).try_normalize().is_none()
     {
-        return Err(error("grain", "must be a non-zero direction".into(), None));
+        return Err(error(
+            "grain",
+            format!("must be a non-zero finite direction, got {grain:?}"),
+            key_span("grain"),
+        ));
     }
     Ok(())
+}
+
+/// The longest part name: output files add up to 16 bytes (`.energy.png`, `-NNN`) to it, and file
+/// names are limited to 255 bytes.
+const MAXIMUM_NAME_BYTES: usize = 200;
+
+/// Why a part name cannot name output files, if it cannot.
+fn name_defect(name: &str) -> Option<String> {
+    if name.trim().is_empty() || name == "." || name == ".." {
+        Some("must name the part's output files: give a non-empty name".into())
+    } else if name.contains(['/', '\\']) || name.chars().any(char::is_control) {
+        Some(format!(
+            "must not hold a path separator or a control character (it names the output files), got {name:?}"
+        ))
+    } else if name.len() > MAXIMUM_NAME_BYTES {
+        Some(format!(
+            "is {} bytes long; output file names allow at most {MAXIMUM_NAME_BYTES}",
+            name.len()
+        ))
+    } else {
+        None
+    }
 }
 
 /// Reads and builds a part file.
@@ -211,11 +249,73 @@ fn syntax_error(path: &Path, text: &str, error: &toml::de::Error) -> PartError {
         });
         (line_of(text, start), field)
     };
+    let (line, field) = if field.is_empty() {
+        surface_field(text, start).unwrap_or((line, field))
+    } else {
+        (line, field)
+    };
     PartError {
         path: path.to_path_buf(),
         line: error.span().map(|_| line),
         field,
         message,
+    }
+}
+
+/// The line and field of a type or length error inside the `[[surface]]` table whose header
+/// starts at `start`. Such errors come from a buffered read (the `kind` picks the type) and carry
+/// the whole table's span; reading the table again as its kind's own type locates the value.
+fn surface_field(text: &str, start: usize) -> Option<(usize, String)> {
+    let header = text[start..].trim_start();
+    if !header.starts_with("[[surface]]") {
+        return None;
+    }
+    let body_start = start + text[start..].find('\n')? + 1;
+    let body = &text[body_start..table_end(text, body_start)];
+    let kind_at = find_key(body, "kind")?;
+    let kind_end = body[kind_at..]
+        .find('\n')
+        .map_or(body.len(), |n| kind_at + n);
+    // The body without its `kind` line, blanked so that offsets stay the same.
+    let mut without_kind = body.to_string();
+    without_kind.replace_range(kind_at..kind_end, &" ".repeat(kind_end - kind_at));
+    let kind: String = toml::from_str::<toml::Table>(body)
+        .ok()?
+        .get("kind")?
+        .as_str()?
+        .to_string();
+    let error = match kind.as_str() {
+        "polygon" => toml::from_str::<spec::PolygonSpec>(&without_kind).err(),
+        "cylinder" => toml::from_str::<spec::CylinderSpec>(&without_kind).err(),
+        "cone" => toml::from_str::<spec::ConeSpec>(&without_kind).err(),
+        "revolution" => toml::from_str::<spec::RevolutionSpec>(&without_kind).err(),
+        "bspline" => toml::from_str::<spec::BsplineSpec>(&without_kind).err(),
+        "loft" => toml::from_str::<spec::LoftSpec>(&without_kind).err(),
+        "extrusion" => toml::from_str::<spec::ExtrusionSpec>(&without_kind).err(),
+        _ => None,
+    }?;
+    let offset = body_start + error.span()?.start;
+    let index = text[..start].matches("[[surface]]").count();
+    let key = key_at_or_before(text, offset, body_start)?;
+    Some((line_of(text, offset), format!("surface[{index}].{key}")))
+}
+
+/// The key of the `key = value` line holding byte `offset`, or of the nearest such line above it
+/// (a value written over several lines), not above `floor`.
+fn key_at_or_before(text: &str, offset: usize, floor: usize) -> Option<String> {
+    let mut line_start = text[..offset.min(text.len())]
+        .rfind('\n')
+        .map_or(0, |i| i + 1);
+    loop {
+        if let Some(key) = key_on_line(text, line_start)
+            && key.chars().all(|c| c.is_alphanumeric() || c == '_')
+        {
+            return Some(key);
+        }
+        if line_start <= floor {
+            return None;
+        }
+        line_start = text[..line_start - 1].rfind('\n').map_or(0, |i| i + 1);
     }
 }
 
@@ -238,11 +338,19 @@ fn field_line(text: &str, span: Range<usize>, field: &str) -> usize {
 }
 
 /// The end of the table whose header or body starts at `start`: the next line that opens a
-/// table (`[`), or the end of the text.
+/// table (`[name]` or `[[name]]`, not the continuation of a multi-line array), or the end of the
+/// text.
 fn table_end(text: &str, start: usize) -> usize {
+    let opens_table = |line: &str| {
+        let line = line.trim_start();
+        let name = line.trim_start_matches('[').trim_start();
+        line.starts_with('[')
+            && line.len() - name.len() <= 2
+            && name.starts_with(|c: char| c.is_alphabetic() || c == '_' || c == '"')
+    };
     let mut offset = start;
     for (index, line) in text[start..].split_inclusive('\n').enumerate() {
-        if index > 0 && line.trim_start().starts_with('[') {
+        if index > 0 && opens_table(line) {
             return offset;
         }
         offset += line.len();
@@ -326,6 +434,147 @@ mod tests {
     fn a_degenerate_grid_is_an_error() {
         let text = "[[surface]]\nkind = \"bspline\"\ndegree = [1, 1]\ncontrol_points = [[[0,0,0],[1,0,0]],[[0,0,0],[1,0,0]]]\n";
         assert!(error_of(text).message.contains("degenerate"));
+    }
+
+    #[test]
+    fn a_wrong_type_inside_a_surface_names_the_field() {
+        let error = error_of(&CONE.replace("height = 80.0", "height = \"80 mm\""));
+        assert_eq!(error.line, Some(7), "{error}");
+        assert_eq!(error.field, "surface[0].height", "{error}");
+        let grid = "[[surface]]\nkind = \"bspline\"\ndegree = [1, -1]\ncontrol_points = [\n  [[0,0,0],[1,0,0]],\n  [[0,1,0],[1,1,0]],\n]\n";
+        let error = error_of(grid);
+        assert_eq!(
+            (error.line, error.field.as_str()),
+            (Some(3), "surface[0].degree")
+        );
+        let error = error_of(
+            &grid
+                .replace("[1, -1]", "[1, 1]")
+                .replace("1,1,0]", "1,1,\"x\"]"),
+        );
+        assert_eq!(
+            (error.line, error.field.as_str()),
+            (Some(6), "surface[0].control_points")
+        );
+    }
+
+    #[test]
+    fn header_defects_name_their_line() {
+        let error = error_of(&format!("quantity = 0\n{CONE}"));
+        assert_eq!((error.line, error.field.as_str()), (Some(1), "quantity"));
+        let error = error_of(&format!("grain = [inf, 0, 0]\n{CONE}"));
+        assert_eq!((error.line, error.field.as_str()), (Some(1), "grain"));
+        for name in ["", "..", "left/bracket", "a\\u0000b"] {
+            let error = error_of(&CONE.replace("name = \"c\"", &format!("name = \"{name}\"")));
+            assert_eq!(
+                (error.line, error.field.as_str()),
+                (Some(1), "name"),
+                "{name}"
+            );
+        }
+    }
+
+    #[test]
+    fn impossible_profiles_are_errors() {
+        let revolution = |profile: &str| {
+            format!(
+                "[[surface]]\nkind = \"revolution\"\nstart = [50.0, 0.0]\nprofile = {profile}\n"
+            )
+        };
+        for (profile, field, expected) in [
+            (
+                "[{ to = [50.0, 100.0], center = [50.0, 50.0] }]",
+                "surface[0].profile[0].clockwise",
+                "half circle",
+            ),
+            (
+                "[{ to = [80.0, 100.0] }, { to = [80.0, 0.0] }, { to = [50.0, 100.0] }]",
+                "surface[0].profile",
+                "segments 0 and 2",
+            ),
+            (
+                "[{ to = [50.0, 100.0] }, { to = [50.0, 20.0] }]",
+                "surface[0].profile",
+                "crosses itself",
+            ),
+            (
+                "[{ to = [-10.0, 100.0] }]",
+                "surface[0].profile[0]",
+                "crosses the axis",
+            ),
+            (
+                "[{ to = [0.0, 50.0] }, { to = [50.0, 100.0] }]",
+                "surface[0].profile[0]",
+                "meets the axis",
+            ),
+            (
+                "[{ to = [50.0, 100.0], center = [0.0, 50.0], clockwise = true }]",
+                "surface[0].profile[0]",
+                "crosses the axis",
+            ),
+        ] {
+            let error = error_of(&revolution(profile));
+            assert_eq!(error.field, field, "{profile}: {error}");
+            assert!(error.message.contains(expected), "{profile}: {error}");
+        }
+        let pole_to_pole = "[{ to = [0.0, -50.0], center = [0.0, 0.0], clockwise = true }]";
+        let sphere = revolution(pole_to_pole).replace("[50.0, 0.0]", "[0.0, 50.0]");
+        parse_part(Path::new("sphere.toml"), &sphere).expect("a sphere from pole to pole");
+    }
+
+    #[test]
+    fn folds_along_an_edge_or_seam_and_touching_holes_are_errors() {
+        let cylinder = "[[surface]]\nkind = \"cylinder\"\nradius = 50.0\nheight = 100.0\n";
+        for points in [
+            "[[0.0, 0.0], [0.0, 100.0]]",
+            "[[360.0, 10.0], [360.0, 90.0]]",
+            "[[0.0, 0.0], [360.0, 0.0]]",
+            "[[90.0, 10.0], [90.0, 90.0], [90.0, 50.0]]",
+        ] {
+            let text = format!("{cylinder}[[fold_line]]\nsurface = 0\npoints = {points}\n");
+            assert_eq!(error_of(&text).field, "fold_line[0].points", "{points}");
+        }
+        let ok = format!(
+            "{cylinder}[[fold_line]]\nsurface = 0\npoints = [[0.0, 50.0], [360.0, 50.0]]\n"
+        );
+        parse_part(Path::new("ring.toml"), &ok).expect("a fold around the cylinder");
+        let plate = "[[surface]]\nkind = \"polygon\"\npoints = [[0, 0, 0], [100, 0, 0], [100, 100, 0], [0, 100, 0]]\n";
+        for holes in [
+            "[[[0, 0, 0], [30, 20, 0], [20, 30, 0]]]",
+            "[[[10, 10, 0], [50, 10, 0], [50, 50, 0]], [[50, 10, 0], [90, 10, 0], [90, 50, 0]]]",
+        ] {
+            let error = error_of(&format!("{plate}holes = {holes}\n"));
+            assert!(error.message.contains("touch"), "{holes}: {error}");
+        }
+    }
+
+    use proptest::strategy::Strategy as _;
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(48))]
+        /// Any value in any numeric field of a cone with a fold line: no panic, and a refusal
+        /// names the line and the field.
+        #[test]
+        fn numeric_fields_never_panic_and_errors_name_the_field(
+            field in 0usize..8,
+            value in proptest::prop_oneof![
+                proptest::num::f64::ANY.prop_map(|v| format!("{v:?}").replace("NaN", "nan")),
+                proptest::strategy::Just("-0.0".to_string()),
+                proptest::strategy::Just("\"x\"".to_string()),
+            ],
+        ) {
+            let mut numbers = ["100.0", "50.0", "80.0", "10.0", "0.0", "360.0", "90.0", "5.0"]
+                .map(str::to_string);
+            numbers[field] = value;
+            let [bottom, top, height, offset, start, end, angle, factor] = numbers;
+            let text = format!(
+                "[[surface]]\nkind = \"cone\"\nbottom_radius = {bottom}\ntop_radius = {top}\nheight = {height}\ntop_offset = [{offset}, 0.0]\nangles = [{start}, {end}]\n\n[[fold_line]]\nsurface = 0\npoints = [[{angle}, 0.0], [{angle}, 80.0]]\nfactor = {factor}\n"
+            );
+            if let Err(error) = parse_part(Path::new("fuzz.toml"), &text) {
+                proptest::prop_assert!(error.line.is_some(), "{}", error);
+                proptest::prop_assert!(!error.field.is_empty(), "{}", error);
+            }
+        }
     }
 
     #[test]
