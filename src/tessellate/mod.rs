@@ -267,16 +267,18 @@ pub fn tessellate(
         if folds[index].is_empty() || matches!(surface, Surface::Patch(_)) {
             continue;
         }
-        let welded = |points: &[DVec3]| {
-            part.weld
-                && faces.iter().enumerate().any(|(other, face)| {
-                    other != index
-                        && face
-                            .positions
-                            .iter()
-                            .any(|q| points.iter().any(|p| p.distance(*q) <= weld_tolerance))
-                })
+        // A section is welded when one of its edges is shared (both ends on another face).
+        let shared = |p: &DVec3| {
+            faces.iter().enumerate().any(|(other, face)| {
+                other != index
+                    && face
+                        .positions
+                        .iter()
+                        .any(|q| p.distance(*q) <= weld_tolerance)
+            })
         };
+        let welded =
+            |points: &[DVec3]| part.weld && points.windows(2).any(|pair| pair.iter().all(shared));
         let face = mesh_with_folds(surface, &folds[index], mesh_size, chord, welded)?;
         faces[index] = face;
     }
@@ -311,7 +313,8 @@ fn surface_folds(part: &CadPart, index: usize) -> Vec<(u32, Vec<DVec2>)> {
 /// The structured mesh of a ruled surface or a surface of revolution with its fold polylines.
 /// A ruled surface carries them along its rulings ([`ruled_folds`]: the mesh stays exactly
 /// developable) unless that would add a point on a section `welded` says another surface shares
-/// (given the section's points), or a polyline meets a cone fan; then, and on surfaces of
+/// an edge of (given the section's points), or a polyline crosses a cone fan other than along
+/// one of its rows; then, and on surfaces of
 /// revolution, they are inserted by a constrained re-triangulation around them ([`fold_insert`]).
 fn mesh_with_folds(
     surface: &Surface,

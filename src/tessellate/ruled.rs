@@ -6,7 +6,9 @@
 //! sections in parallel planes, an extrusion) the quadrilateral between two consecutive rulings of
 //! the sampled sections is planar, so the mesh is exactly developable: it flattens with no strain,
 //! which is how E_S and E_C reach round-off on these kinds. A closed section (a full turn) is
-//! opened along its first ruling: the seam's vertices are duplicated, not shared.
+//! opened along its first ruling: the seam's vertices are duplicated, not shared. Fold
+//! polylines come as [`RulingFolds`] (points on rulings, segments between consecutive rulings),
+//! which keep that property.
 //!
 //! The loft correspondence follows the classical construction of a developable transition: each
 //! ruling joins the points of the two sections whose tangents are parallel, found by merging the
@@ -70,6 +72,18 @@ pub struct FoldSegment {
 impl RulingFolds {
     fn stations_of(&self, ruling: usize) -> &[f64] {
         self.stations.get(ruling).map_or(&[], Vec::as_slice)
+    }
+
+    /// The fractions from the apex of the fold stations on the rulings `first..=last` of a cone
+    /// fan (apex at their bottom ends when `at_bottom`).
+    fn fan_rows(&self, first: usize, last: usize, at_bottom: bool) -> Vec<f64> {
+        let mut rows: Vec<f64> = (first..=last)
+            .flat_map(|r| self.stations_of(r))
+            .filter(|&&f| f > 0.0 && f < 1.0)
+            .map(|&f| if at_bottom { f } else { 1.0 - f })
+            .collect();
+        rows.sort_by(f64::total_cmp);
+        rows
     }
 
     /// The segments across the wedge after ruling `wedge`.
@@ -298,8 +312,8 @@ const COPLANAR_TOLERANCE: f64 = 1e-9;
 /// stitching them. Section points shared by consecutive rulings become shared vertices. The
 /// stations of `folds` are vertices of their rulings, and its segments are mesh edges, tagged
 /// as fold edges (a strip is stitched piecewise between them, a planar piece takes them as
-/// constraint edges). Fold segments across a cone fan are not supported (the caller checks
-/// [`fan_wedges`]).
+/// constraint edges); a cone fan lays a row along the stations of its rulings (the caller checks
+/// that they are the same fractions on each of them, [`fan_wedges`]).
 pub fn mesh_rulings(rulings: &Rulings, folds: &RulingFolds, mesh_size: f64) -> FaceMesh {
     let mut mesh = FaceMesh::default();
     let bottom: Vec<u32> = rulings.bottom.iter().map(|&p| mesh.add_vertex(p)).collect();
@@ -314,7 +328,8 @@ pub fn mesh_rulings(rulings: &Rulings, folds: &RulingFolds, mesh_size: f64) -> F
                 .iter()
                 .map(|&[b, t]| if at_bottom { top[t] } else { bottom[b] })
                 .collect();
-            let vertices = mesh_cone_fan(&mut mesh, apex, &far, at_bottom, mesh_size);
+            let fold_rows = folds.fan_rows(first, last, at_bottom);
+            let vertices = mesh_cone_fan(&mut mesh, apex, &far, at_bottom, &fold_rows, mesh_size);
             for (k, mut row) in vertices.into_iter().enumerate() {
                 if !at_bottom {
                     row.reverse();
@@ -358,6 +373,7 @@ pub fn mesh_rulings(rulings: &Rulings, folds: &RulingFolds, mesh_size: f64) -> F
             .map_or(0, |(k, _)| k)
     };
     let mut plane_rulings = vec![false; rulings.pairs.len()];
+    let mut plane_wedges = vec![false; rulings.pairs.len()];
     for piece in pieces {
         match piece {
             Piece::Strip(wedge) => {
@@ -374,16 +390,10 @@ pub fn mesh_rulings(rulings: &Rulings, folds: &RulingFolds, mesh_size: f64) -> F
                     stitch_rows(l, r, &mesh.positions, &mut mesh.triangles);
                     from = (i, j);
                 }
-                for segment in folds.across(wedge) {
-                    let (i, j) = (
-                        station_vertex(&mesh, segment.from),
-                        station_vertex(&mesh, segment.to),
-                    );
-                    mesh.fold_edges.push(([left[i], right[j]], segment.line));
-                }
             }
             Piece::Plane(first, last) => {
                 plane_rulings[first + 1..last].fill(true);
+                plane_wedges[first..last].fill(true);
                 let boundary = plane_boundary(rulings, &rows, &bottom, &top, first, last);
                 let boundary = graded_sides(&mut mesh, &boundary);
                 let inside = |s: &FoldSegment| {
@@ -407,6 +417,20 @@ pub fn mesh_rulings(rulings: &Rulings, folds: &RulingFolds, mesh_size: f64) -> F
                 }
             }
             Piece::Fan(..) => {}
+        }
+    }
+    // Planar pieces tag their fold edges themselves; elsewhere a fold segment joins two row
+    // vertices of consecutive rulings (a strip's forced edge, an edge of a fan's fold row) or
+    // runs along a ruling's row.
+    for segment in &folds.segments {
+        let (from, to) = (segment.from.0, segment.to.0);
+        if to > from && !plane_wedges[from] {
+            let (i, j) = (
+                station_vertex(&mesh, segment.from),
+                station_vertex(&mesh, segment.to),
+            );
+            mesh.fold_edges
+                .push(([rows[from][i], rows[to][j]], segment.line));
         }
     }
     for segment in folds.segments.iter().filter(|s| s.from.0 == s.to.0) {

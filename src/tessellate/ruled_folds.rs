@@ -9,7 +9,10 @@
 //! consecutive rulings. Every vertex stays on a ruling and every triangle between two consecutive
 //! rulings, which is what makes the mesh of a developable surface exactly developable.
 //!
-//! A ruling is added inside the wedge (the planar piece between two consecutive rulings) that
+//! The caller samples a cylinder's, a cone's or an extrusion's sections through the polylines'
+//! vertices first ([`super::ruled::rulings_through`]: exact rulings of the surface, the rulings
+//! next to them respaced), so on those a vertex is on a ruling already. Otherwise (a loft, or a
+//! welded section kept as it is) a ruling is added inside the wedge (the planar piece between two consecutive rulings) that
 //! holds the point: from the point of the wedge's bottom side at the point's fraction across the
 //! wedge, through the point, to the top side (from the apex when the wedge is a fan's triangle).
 //! It splits the planar wedge into two planar wedges. Where a polyline crosses a ruling is found
@@ -19,7 +22,9 @@
 //!
 //! `None` (the caller inserts the polylines by [`super::fold_insert`] instead) when a ruling
 //! would be added with an end on a welded section (the neighbouring surface would not have that
-//! point), when a polyline meets a cone fan (its rows are laid out by [`super::fan`]) or when a
+//! point), when a polyline crosses a cone fan other than at the same fraction of each of its
+//! rulings (a fan's mesh is laid out in rows across its rulings by [`super::fan`], which can put
+//! a row along such a polyline: a section of a square-to-round at one height) or when a
 //! polyline cannot be followed from ruling to ruling (it leaves a ruling's height range).
 
 use glam::{DVec2, DVec3};
@@ -82,7 +87,11 @@ pub fn fold_rulings(
             } else {
                 (pair[0], pair[1])
             };
-            if to.0 > from.0 && fan[from.0] {
+            // Across a fan, a fold must follow one of its rows.
+            if to.0 > from.0
+                && fan[from.0]
+                && (to.1 - from.1).abs() * length(&rulings, from.0) > tolerance
+            {
                 return None;
             }
             folds.segments.push(FoldSegment {
@@ -99,12 +108,34 @@ pub fn fold_rulings(
         let length = length(&rulings, ruling);
         stations.sort_by(f64::total_cmp);
         stations.dedup_by(|a, b| (*a - *b).abs() * length <= tolerance);
-        let on_fan = (ruling > 0 && fan[ruling - 1]) || fan.get(ruling).copied().unwrap_or(false);
-        if on_fan && stations.iter().any(|&f| f > 0.0 && f < 1.0) {
-            return None;
-        }
     }
-    Some((rulings, folds))
+    fans_cut_along_rows(&rulings, &folds, &fan, tolerance).then_some((rulings, folds))
+}
+
+/// Whether every cone fan has the same fold stations (fractions inside its rulings) on each of
+/// its rulings: [`super::fan`] can then lay a row of its mesh along each of them.
+fn fans_cut_along_rows(
+    rulings: &Rulings,
+    folds: &RulingFolds,
+    fan: &[bool],
+    tolerance: f64,
+) -> bool {
+    let inner = |ruling: usize| -> Vec<f64> {
+        folds.stations[ruling]
+            .iter()
+            .copied()
+            .filter(|&f| f > 0.0 && f < 1.0)
+            .collect()
+    };
+    (0..fan.len()).filter(|&w| fan[w]).all(|w| {
+        let (left, right) = (inner(w), inner(w + 1));
+        let scale = length(rulings, w).max(length(rulings, w + 1));
+        left.len() == right.len()
+            && left
+                .iter()
+                .zip(&right)
+                .all(|(a, b)| (a - b).abs() * scale <= tolerance)
+    })
 }
 
 /// Where a domain point is among the rulings.
