@@ -924,7 +924,7 @@ fn folds_on_cylinders_welded_along_a_circle_keep_the_weld() {
         "[[surface]]\nkind = \"cylinder\"\nradius = 150.0\nheight = 100.0\nangles = [0.0, 90.0]\n\n\
          [[surface]]\nkind = \"cylinder\"\nradius = 150.0\nheight = 100.0\nangles = [0.0, 90.0]\n\
          placement = { origin = [0.0, 0.0, 100.0] }\n\n\
-         [[fold_line]]\nsurface = 0\npoints = [[37.3, 0.0], [37.3, 60.0]]\n\n\
+         [[fold_line]]\nsurface = 0\npoints = [[36.2, 0.0], [36.2, 60.0]]\n\n\
          [[fold_line]]\nsurface = 1\npoints = [[0.0, 50.0], [90.0, 50.0]]\n",
     );
     // No boundary edge inside the shared circle (z = 100, away from its two ends).

@@ -339,7 +339,7 @@ fn mesh_with_folds(
                 ruled::rulings_through(ruled, mesh_size, chord, &through)
             };
             if let Some((rulings, ruling_folds)) =
-                ruled_folds::fold_rulings(&rulings, &domain, folds, sections, mesh_size)
+                ruled_folds::fold_rulings(&rulings, &domain, folds, sections, mesh_size, chord)
             {
                 return Ok(ruled::mesh_rulings(&rulings, &ruling_folds, mesh_size));
             }

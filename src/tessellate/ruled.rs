@@ -135,13 +135,10 @@ pub fn rulings_through(
             let fractions = fractions_through(&stations, |span| {
                 pieces_for_arc(radius, range * span, mesh_size, chord)
             });
-            let angle = |t: f64| angles[0] + range * t;
-            let all = std::iter::once(0.0).chain(fractions);
-            let (bottom, top) = all
-                .map(|t| {
-                    let a = angle(t);
-                    (frame.point(bottom.point(a)), frame.point(top.point(a)))
-                })
+            let angle =
+                std::iter::once(angles[0]).chain(fractions.iter().map(|t| angles[0] + t.of(range)));
+            let (bottom, top) = angle
+                .map(|a| (frame.point(bottom.point(a)), frame.point(top.point(a))))
                 .unzip();
             same_index_rulings(bottom, top)
         }

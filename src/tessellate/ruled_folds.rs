@@ -40,20 +40,23 @@ const BISECTION_STEPS: usize = 64;
 
 /// The rulings with rulings added through the polylines' vertices, and the folds along them (see
 /// the module documentation). `welded` is `[bottom, top]`: whether that section shares its
-/// points with another surface.
+/// points with another surface. A polyline vertex within `snap` (part units: the chord
+/// tolerance) of a ruling is moved onto it rather than given a ruling of its own next to it.
 pub fn fold_rulings(
     rulings: &Rulings,
     domain: &SurfaceDomain,
     folds: &[(u32, Vec<DVec2>)],
     welded: [bool; 2],
     mesh_size: f64,
+    snap: f64,
 ) -> Option<(Rulings, RulingFolds)> {
     let tolerance = SAME_POINT_RATIO * mesh_size;
     let polylines = with_crossings(folds);
     let mut rulings = rulings.clone();
     for (_, points) in &polylines {
         for &point in points {
-            if let Place::Inside(wedge, fraction) = place(&rulings, domain, point, tolerance)? {
+            if let Place::Inside(wedge, fraction) = place(&rulings, domain, point, tolerance, snap)?
+            {
                 add_ruling(&mut rulings, domain, wedge, fraction, point.y, welded)?;
             }
         }
@@ -66,8 +69,8 @@ pub fn fold_rulings(
     for (line, points) in &polylines {
         let mut chain = Vec::new();
         for pair in points.windows(2) {
-            let from = on_ruling(&rulings, domain, pair[0], tolerance)?;
-            let to = on_ruling(&rulings, domain, pair[1], tolerance)?;
+            let from = on_ruling(&rulings, domain, pair[0], tolerance, snap)?;
+            let to = on_ruling(&rulings, domain, pair[1], tolerance, snap)?;
             chain.push(from);
             let step = if to.0 > from.0 { 1 } else { usize::MAX };
             let mut ruling = from.0;
@@ -212,8 +215,15 @@ fn at_height(
     (point, u_near(domain, point, reference), fraction)
 }
 
-/// Where the domain point `point` is among the rulings; `None` when it is outside them.
-fn place(rulings: &Rulings, domain: &SurfaceDomain, point: DVec2, tolerance: f64) -> Option<Place> {
+/// Where the domain point `point` is among the rulings (on one when within `snap` of it); `None`
+/// when it is outside them.
+fn place(
+    rulings: &Rulings,
+    domain: &SurfaceDomain,
+    point: DVec2,
+    tolerance: f64,
+    snap: f64,
+) -> Option<Place> {
     let references = ruling_references(rulings, domain);
     let (u, v) = (point.x, point.y);
     let samples: Vec<(DVec3, f64, f64)> = (0..rulings.pairs.len())
@@ -242,10 +252,10 @@ fn place(rulings: &Rulings, domain: &SurfaceDomain, point: DVec2, tolerance: f64
         }
     }
     let fraction = 0.5 * (low + high);
-    let width = p.distance(q);
-    if fraction * width <= tolerance {
+    let (width, snap) = (p.distance(q), snap.max(tolerance));
+    if fraction * width <= snap {
         Some(Place::On(wedge, samples[wedge].2))
-    } else if (1.0 - fraction) * width <= tolerance {
+    } else if (1.0 - fraction) * width <= snap {
         Some(Place::On(wedge + 1, samples[wedge + 1].2))
     } else {
         Some(Place::Inside(wedge, fraction))
@@ -258,8 +268,9 @@ fn on_ruling(
     domain: &SurfaceDomain,
     point: DVec2,
     tolerance: f64,
+    snap: f64,
 ) -> Option<(usize, f64)> {
-    match place(rulings, domain, point, tolerance)? {
+    match place(rulings, domain, point, tolerance, snap)? {
         Place::On(ruling, fraction) => Some((ruling, fraction)),
         Place::Inside(..) => None,
     }

@@ -117,8 +117,9 @@ impl Profile {
                 }
             };
             // An arc ends exactly at its end point (a line's last fraction gives it anyway).
-            points.extend(fractions.iter().map(|&t| match segment {
-                ProfileSegment::Arc { to, .. } if t >= 1.0 => to,
+            let last = fractions.len() - 1;
+            points.extend(fractions.iter().enumerate().map(|(k, t)| match segment {
+                ProfileSegment::Arc { to, .. } if k == last => to,
                 _ => segment.point_at(from, t),
             }));
             before += length;
@@ -130,10 +131,28 @@ impl Profile {
 /// Stations closer than this (fraction of the stretch) to each other or to an end are one.
 const STATION_TOLERANCE: f64 = 1e-9;
 
+/// A point of `[0, 1]` split at stations: the end of piece `k` of the `count` equal pieces of the
+/// stretch that starts at `from` and spans `span`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Fraction {
+    from: f64,
+    span: f64,
+    k: usize,
+    count: usize,
+}
+
+impl Fraction {
+    /// This fraction of `length`, rounded as `length · k / count` when the stretch is all of
+    /// `[0, 1]` (so that sampling without stations is unchanged to the last bit).
+    pub fn of(&self, length: f64) -> f64 {
+        length * self.from + length * self.span * self.k as f64 / self.count as f64
+    }
+}
+
 /// The fractions (in `(0, 1]`, increasing, ending at 1) that split `[0, 1]` at `stations` and
 /// each stretch between them into `pieces(stretch)` equal pieces. Stations outside `(0, 1)` or
 /// within [`STATION_TOLERANCE`] of an end or of each other are dropped.
-pub fn fractions_through(stations: &[f64], pieces: impl Fn(f64) -> usize) -> Vec<f64> {
+pub fn fractions_through(stations: &[f64], pieces: impl Fn(f64) -> usize) -> Vec<Fraction> {
     let mut stops: Vec<f64> = stations
         .iter()
         .copied()
@@ -145,9 +164,14 @@ pub fn fractions_through(stations: &[f64], pieces: impl Fn(f64) -> usize) -> Vec
     let mut fractions = Vec::new();
     let mut from = 0.0;
     for stop in stops {
-        let count = pieces(stop - from);
-        fractions.extend((1..count).map(|k| from + (stop - from) * k as f64 / count as f64));
-        fractions.push(stop);
+        let span = stop - from;
+        let count = pieces(span);
+        fractions.extend((1..=count).map(|k| Fraction {
+            from,
+            span,
+            k,
+            count,
+        }));
         from = stop;
     }
     fractions
@@ -189,12 +213,12 @@ impl Profile {
 
 impl ProfileSegment {
     /// The point at fraction `t` of the arc length of the segment starting at `from`.
-    fn point_at(&self, from: DVec2, t: f64) -> DVec2 {
+    fn point_at(&self, from: DVec2, t: &Fraction) -> DVec2 {
         match *self {
-            ProfileSegment::Line { to } => from.lerp(to, t),
+            ProfileSegment::Line { to } => from.lerp(to, t.of(1.0)),
             ProfileSegment::Arc { center, sweep, .. } => {
                 let start = (from - center).to_angle();
-                center + DVec2::from_angle(start + sweep * t) * from.distance(center)
+                center + DVec2::from_angle(start + t.of(sweep)) * from.distance(center)
             }
         }
     }
