@@ -943,3 +943,29 @@ fn folds_on_cylinders_welded_along_a_circle_keep_the_weld() {
         DEVELOPABLE_TOLERANCE,
     );
 }
+
+#[test]
+fn folds_inside_the_wedges_of_a_loft_keep_it_exactly_developable() {
+    // A loft's rulings are fixed by its sections: a fold vertex between two of them gets a ruling
+    // inside their planar wedge, and a fold crossing the rulings gets a point on each.
+    let result = flatten_part_text(
+        "[[surface]]\nkind = \"loft\"\nbottom = { shape = \"circle\", diameter = 160.0 }\n\
+         top = { shape = \"circle\", diameter = 100.0, center = [30.0, 0.0], z = 120.0 }\n\n\
+         [[fold_line]]\nsurface = 0\npoints = [[47.3, 0.0], [47.3, 120.0]]\n\n\
+         [[fold_line]]\nsurface = 0\npoints = [[0.0, 50.0], [360.0, 50.0]]\n",
+    );
+    assert_isometric(&result);
+    let lengths = fold_line_lengths(&result.job.model, &result.flattened.positions, 2);
+    assert!(
+        lengths.iter().all(|l| l.error <= DEVELOPABLE_TOLERANCE),
+        "{lengths:?}"
+    );
+    // At z = 50 the section is the circle of radius 80 + (50 - 80) 50 / 120 about the centre
+    // moved 30 · 50 / 120 (the loft of two circles is a cone): 2π · 67.5 within the chord.
+    let circle = TAU * (80.0 - 30.0 * 50.0 / 120.0);
+    assert!(
+        (lengths[1].length_3d - circle).abs() <= TAU * chord_of(&result),
+        "{} vs {circle}",
+        lengths[1].length_3d
+    );
+}
