@@ -104,14 +104,22 @@ fn halved(subset: &[usize]) -> Vec<usize> {
 /// The vertices a fan put on each of its rulings, from the apex outwards.
 pub type RulingVertices = Vec<Vec<u32>>;
 
+/// Fold rows closer than this (fraction of the rulings) are one row.
+const FOLD_ROW_TOLERANCE: f64 = 1e-9;
+
 /// Meshes the fan with apex vertex `apex` and far vertices `far` (see the module
 /// documentation). `apex_at_bottom` tells which end of the rulings the apex is (for the
-/// orientation of the triangles, which follows [`super::ruled::mesh_rulings`]).
+/// orientation of the triangles, which follows [`super::ruled::mesh_rulings`]). `fold_rows`
+/// are fractions from the apex (in `(0, 1)`) at which a row must lie, with every ruling (a fold
+/// polyline crossing the fan at the same fraction of each ruling, such as a section at one
+/// height): the radial steps are shortened to land on them (no step below half its usual
+/// length) and no ruling is dropped before the last of them is passed.
 pub fn mesh_cone_fan(
     mesh: &mut FaceMesh,
     apex: u32,
     far: &[u32],
     apex_at_bottom: bool,
+    fold_rows: &[f64],
     mesh_size: f64,
 ) -> RulingVertices {
     let position = |v: u32, mesh: &FaceMesh| mesh.positions[v as usize];
@@ -136,18 +144,34 @@ pub fn mesh_cone_fan(
         chart.record(v, ruling, 0);
     }
     let mut rows = 0;
+    let fold_row_below = |t: f64| {
+        fold_rows
+            .iter()
+            .copied()
+            .filter(|&f| f < t - FOLD_ROW_TOLERANCE)
+            .fold(None, |best: Option<f64>, f| {
+                Some(best.map_or(f, |b| b.max(f)))
+            })
+    };
     while rows < MAXIMUM_ROWS {
         let coarser = halved(&subset);
         let can_merge = coarser.len() < subset.len()
             && coarser
                 .windows(2)
                 .all(|w| development.angles[w[1]] - development.angles[w[0]] <= maximum_apex_angle);
-        if !can_merge {
+        let fold_row = fold_row_below(t);
+        if !can_merge && fold_row.is_none() {
             break;
         }
         let step = (RADIAL_ASPECT * development.spacing(&subset, t)).min(mesh_size);
-        let next_t = t - step / longest;
-        let merge = next_t > 0.0
+        let next_t = match fold_row {
+            Some(f) if (t - f) * longest <= step => f,
+            Some(f) if (t - f) * longest < 2.0 * step => 0.5 * (t + f),
+            _ => t - step / longest,
+        };
+        let merge = can_merge
+            && next_t > 0.0
+            && fold_rows.iter().all(|&f| f > next_t + FOLD_ROW_TOLERANCE)
             && 2.0 * development.spacing(&subset, next_t) <= mesh_size
             && coarser
                 .windows(2)
@@ -261,7 +285,7 @@ mod tests {
                 0.5 * (b - a).cross(c - a).length()
             })
             .sum();
-        let on_ruling = mesh_cone_fan(&mut mesh, apex, &far, true, 6.4);
+        let on_ruling = mesh_cone_fan(&mut mesh, apex, &far, true, &[], 6.4);
         assert_eq!(on_ruling.len(), far.len());
         assert!(on_ruling.iter().all(|r| r[0] == apex));
         let mut area = 0.0;

@@ -1,5 +1,8 @@
-//! Fold polylines carried onto a structured mesh (cylinders, cones, lofts, extrusions, surfaces of
-//! revolution) by a constrained re-triangulation around them.
+//! Fold polylines carried onto a structured mesh by a constrained re-triangulation around them:
+//! surfaces of revolution, and ruled surfaces where [`super::ruled_folds`] cannot carry them
+//! along the rulings (a section welded to another surface, a fold across a cone fan other than
+//! along one of its rows). The re-triangulated band spans several rulings, so it is not exactly
+//! developable.
 //!
 //! Input: a [`FaceMesh`] made by a structured mesher, its surface's [`SurfaceDomain`], fold
 //! polylines in that domain and the mesh size. Output: the same mesh, re-triangulated near each

@@ -20,6 +20,7 @@ pub mod parameter_region;
 pub mod patch;
 pub mod revolution;
 pub mod ruled;
+pub mod ruled_folds;
 pub mod strip;
 pub mod surface;
 pub mod surface_domain;
@@ -260,15 +261,46 @@ pub fn tessellate(
     options: &TessellateOptions,
 ) -> Result<Tessellation, TessellateError> {
     let (mesh_size, chord) = resolve_sizes(part, options)?;
+    let weld_tolerance = part.size() * WELD_TOLERANCE_RATIO;
+    let folds: Vec<Vec<(u32, Vec<DVec2>)>> = (0..part.surfaces.len())
+        .map(|index| surface_folds(part, index))
+        .collect();
+    // Structured meshes first without their fold polylines: a ruled surface's polylines may add
+    // rulings, which must not add points on a section another surface is welded to.
     let mut faces = Vec::with_capacity(part.surfaces.len());
     for (index, surface) in part.surfaces.iter().enumerate() {
-        let face = mesh_surface(part, index, surface, mesh_size, chord)?;
-        if face.triangles.is_empty() {
-            return Err(TessellateError::EmptySurface { surface: index });
-        }
+        let face = match surface {
+            Surface::Ruled(ruled) => ruled::mesh_ruled(ruled, mesh_size, chord),
+            Surface::Revolution(revolution) => {
+                revolution::mesh_revolution(revolution, mesh_size, chord)
+            }
+            Surface::Patch(patch) => patch::mesh_patch(patch, &folds[index], mesh_size, chord)?,
+        };
         faces.push(face);
     }
-    let mut welded = weld::weld_faces(&faces, part.weld, part.size() * WELD_TOLERANCE_RATIO);
+    for (index, surface) in part.surfaces.iter().enumerate() {
+        if folds[index].is_empty() || matches!(surface, Surface::Patch(_)) {
+            continue;
+        }
+        // A section is welded when one of its edges is shared (both ends on another face).
+        let shared = |p: &DVec3| {
+            faces.iter().enumerate().any(|(other, face)| {
+                other != index
+                    && face
+                        .positions
+                        .iter()
+                        .any(|q| p.distance(*q) <= weld_tolerance)
+            })
+        };
+        let welded =
+            |points: &[DVec3]| part.weld && points.windows(2).any(|pair| pair.iter().all(shared));
+        let face = mesh_with_folds(surface, &folds[index], mesh_size, chord, welded)?;
+        faces[index] = face;
+    }
+    if let Some(index) = faces.iter().position(|face| face.triangles.is_empty()) {
+        return Err(TessellateError::EmptySurface { surface: index });
+    }
+    let mut welded = weld::weld_faces(&faces, part.weld, weld_tolerance);
     add_shared_edge_folds(part, &mut welded.soup);
     let minimum_angle = minimum_angle(&welded.soup);
     Ok(Tessellation {
@@ -279,15 +311,9 @@ pub fn tessellate(
     })
 }
 
-fn mesh_surface(
-    part: &CadPart,
-    index: usize,
-    surface: &Surface,
-    mesh_size: f64,
-    chord: f64,
-) -> Result<FaceMesh, TessellateError> {
-    let folds: Vec<(u32, Vec<DVec2>)> = part
-        .fold_lines
+/// The fold polylines `(fold line index, domain points)` on surface `index`.
+fn surface_folds(part: &CadPart, index: usize) -> Vec<(u32, Vec<DVec2>)> {
+    part.fold_lines
         .iter()
         .enumerate()
         .filter_map(|(line, fold)| match fold {
@@ -296,18 +322,50 @@ fn mesh_surface(
             }
             _ => None,
         })
-        .collect();
-    // Patches take fold polylines as constraints from the start; the structured meshes get
-    // them by a constrained re-triangulation around each polyline.
+        .collect()
+}
+
+/// The structured mesh of a ruled surface or a surface of revolution with its fold polylines.
+/// A ruled surface carries them along its rulings ([`ruled_folds`]: the mesh stays exactly
+/// developable) unless that would add a point on a section `welded` says another surface shares
+/// an edge of (given the section's points), or a polyline crosses a cone fan other than along
+/// one of its rows; then, and on surfaces of
+/// revolution, they are inserted by a constrained re-triangulation around them ([`fold_insert`]).
+fn mesh_with_folds(
+    surface: &Surface,
+    folds: &[(u32, Vec<DVec2>)],
+    mesh_size: f64,
+    chord: f64,
+    welded: impl Fn(&[DVec3]) -> bool,
+) -> Result<FaceMesh, TessellateError> {
+    let domain = surface_domain::SurfaceDomain::new(surface);
     let mut mesh = match surface {
-        Surface::Ruled(ruled) => ruled::mesh_ruled(ruled, mesh_size, chord),
+        Surface::Ruled(ruled) => {
+            let plain = ruled::rulings(ruled, mesh_size, chord);
+            let sections = [welded(&plain.bottom), welded(&plain.top)];
+            // Rulings through the polylines' vertices where the sections may get new points.
+            let rulings = if sections.contains(&true) {
+                plain
+            } else {
+                let through: Vec<f64> = fold_insert::with_crossings(folds)
+                    .iter()
+                    .flat_map(|(_, points)| points.iter().map(|p| p.x))
+                    .collect();
+                ruled::rulings_through(ruled, mesh_size, chord, &through)
+            };
+            if let Some((rulings, ruling_folds)) =
+                ruled_folds::fold_rulings(&rulings, &domain, folds, sections, mesh_size, chord)
+            {
+                return Ok(ruled::mesh_rulings(&rulings, &ruling_folds, mesh_size));
+            }
+            ruled::mesh_rulings(&rulings, &ruled::RulingFolds::default(), mesh_size)
+        }
         Surface::Revolution(revolution) => {
             revolution::mesh_revolution(revolution, mesh_size, chord)
         }
-        Surface::Patch(patch) => return patch::mesh_patch(patch, &folds, mesh_size, chord),
+        Surface::Patch(patch) => return patch::mesh_patch(patch, folds, mesh_size, chord),
     };
-    let domain = surface_domain::SurfaceDomain::new(surface);
-    fold_insert::insert_fold_polylines(&mut mesh, &domain, &folds, mesh_size)?;
+    fold_insert::insert_fold_polylines(&mut mesh, &domain, folds, mesh_size)?;
     Ok(mesh)
 }
 

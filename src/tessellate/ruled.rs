@@ -6,7 +6,9 @@
 //! sections in parallel planes, an extrusion) the quadrilateral between two consecutive rulings of
 //! the sampled sections is planar, so the mesh is exactly developable: it flattens with no strain,
 //! which is how E_S and E_C reach round-off on these kinds. A closed section (a full turn) is
-//! opened along its first ruling: the seam's vertices are duplicated, not shared.
+//! opened along its first ruling: the seam's vertices are duplicated, not shared. Fold
+//! polylines come as [`RulingFolds`] (points on rulings, segments between consecutive rulings),
+//! which keep that property.
 //!
 //! The loft correspondence follows the classical construction of a developable transition: each
 //! ruling joins the points of the two sections whose tangents are parallel, found by merging the
@@ -22,7 +24,8 @@ use super::fan::mesh_cone_fan;
 use super::patch::mesh_patch;
 use super::strip::stitch_rows;
 use super::surface::{
-    Frame, PatchGeometry, PatchSurface, RuledSurface, Section, pieces_for_arc, pieces_for_length,
+    Frame, PatchGeometry, PatchSurface, RuledSurface, Section, fractions_through, pieces_for_arc,
+    pieces_for_length,
 };
 
 /// Two edge directions closer than this (radians) are parallel: both sections advance together.
@@ -42,13 +45,80 @@ pub struct Rulings {
     pub pairs: Vec<[usize; 2]>,
 }
 
+/// Fold polylines carried by the rulings ([`super::ruled_folds`] builds them): the points that
+/// must be vertices on each ruling and the fold segments that must be mesh edges. Every segment
+/// joins two points of one ruling or of two consecutive rulings, so a mesh that has them as
+/// edges still has every triangle between two consecutive rulings.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct RulingFolds {
+    /// Per ruling: fractions along it (0 at its bottom end, 1 at its top end) that must be
+    /// vertices, in increasing order (empty for a ruling no fold meets).
+    pub stations: Vec<Vec<f64>>,
+    /// The fold segments.
+    pub segments: Vec<FoldSegment>,
+}
+
+/// A piece of a fold polyline between two ruling points.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FoldSegment {
+    /// The fold line's index.
+    pub line: u32,
+    /// Start: ruling index and fraction along it.
+    pub from: (usize, f64),
+    /// End: the same ruling (a stretch along it) or the next one.
+    pub to: (usize, f64),
+}
+
+impl RulingFolds {
+    fn stations_of(&self, ruling: usize) -> &[f64] {
+        self.stations.get(ruling).map_or(&[], Vec::as_slice)
+    }
+
+    /// The fractions from the apex of the fold stations on the rulings `first..=last` of a cone
+    /// fan (apex at their bottom ends when `at_bottom`).
+    fn fan_rows(&self, first: usize, last: usize, at_bottom: bool) -> Vec<f64> {
+        let mut rows: Vec<f64> = (first..=last)
+            .flat_map(|r| self.stations_of(r))
+            .filter(|&&f| f > 0.0 && f < 1.0)
+            .map(|&f| if at_bottom { f } else { 1.0 - f })
+            .collect();
+        rows.sort_by(f64::total_cmp);
+        rows
+    }
+
+    /// The segments across the wedge after ruling `wedge`.
+    fn across(&self, wedge: usize) -> impl Iterator<Item = &FoldSegment> {
+        self.segments
+            .iter()
+            .filter(move |s| s.from.0 == wedge && s.to.0 == wedge + 1)
+    }
+}
+
 /// Meshes a ruled surface along its rulings.
 pub fn mesh_ruled(surface: &RuledSurface, mesh_size: f64, chord: f64) -> FaceMesh {
-    mesh_rulings(&rulings(surface, mesh_size, chord), mesh_size)
+    mesh_rulings(
+        &rulings(surface, mesh_size, chord),
+        &RulingFolds::default(),
+        mesh_size,
+    )
 }
 
 /// The rulings of `surface`, sections sampled at `mesh_size` and `chord`.
 pub fn rulings(surface: &RuledSurface, mesh_size: f64, chord: f64) -> Rulings {
+    rulings_through(surface, mesh_size, chord, &[])
+}
+
+/// [`rulings`] with a ruling at each domain `u` of `through` (the angle in degrees of a cylinder
+/// or a cone, the arc length along an extrusion's profile; see [`super::surface_domain`]): the
+/// stretches of the sections between them are sampled each on its own, so that the rulings next
+/// to them keep about their usual spacing. A loft's rulings are fixed by its sections' tangents
+/// and ignore `through`.
+pub fn rulings_through(
+    surface: &RuledSurface,
+    mesh_size: f64,
+    chord: f64,
+    through: &[f64],
+) -> Rulings {
     match surface {
         RuledSurface::Circular {
             frame,
@@ -58,18 +128,26 @@ pub fn rulings(surface: &RuledSurface, mesh_size: f64, chord: f64) -> Rulings {
         } => {
             let range = angles[1] - angles[0];
             let radius = bottom.radius.max(top.radius);
-            let pieces = pieces_for_arc(radius, range, mesh_size, chord);
-            let angle = |k: usize| angles[0] + range * k as f64 / pieces as f64;
-            let bottom = (0..=pieces).map(|k| frame.point(bottom.point(angle(k))));
-            let top = (0..=pieces).map(|k| frame.point(top.point(angle(k))));
-            same_index_rulings(bottom.collect(), top.collect())
+            let stations: Vec<f64> = through
+                .iter()
+                .map(|u| (u.to_radians() - angles[0]) / range)
+                .collect();
+            let fractions = fractions_through(&stations, |span| {
+                pieces_for_arc(radius, range * span, mesh_size, chord)
+            });
+            let angle =
+                std::iter::once(angles[0]).chain(fractions.iter().map(|t| angles[0] + t.of(range)));
+            let (bottom, top) = angle
+                .map(|a| (frame.point(bottom.point(a)), frame.point(top.point(a))))
+                .unzip();
+            same_index_rulings(bottom, top)
         }
         RuledSurface::Extrusion {
             frame,
             profile,
             direction,
         } => {
-            let points = profile.sample(mesh_size, chord);
+            let points = profile.sample_through(mesh_size, chord, through);
             let bottom: Vec<DVec3> = points.iter().map(|p| frame.point(p.extend(0.0))).collect();
             let offset = frame.vector(*direction);
             let top = bottom.iter().map(|&p| p + offset).collect();
@@ -228,8 +306,12 @@ const COPLANAR_TOLERANCE: f64 = 1e-9;
 /// Meshes rulings. Consecutive rulings in one plane are meshed together as a planar polygon
 /// (refined to well-shaped triangles, exact since the piece is flat), cone fans by
 /// [`super::fan`], every other wedge by splitting its two rulings to the mesh size and
-/// stitching them. Section points shared by consecutive rulings become shared vertices.
-pub fn mesh_rulings(rulings: &Rulings, mesh_size: f64) -> FaceMesh {
+/// stitching them. Section points shared by consecutive rulings become shared vertices. The
+/// stations of `folds` are vertices of their rulings, and its segments are mesh edges, tagged
+/// as fold edges (a strip is stitched piecewise between them, a planar piece takes them as
+/// constraint edges); a cone fan lays a row along the stations of its rulings (the caller checks
+/// that they are the same fractions on each of them, [`fan_wedges`]).
+pub fn mesh_rulings(rulings: &Rulings, folds: &RulingFolds, mesh_size: f64) -> FaceMesh {
     let mut mesh = FaceMesh::default();
     let bottom: Vec<u32> = rulings.bottom.iter().map(|&p| mesh.add_vertex(p)).collect();
     let top: Vec<u32> = rulings.top.iter().map(|&p| mesh.add_vertex(p)).collect();
@@ -243,7 +325,8 @@ pub fn mesh_rulings(rulings: &Rulings, mesh_size: f64) -> FaceMesh {
                 .iter()
                 .map(|&[b, t]| if at_bottom { top[t] } else { bottom[b] })
                 .collect();
-            let vertices = mesh_cone_fan(&mut mesh, apex, &far, at_bottom, mesh_size);
+            let fold_rows = folds.fan_rows(first, last, at_bottom);
+            let vertices = mesh_cone_fan(&mut mesh, apex, &far, at_bottom, &fold_rows, mesh_size);
             for (k, mut row) in vertices.into_iter().enumerate() {
                 if !at_bottom {
                     row.reverse();
@@ -255,20 +338,75 @@ pub fn mesh_rulings(rulings: &Rulings, mesh_size: f64) -> FaceMesh {
     let rows: Vec<Vec<u32>> = on_ruling
         .into_iter()
         .zip(&rulings.pairs)
-        .map(|(row, &[b, t])| {
-            row.unwrap_or_else(|| split_ruling(&mut mesh, bottom[b], top[t], mesh_size))
+        .enumerate()
+        .map(|(k, (row, &[b, t]))| {
+            row.unwrap_or_else(|| {
+                split_ruling(
+                    &mut mesh,
+                    bottom[b],
+                    top[t],
+                    folds.stations_of(k),
+                    mesh_size,
+                )
+            })
         })
         .collect();
+    let station_vertex = |mesh: &FaceMesh, (ruling, fraction): (usize, f64)| {
+        let row = &rows[ruling];
+        let (start, end) = (
+            mesh.positions[row[0] as usize],
+            mesh.positions[row[row.len() - 1] as usize],
+        );
+        let along = |v: u32| {
+            (mesh.positions[v as usize] - start).dot(end - start) / start.distance_squared(end)
+        };
+        row.iter()
+            .enumerate()
+            .min_by(|a, b| {
+                (along(*a.1) - fraction)
+                    .abs()
+                    .total_cmp(&(along(*b.1) - fraction).abs())
+            })
+            .map_or(0, |(k, _)| k)
+    };
+    let mut plane_rulings = vec![false; rulings.pairs.len()];
+    let mut plane_wedges = vec![false; rulings.pairs.len()];
     for piece in pieces {
         match piece {
             Piece::Strip(wedge) => {
+                let mut splits: Vec<(usize, usize)> = folds
+                    .across(wedge)
+                    .map(|s| (station_vertex(&mesh, s.from), station_vertex(&mesh, s.to)))
+                    .collect();
+                splits.sort_unstable();
+                splits.dedup();
                 let (left, right) = (&rows[wedge], &rows[wedge + 1]);
-                stitch_rows(left, right, &mesh.positions, &mut mesh.triangles);
+                let mut from = (0, 0);
+                for &(i, j) in splits.iter().chain([&(left.len() - 1, right.len() - 1)]) {
+                    let (l, r) = (&left[from.0..=i], &right[from.1..=j]);
+                    stitch_rows(l, r, &mesh.positions, &mut mesh.triangles);
+                    from = (i, j);
+                }
             }
             Piece::Plane(first, last) => {
+                plane_rulings[first + 1..last].fill(true);
+                plane_wedges[first..last].fill(true);
                 let boundary = plane_boundary(rulings, &rows, &bottom, &top, first, last);
                 let boundary = graded_sides(&mut mesh, &boundary);
-                if !mesh_plane(&mut mesh, &boundary, mesh_size) {
+                let inside = |s: &FoldSegment| {
+                    (first..last).contains(&s.from.0)
+                        && (s.to.0 > s.from.0 || (first + 1..last).contains(&s.from.0))
+                };
+                let point = |mesh: &FaceMesh, at: (usize, f64)| {
+                    mesh.positions[rows[at.0][station_vertex(mesh, at)] as usize]
+                };
+                let constraints: Vec<(u32, [DVec3; 2])> = folds
+                    .segments
+                    .iter()
+                    .filter(|s| inside(s))
+                    .map(|s| (s.line, [point(&mesh, s.from), point(&mesh, s.to)]))
+                    .collect();
+                if !mesh_plane(&mut mesh, &boundary, &constraints, mesh_size) {
                     for wedge in first..last {
                         let (left, right) = (&rows[wedge], &rows[wedge + 1]);
                         stitch_rows(left, right, &mesh.positions, &mut mesh.triangles);
@@ -278,19 +416,73 @@ pub fn mesh_rulings(rulings: &Rulings, mesh_size: f64) -> FaceMesh {
             Piece::Fan(..) => {}
         }
     }
+    // Planar pieces tag their fold edges themselves; elsewhere a fold segment joins two row
+    // vertices of consecutive rulings (a strip's forced edge, an edge of a fan's fold row) or
+    // runs along a ruling's row.
+    for segment in &folds.segments {
+        let (from, to) = (segment.from.0, segment.to.0);
+        if to > from && !plane_wedges[from] {
+            let (i, j) = (
+                station_vertex(&mesh, segment.from),
+                station_vertex(&mesh, segment.to),
+            );
+            mesh.fold_edges
+                .push(([rows[from][i], rows[to][j]], segment.line));
+        }
+    }
+    for segment in folds.segments.iter().filter(|s| s.from.0 == s.to.0) {
+        if plane_rulings[segment.from.0] {
+            continue;
+        }
+        let row = &rows[segment.from.0];
+        let (i, j) = (
+            station_vertex(&mesh, segment.from),
+            station_vertex(&mesh, segment.to),
+        );
+        for k in i.min(j)..i.max(j) {
+            mesh.fold_edges.push(([row[k], row[k + 1]], segment.line));
+        }
+    }
     mesh
 }
 
-/// The vertices of the ruling from `bottom` to `top`, split into pieces of at most `mesh_size`.
-fn split_ruling(mesh: &mut FaceMesh, bottom: u32, top: u32, mesh_size: f64) -> Vec<u32> {
+/// Per wedge (the piece between rulings `k` and `k + 1`): whether it is part of a cone fan.
+pub fn fan_wedges(rulings: &Rulings) -> Vec<bool> {
+    let mut fan = vec![false; rulings.pairs.len().saturating_sub(1)];
+    for piece in pieces(rulings) {
+        if let Piece::Fan(first, last, _) = piece {
+            fan[first..last].fill(true);
+        }
+    }
+    fan
+}
+
+/// The vertices of the ruling from `bottom` to `top`: its ends, the points at `stations`
+/// (fractions along it, increasing), and each gap between them split into pieces of at most
+/// `mesh_size`.
+fn split_ruling(
+    mesh: &mut FaceMesh,
+    bottom: u32,
+    top: u32,
+    stations: &[f64],
+    mesh_size: f64,
+) -> Vec<u32> {
     let (start, end) = (
         mesh.positions[bottom as usize],
         mesh.positions[top as usize],
     );
-    let pieces = pieces_for_length(start.distance(end), mesh_size);
+    let length = start.distance(end);
+    let inner = stations.iter().copied().filter(|&f| f > 0.0 && f < 1.0);
+    let stops: Vec<f64> = std::iter::once(0.0).chain(inner).chain([1.0]).collect();
     let mut row = vec![bottom];
-    for k in 1..pieces {
-        row.push(mesh.add_vertex(start.lerp(end, k as f64 / pieces as f64)));
+    for gap in stops.windows(2) {
+        let pieces = pieces_for_length((gap[1] - gap[0]) * length, mesh_size);
+        for k in 1..=pieces {
+            let fraction = gap[0] + (gap[1] - gap[0]) * k as f64 / pieces as f64;
+            if fraction < 1.0 {
+                row.push(mesh.add_vertex(start.lerp(end, fraction)));
+            }
+        }
     }
     row.push(top);
     row
@@ -504,9 +696,16 @@ fn graded_side(side: &[DVec3], before: f64, after: f64) -> Vec<Vec<DVec3>> {
 
 /// Meshes the planar polygon `boundary` (vertices of `mesh`, counter-clockwise seen from the side
 /// the ruled meshes' normals point to) by the patch mesher on its plane, keeping the boundary's
-/// vertices (nothing is added on the boundary, so neighbouring pieces stay conforming). False when
-/// the polygon has no plane or the patch mesher refuses it (the caller stitches it instead).
-fn mesh_plane(mesh: &mut FaceMesh, boundary: &[u32], mesh_size: f64) -> bool {
+/// vertices (nothing is added on the boundary, so neighbouring pieces stay conforming), with the
+/// fold segments `folds` (fold line, ends in the plane) as constraint edges, tagged as fold
+/// edges. False when the polygon has no plane or the patch mesher refuses it (the caller
+/// stitches it instead).
+fn mesh_plane(
+    mesh: &mut FaceMesh,
+    boundary: &[u32],
+    folds: &[(u32, [DVec3; 2])],
+    mesh_size: f64,
+) -> bool {
     let points: Vec<DVec3> = boundary
         .iter()
         .map(|&v| mesh.positions[v as usize])
@@ -525,6 +724,10 @@ fn mesh_plane(mesh: &mut FaceMesh, boundary: &[u32], mesh_size: f64) -> bool {
         )
     };
     let outer: Vec<DVec2> = points.iter().map(|&p| local(p)).collect();
+    let fold_polylines: Vec<(u32, Vec<DVec2>)> = folds
+        .iter()
+        .map(|&(line, ends)| (line, ends.map(local).to_vec()))
+        .collect();
     let patch = PatchSurface {
         geometry: PatchGeometry::Plane(frame),
         outer: outer.clone(),
@@ -532,7 +735,7 @@ fn mesh_plane(mesh: &mut FaceMesh, boundary: &[u32], mesh_size: f64) -> bool {
     };
     // Sides are at most the mesh size already: the patch mesher must not split them again.
     let split_above = longest_side.max(mesh_size) * (1.0 + PLANE_SIDE_MARGIN);
-    let Ok(plane) = mesh_patch(&patch, &[], split_above, f64::INFINITY) else {
+    let Ok(plane) = mesh_patch(&patch, &fold_polylines, split_above, f64::INFINITY) else {
         return false;
     };
     let tolerance = PLANE_MATCH_RATIO * longest_side;
@@ -555,6 +758,11 @@ fn mesh_plane(mesh: &mut FaceMesh, boundary: &[u32], mesh_size: f64) -> bool {
             })
         });
         mesh.triangles.push(corners);
+    }
+    for &([a, b], line) in &plane.fold_edges {
+        if let (Some(a), Some(b)) = (index[a as usize], index[b as usize]) {
+            mesh.fold_edges.push(([a, b], line));
+        }
     }
     true
 }

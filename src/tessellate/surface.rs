@@ -94,30 +94,87 @@ impl Profile {
     /// and arcs deviate at most `chord` from their chords. The start and every segment end are
     /// included; consecutive duplicates are not produced.
     pub fn sample(&self, max_length: f64, chord: f64) -> Vec<DVec2> {
+        self.sample_through(max_length, chord, &[])
+    }
+
+    /// [`Profile::sample`] with a point at each arc length of `through` (from the start): the
+    /// stretches between them and the segment ends are split each on its own.
+    pub fn sample_through(&self, max_length: f64, chord: f64, through: &[f64]) -> Vec<DVec2> {
         let mut points = vec![self.start];
-        let mut from = self.start;
-        for segment in &self.segments {
-            match *segment {
-                ProfileSegment::Line { to } => {
-                    let pieces = pieces_for_length(from.distance(to), max_length);
-                    points.extend((1..=pieces).map(|k| from.lerp(to, k as f64 / pieces as f64)));
-                    from = to;
-                }
-                ProfileSegment::Arc { to, center, sweep } => {
+        let mut before = 0.0;
+        for (from, segment) in self.pieces() {
+            let length = segment.length(from);
+            let stations: Vec<f64> = through.iter().map(|s| (s - before) / length).collect();
+            let fractions = match segment {
+                ProfileSegment::Line { .. } => fractions_through(&stations, |span| {
+                    pieces_for_length(span * length, max_length)
+                }),
+                ProfileSegment::Arc { center, sweep, .. } => {
                     let radius = from.distance(center);
-                    let pieces = pieces_for_arc(radius, sweep.abs(), max_length, chord);
-                    let start_angle = (from - center).to_angle();
-                    points.extend((1..pieces).map(|k| {
-                        let angle = start_angle + sweep * k as f64 / pieces as f64;
-                        center + DVec2::from_angle(angle) * radius
-                    }));
-                    points.push(to);
-                    from = to;
+                    fractions_through(&stations, |span| {
+                        pieces_for_arc(radius, span * sweep.abs(), max_length, chord)
+                    })
                 }
-            }
+            };
+            // An arc ends exactly at its end point (a line's last fraction gives it anyway).
+            let last = fractions.len() - 1;
+            points.extend(fractions.iter().enumerate().map(|(k, t)| match segment {
+                ProfileSegment::Arc { to, .. } if k == last => to,
+                _ => segment.point_at(from, t),
+            }));
+            before += length;
         }
         points
     }
+}
+
+/// Stations closer than this (fraction of the stretch) to each other or to an end are one.
+const STATION_TOLERANCE: f64 = 1e-9;
+
+/// A point of `[0, 1]` split at stations: the end of piece `k` of the `count` equal pieces of the
+/// stretch that starts at `from` and spans `span`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Fraction {
+    from: f64,
+    span: f64,
+    k: usize,
+    count: usize,
+}
+
+impl Fraction {
+    /// This fraction of `length`, rounded as `length · k / count` when the stretch is all of
+    /// `[0, 1]` (so that sampling without stations is unchanged to the last bit).
+    pub fn of(&self, length: f64) -> f64 {
+        length * self.from + length * self.span * self.k as f64 / self.count as f64
+    }
+}
+
+/// The fractions (in `(0, 1]`, increasing, ending at 1) that split `[0, 1]` at `stations` and
+/// each stretch between them into `pieces(stretch)` equal pieces. Stations outside `(0, 1)` or
+/// within [`STATION_TOLERANCE`] of an end or of each other are dropped.
+pub fn fractions_through(stations: &[f64], pieces: impl Fn(f64) -> usize) -> Vec<Fraction> {
+    let mut stops: Vec<f64> = stations
+        .iter()
+        .copied()
+        .filter(|t| *t > STATION_TOLERANCE && *t < 1.0 - STATION_TOLERANCE)
+        .collect();
+    stops.sort_by(f64::total_cmp);
+    stops.dedup_by(|a, b| *a - *b <= STATION_TOLERANCE);
+    stops.push(1.0);
+    let mut fractions = Vec::new();
+    let mut from = 0.0;
+    for stop in stops {
+        let span = stop - from;
+        let count = pieces(span);
+        fractions.extend((1..=count).map(|k| Fraction {
+            from,
+            span,
+            k,
+            count,
+        }));
+        from = stop;
+    }
+    fractions
 }
 
 impl Profile {
@@ -155,6 +212,17 @@ impl Profile {
 }
 
 impl ProfileSegment {
+    /// The point at fraction `t` of the arc length of the segment starting at `from`.
+    fn point_at(&self, from: DVec2, t: &Fraction) -> DVec2 {
+        match *self {
+            ProfileSegment::Line { to } => from.lerp(to, t.of(1.0)),
+            ProfileSegment::Arc { center, sweep, .. } => {
+                let start = (from - center).to_angle();
+                center + DVec2::from_angle(start + t.of(sweep)) * from.distance(center)
+            }
+        }
+    }
+
     /// The end point.
     pub fn end(&self) -> DVec2 {
         match *self {
