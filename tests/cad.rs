@@ -306,6 +306,53 @@ fn step_units_are_converted_to_millimetres() {
     assert!((largest - 101.6).abs() < 0.5, "{largest}");
 }
 
+/// Loads STEP text written to a temporary file.
+fn load_step_text(text: &str) -> Vec<flatcut::pipeline::PartJob> {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let path = directory.path().join("part.step");
+    std::fs::write(&path, text).expect("writes");
+    load_parts(&path, &RunOptions::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn cone_angles_in_degrees_and_the_units_of_the_solids_own_context_are_honoured() {
+    let inch = std::fs::read_to_string(sample("cone_frustum_half.step")).expect("sample");
+    let area = |text: &str| load_step_text(text)[0].model.area();
+    let reference = area(&inch);
+    // CATIA V4 writes cone semi-angles in degrees when its context's angle unit is the degree.
+    let degrees = inch
+        .replace(
+            "#56 = ( NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.) );",
+            "#56 = ( CONVERSION_BASED_UNIT('DEGREE',#59) NAMED_UNIT(#52) PLANE_ANGLE_UNIT() );\n\
+             #59 = PLANE_ANGLE_MEASURE_WITH_UNIT(PLANE_ANGLE_MEASURE(0.0174532925),#61);\n\
+             #61 = ( NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.) );",
+        )
+        .replace("4.,0.558599315343562);", "4.,32.0053832080835);");
+    assert_ne!(degrees, inch);
+    let in_degrees = area(&degrees);
+    assert!(
+        (in_degrees - reference).abs() <= 1e-6 * reference,
+        "{in_degrees} vs {reference}"
+    );
+    // Autodesk Inventor writes an inch context beside the millimetre context of its solids.
+    let millimetres = inch
+        .replace(
+            "GLOBAL_UNIT_ASSIGNED_CONTEXT((#51,#56,#57))",
+            "GLOBAL_UNIT_ASSIGNED_CONTEXT((#54,#56,#57))",
+        )
+        .replace(
+            "#50 = ",
+            "#70 = ( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#51,#56,#57)) \
+             REPRESENTATION_CONTEXT('inch','3D') );\n#71 = SHAPE_REPRESENTATION('',(#4),#70);\n#50 = ",
+        );
+    let in_millimetres = area(&millimetres);
+    let expected = reference / (25.4 * 25.4);
+    assert!(
+        (in_millimetres - expected).abs() <= 1e-6 * expected,
+        "{in_millimetres} vs {expected}"
+    );
+}
+
 #[test]
 fn unsupported_step_content_is_named() {
     let error = load_parts(
