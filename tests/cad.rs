@@ -411,6 +411,33 @@ fn a_face_on_an_unsupported_surface_and_a_file_without_surfaces_exit_1_naming_wh
     );
 }
 
+#[test]
+fn a_trimmed_edge_curve_is_read_as_its_basis_and_an_unreadable_one_is_named() {
+    let cone = std::fs::read_to_string(sample("cone_frustum_half.step")).expect("sample");
+    let with_curve = |curve: &str| {
+        cone.replace(
+            "#32 = LINE('',#12,#31);",
+            &format!("#32 = {curve};\n#38 = LINE('',#12,#31);"),
+        )
+    };
+    let reference = load_step_text(&cone)[0].model.area();
+    let trimmed = load_step_text(&with_curve(
+        "TRIMMED_CURVE('',#38,(#12),(#15),.T.,.CARTESIAN.)",
+    ))[0]
+        .model
+        .area();
+    assert!((trimmed - reference).abs() <= 1e-9 * reference, "{trimmed}");
+    let output = flatten_step_text(&with_curve("OFFSET_CURVE_3D('',#38,1.,.F.,#30)"));
+    assert_eq!(output.status.code(), Some(1));
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        message.contains("ADVANCED_FACE #46 on CONICAL_SURFACE (#5): edge EDGE_CURVE #33 on OFFSET_CURVE_3D (#32)"),
+        "{message}"
+    );
+    // Named before truck-stepio is called, which would print a lookup failure of its own.
+    assert!(!message.contains("Lookup failed"), "{message}");
+}
+
 /// Smallest triangle angle STEP faces must keep where their domains allow it, degrees.
 const STEP_MINIMUM_ANGLE: f64 = 20.0;
 

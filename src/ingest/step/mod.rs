@@ -27,7 +27,7 @@ use truck_modeling::{BSplineSurface, Matrix4, NurbsSurface, Vector4};
 use truck_stepio::r#in::Table;
 use truck_stepio::r#in::ruststep::tables::IntoOwned;
 
-use self::statements::Statements;
+use self::statements::{Statement, Statements};
 use self::units::{ContextUnits, file_units, units_of};
 use super::IngestError;
 use crate::mesh::TriangleSoup;
@@ -41,7 +41,8 @@ use crate::tessellate::{
 /// Options of STEP ingest: the tessellation options (mesh size and chord, millimetres).
 pub type StepOptions = TessellateOptions;
 
-/// Geometric entities truck-stepio converts; other `*_SURFACE` and `*_CURVE` entities are not.
+/// Geometric entities truck-stepio converts (and `TRIMMED_CURVE`, which flatcut replaces by its
+/// basis curve); other `*_SURFACE` and `*_CURVE` entities are not.
 const SUPPORTED_GEOMETRY: &[&str] = &[
     "LINE",
     "POLYLINE",
@@ -59,6 +60,7 @@ const SUPPORTED_GEOMETRY: &[&str] = &[
     "PCURVE",
     "SURFACE_CURVE",
     "SEAM_CURVE",
+    "TRIMMED_CURVE",
     "EDGE_CURVE",
     "PLANE",
     "SPHERICAL_SURFACE",
@@ -125,7 +127,7 @@ pub fn read_step(
         }
     };
     let text = &prefer_3d_curves(text);
-    let text = &cone_angles_in_radians(text, &statements, default_units).map_err(error)?;
+    let text = &rewritten_for_truck(text, &statements, default_units).map_err(error)?;
     let table = catch_unwind(|| Table::from_step(text))
         .ok()
         .flatten()
@@ -191,31 +193,35 @@ fn prefer_3d_curves(text: &str) -> String {
         .replace(".PCURVE_S2.", ".CURVE_3D.")
 }
 
-/// The file with every `CONICAL_SURFACE`'s semi-angle in radians: truck-stepio reads it as
-/// radians, but it is in the plane angle unit of its representation's context (degrees in
-/// files CATIA V4 writes).
-fn cone_angles_in_radians(
+/// The file rewritten where truck-stepio would misread it: every `CONICAL_SURFACE`'s
+/// semi-angle in radians (truck-stepio reads it as radians, but it is in the plane angle unit of
+/// its representation's context: degrees in files CATIA V4 writes), and every `TRIMMED_CURVE`
+/// replaced by its basis curve (truck-stepio cannot read trimmed curves; an edge's vertices
+/// bound its curve anyway).
+fn rewritten_for_truck(
     text: &str,
     statements: &Statements,
     default_units: ContextUnits,
 ) -> Result<String, String> {
     let mut replacements = Vec::new();
     for (&id, statement) in statements.iter() {
-        if !statement.is("CONICAL_SURFACE") {
-            continue;
+        if statement.is("CONICAL_SURFACE") {
+            let radians = units_of(statements, id)?.unwrap_or(default_units).radians;
+            if radians != 1.0 {
+                let rewritten = with_last_argument_scaled(&statement.body, radians)
+                    .ok_or_else(|| format!("CONICAL_SURFACE #{id} could not be read"))?;
+                replacements.push((id, rewritten));
+            }
+        } else if statement.is("TRIMMED_CURVE")
+            && let Some(basis) = basis_curve(statements, id)
+        {
+            replacements.push((id, basis.body.clone()));
         }
-        let radians = units_of(statements, id)?.unwrap_or(default_units).radians;
-        if radians == 1.0 {
-            continue;
-        }
-        let rewritten = with_last_argument_scaled(&statement.body, radians)
-            .ok_or_else(|| format!("CONICAL_SURFACE #{id} could not be read"))?;
-        replacements.push((id, rewritten));
     }
     let mut spans = Vec::with_capacity(replacements.len());
     for (id, body) in replacements {
-        let (start, end) = statement_span(text, id)
-            .ok_or_else(|| format!("CONICAL_SURFACE #{id} could not be read"))?;
+        let (start, end) =
+            statement_span(text, id).ok_or_else(|| format!("#{id} could not be read"))?;
         spans.push((start, end, format!("#{id}={body}")));
     }
     spans.sort_unstable_by_key(|&(start, _, _)| start);
@@ -228,6 +234,21 @@ fn cone_angles_in_radians(
     }
     rewritten.push_str(&text[copied..]);
     Ok(rewritten)
+}
+
+/// Trimmed curves are nested at most this deep.
+const MAX_TRIM_DEPTH: usize = 8;
+
+/// The curve a `TRIMMED_CURVE` (possibly of another trimmed curve) trims.
+fn basis_curve(statements: &Statements, id: u64) -> Option<&Statement> {
+    let mut current = statements.get(&id)?;
+    for _ in 0..MAX_TRIM_DEPTH {
+        if !current.is("TRIMMED_CURVE") {
+            return Some(current);
+        }
+        current = statements.get(current.references.first()?)?;
+    }
+    None
 }
 
 /// `NAME(..., x)` with its last argument (a number) multiplied by `factor`.
@@ -322,17 +343,77 @@ fn convert_shells(
     Ok(shells)
 }
 
-/// The faces among `faces` whose surface is missing or of a kind truck-stepio cannot read,
-/// described for an error message.
+/// The faces among `faces` whose surface or one of whose edges' curves is missing or of a kind
+/// truck-stepio cannot read, described for an error message.
 fn unreadable_faces(statements: &Statements, faces: &[u64]) -> Vec<String> {
     faces
         .iter()
-        .filter(|&&face| {
-            face_surface(statements, face)
-                .is_none_or(|(_, names)| names.iter().any(|name| is_unsupported_geometry(name)))
+        .filter_map(|&face| {
+            let surface_unreadable = face_surface(statements, face)
+                .is_none_or(|(_, names)| names.iter().any(|name| is_unsupported_geometry(name)));
+            if surface_unreadable {
+                return Some(describe_face(statements, face));
+            }
+            unreadable_edge(statements, face)
+                .map(|edge| format!("{}: {edge}", describe_face(statements, face)))
         })
-        .map(|&face| describe_face(statements, face))
         .collect()
+}
+
+/// The first edge of a face whose curve truck-stepio cannot read, described (`edge
+/// EDGE_CURVE #33 on OFFSET_CURVE_3D (#32)`).
+fn unreadable_edge(statements: &Statements, face: u64) -> Option<String> {
+    let mut statement = statements.get(&face)?;
+    if statement.is("ORIENTED_FACE") {
+        statement = statements.get(statement.references.last()?)?;
+    }
+    let bounds = statement
+        .references
+        .iter()
+        .filter_map(|r| statements.get(r));
+    let loops = bounds.filter_map(|bound| statements.get(bound.references.first()?));
+    for edge_loop in loops.filter(|l| l.is("EDGE_LOOP")) {
+        for oriented in edge_loop
+            .references
+            .iter()
+            .filter_map(|r| statements.get(r))
+        {
+            let Some(&edge) = oriented.references.last() else {
+                continue;
+            };
+            let Some(curve) = statements.get(&edge).and_then(|e| e.references.get(2)) else {
+                return Some(format!("edge #{edge} is missing"));
+            };
+            if let Some(unreadable) = unreadable_curve(statements, curve) {
+                return Some(format!("edge EDGE_CURVE #{edge} on {unreadable}"));
+            }
+        }
+    }
+    None
+}
+
+/// The curve (or the 3D curve of a surface curve, or the basis of a trimmed curve) truck-stepio
+/// cannot read, described (`OFFSET_CURVE_3D (#32)`).
+fn unreadable_curve(statements: &Statements, curve: u64) -> Option<String> {
+    let Some(statement) = statements.get(&curve) else {
+        return Some(format!("#{curve}, which is missing"));
+    };
+    let describe =
+        |statement: &Statement, id: u64| format!("{} (#{id})", statement.names.join(" "));
+    if statement.is("SURFACE_CURVE") || statement.is("SEAM_CURVE") {
+        return unreadable_curve(statements, *statement.references.first()?);
+    }
+    if statement.is("TRIMMED_CURVE") {
+        return match basis_curve(statements, curve) {
+            Some(_) => unreadable_curve(statements, *statement.references.first()?),
+            None => Some(describe(statement, curve)),
+        };
+    }
+    statement
+        .names
+        .iter()
+        .any(|name| is_unsupported_geometry(name))
+        .then(|| describe(statement, curve))
 }
 
 /// The face entities a shell statement lists, in order.
