@@ -438,6 +438,37 @@ fn a_trimmed_edge_curve_is_read_as_its_basis_and_an_unreadable_one_is_named() {
     assert!(!message.contains("Lookup failed"), "{message}");
 }
 
+/// A SolidWorks 2018 export (`samples/base_interface_solidworks.step`, from trimesh, MIT): a
+/// 3/16 in plate with holes and slots, in inches through an inch context. Open CASCADE (FreeCAD
+/// 0.20, `Part.read(path).Area`) integrates 541917.241 mm². Its long plate edges meet the short
+/// pieces of small holes' edges at shared vertices: before edges were graded there, the side
+/// faces had 4.1° slivers at those corners.
+#[test]
+fn a_solidworks_plate_keeps_its_area_units_and_graded_corners() {
+    let jobs = load_parts(
+        &sample("base_interface_solidworks.step"),
+        &RunOptions::default(),
+    )
+    .expect("loads");
+    assert_eq!(jobs.len(), 1, "one closed solid");
+    let job = &jobs[0];
+    let area = job.model.area();
+    let reference = 541917.241;
+    assert!(
+        (area - reference).abs() / reference <= AREA_TOLERANCE,
+        "area {area} vs {reference}"
+    );
+    let largest = job
+        .model
+        .positions()
+        .iter()
+        .map(|p| p.x.abs())
+        .fold(0.0, f64::max);
+    assert!((largest - 11.7994561 * 25.4).abs() < 0.01, "{largest}");
+    let angle = job.tessellation.expect("figures").minimum_angle;
+    assert!(angle >= 7.0, "worst angle {angle}");
+}
+
 /// Smallest triangle angle STEP faces must keep where their domains allow it, degrees.
 const STEP_MINIMUM_ANGLE: f64 = 20.0;
 
