@@ -469,6 +469,39 @@ fn a_solidworks_plate_keeps_its_area_units_and_graded_corners() {
     assert!(angle >= 7.0, "worst angle {angle}");
 }
 
+/// A sphere of radius 50 split into two half-sphere lunes, each bounded by two meridians from
+/// pole to pole (the layout CATIA V4 writes): not meshed yet, so an error naming the face.
+const SPHERE_LUNES: &str = "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('lunes'),'2;1');\n\
+    FILE_NAME('lunes.step','2026-11-22T00:00:00',(''),(''),'','','');\n\
+    FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n\
+    #1=CARTESIAN_POINT('',(0.,0.,0.));\n#2=DIRECTION('',(0.,0.,1.));\n#3=DIRECTION('',(1.,0.,0.));\n\
+    #4=AXIS2_PLACEMENT_3D('',#1,#2,#3);\n#5=SPHERICAL_SURFACE('',#4,50.);\n\
+    #6=CARTESIAN_POINT('',(0.,0.,50.));\n#7=VERTEX_POINT('',#6);\n\
+    #8=CARTESIAN_POINT('',(0.,0.,-50.));\n#9=VERTEX_POINT('',#8);\n\
+    #10=DIRECTION('',(0.,1.,0.));\n#11=AXIS2_PLACEMENT_3D('',#1,#10,#2);\n#12=CIRCLE('',#11,50.);\n\
+    #13=DIRECTION('',(0.,-1.,0.));\n#14=AXIS2_PLACEMENT_3D('',#1,#13,#2);\n#15=CIRCLE('',#14,50.);\n\
+    #16=EDGE_CURVE('',#7,#9,#12,.T.);\n#17=EDGE_CURVE('',#7,#9,#15,.T.);\n\
+    #18=ORIENTED_EDGE('',*,*,#16,.T.);\n#19=ORIENTED_EDGE('',*,*,#17,.F.);\n\
+    #20=EDGE_LOOP('',(#18,#19));\n#21=FACE_OUTER_BOUND('',#20,.T.);\n#22=ADVANCED_FACE('',(#21),#5,.T.);\n\
+    #23=ORIENTED_EDGE('',*,*,#17,.T.);\n#24=ORIENTED_EDGE('',*,*,#16,.F.);\n\
+    #25=EDGE_LOOP('',(#23,#24));\n#26=FACE_OUTER_BOUND('',#25,.T.);\n#27=ADVANCED_FACE('',(#26),#5,.T.);\n\
+    #28=CLOSED_SHELL('',(#22,#27));\n#29=MANIFOLD_SOLID_BREP('',#28);\n\
+    #30=(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.));\n\
+    #31=(GEOMETRIC_REPRESENTATION_CONTEXT(3)GLOBAL_UNIT_ASSIGNED_CONTEXT((#30))REPRESENTATION_CONTEXT('',''));\n\
+    #32=ADVANCED_BREP_SHAPE_REPRESENTATION('',(#29),#31);\nENDSEC;\nEND-ISO-10303-21;\n";
+
+#[test]
+fn a_sphere_split_into_lunes_is_an_error_naming_the_face() {
+    let output = flatten_step_text(SPHERE_LUNES);
+    assert_eq!(output.status.code(), Some(1));
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        message.contains("shell #28, ADVANCED_FACE #22 on SPHERICAL_SURFACE (#5)")
+            && message.contains("both poles"),
+        "{message}"
+    );
+}
+
 /// Smallest triangle angle STEP faces must keep where their domains allow it, degrees.
 const STEP_MINIMUM_ANGLE: f64 = 20.0;
 

@@ -41,7 +41,7 @@ use truck_topology::compress::{CompressedFace, CompressedShell};
 use super::face_domain::{BoundaryLoop, FaceSurface, PoleToPole, apex_curvature, face_domain};
 use super::patch::mesh_patch;
 use super::surface::{PatchGeometry, PatchSurface};
-use crate::mesh::TriangleSoup;
+use crate::mesh::{DEGENERATE_AREA_RATIO, TriangleSoup};
 
 /// A shell as truck-stepio converts it.
 pub type StepShell = CompressedShell<Point3, Curve3D, StepSurface>;
@@ -162,6 +162,21 @@ pub fn mesh_shell(
             }))
             .map_err(|_| error("the face could not be tessellated".into()))?
             .map_err(error)?;
+            if face_mesh.triangles.is_empty() {
+                return Err(error(
+                    "its mesh has no triangle: flatcut cannot mesh this face's layout yet (a face \
+                     bounded by meridians through both poles of a sphere)"
+                        .into(),
+                ));
+            }
+            let degenerate = degenerate_triangles(&face_mesh);
+            if degenerate > 0 {
+                return Err(error(format!(
+                    "its mesh has {degenerate} zero-area triangle(s): flatcut cannot mesh this \
+                     face's layout yet (a face bounded by meridians through both poles of a \
+                     sphere, or two faces of a cone that both reach its apex)"
+                )));
+            }
             append_face(soup, &face_mesh, first_source + index as u32);
         }
     }
@@ -238,6 +253,26 @@ pub fn weld_coincident(soup: &mut TriangleSoup) {
 struct MeshedFace {
     positions: Vec<DVec3>,
     triangles: Vec<[u32; 3]>,
+}
+
+/// Triangles of a face's mesh that the mesh check would refuse as having zero area (see
+/// [`DEGENERATE_AREA_RATIO`]); triangles with two corners at the same position are not counted
+/// (welding drops them).
+fn degenerate_triangles(face: &MeshedFace) -> usize {
+    face.triangles
+        .iter()
+        .filter(|t| {
+            let [a, b, c] = t.map(|v| face.positions[v as usize]);
+            if a == b || b == c || c == a {
+                return false;
+            }
+            let longest = (b - a)
+                .length_squared()
+                .max((c - b).length_squared())
+                .max((a - c).length_squared());
+            0.5 * (b - a).cross(c - a).length() <= DEGENERATE_AREA_RATIO * longest
+        })
+        .count()
 }
 
 fn append_face(soup: &mut TriangleSoup, face: &MeshedFace, source: u32) {
