@@ -306,6 +306,53 @@ fn step_units_are_converted_to_millimetres() {
     assert!((largest - 101.6).abs() < 0.5, "{largest}");
 }
 
+/// Loads STEP text written to a temporary file.
+fn load_step_text(text: &str) -> Vec<flatcut::pipeline::PartJob> {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let path = directory.path().join("part.step");
+    std::fs::write(&path, text).expect("writes");
+    load_parts(&path, &RunOptions::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn cone_angles_in_degrees_and_the_units_of_the_solids_own_context_are_honoured() {
+    let inch = std::fs::read_to_string(sample("cone_frustum_half.step")).expect("sample");
+    let area = |text: &str| load_step_text(text)[0].model.area();
+    let reference = area(&inch);
+    // CATIA V4 writes cone semi-angles in degrees when its context's angle unit is the degree.
+    let degrees = inch
+        .replace(
+            "#56 = ( NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.) );",
+            "#56 = ( CONVERSION_BASED_UNIT('DEGREE',#59) NAMED_UNIT(#52) PLANE_ANGLE_UNIT() );\n\
+             #59 = PLANE_ANGLE_MEASURE_WITH_UNIT(PLANE_ANGLE_MEASURE(0.0174532925),#61);\n\
+             #61 = ( NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.) );",
+        )
+        .replace("4.,0.558599315343562);", "4.,32.0053832080835);");
+    assert_ne!(degrees, inch);
+    let in_degrees = area(&degrees);
+    assert!(
+        (in_degrees - reference).abs() <= 1e-6 * reference,
+        "{in_degrees} vs {reference}"
+    );
+    // Autodesk Inventor writes an inch context beside the millimetre context of its solids.
+    let millimetres = inch
+        .replace(
+            "GLOBAL_UNIT_ASSIGNED_CONTEXT((#51,#56,#57))",
+            "GLOBAL_UNIT_ASSIGNED_CONTEXT((#54,#56,#57))",
+        )
+        .replace(
+            "#50 = ",
+            "#70 = ( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#51,#56,#57)) \
+             REPRESENTATION_CONTEXT('inch','3D') );\n#71 = SHAPE_REPRESENTATION('',(#4),#70);\n#50 = ",
+        );
+    let in_millimetres = area(&millimetres);
+    let expected = reference / (25.4 * 25.4);
+    assert!(
+        (in_millimetres - expected).abs() <= 1e-6 * expected,
+        "{in_millimetres} vs {expected}"
+    );
+}
+
 #[test]
 fn unsupported_step_content_is_named() {
     let error = load_parts(
@@ -360,6 +407,97 @@ fn a_face_on_an_unsupported_surface_and_a_file_without_surfaces_exit_1_naming_wh
     let message = String::from_utf8_lossy(&output.stderr);
     assert!(
         message.contains("no shell, face or B-spline surface"),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_trimmed_edge_curve_is_read_as_its_basis_and_an_unreadable_one_is_named() {
+    let cone = std::fs::read_to_string(sample("cone_frustum_half.step")).expect("sample");
+    let with_curve = |curve: &str| {
+        cone.replace(
+            "#32 = LINE('',#12,#31);",
+            &format!("#32 = {curve};\n#38 = LINE('',#12,#31);"),
+        )
+    };
+    let reference = load_step_text(&cone)[0].model.area();
+    let trimmed = load_step_text(&with_curve(
+        "TRIMMED_CURVE('',#38,(#12),(#15),.T.,.CARTESIAN.)",
+    ))[0]
+        .model
+        .area();
+    assert!((trimmed - reference).abs() <= 1e-9 * reference, "{trimmed}");
+    let output = flatten_step_text(&with_curve("OFFSET_CURVE_3D('',#38,1.,.F.,#30)"));
+    assert_eq!(output.status.code(), Some(1));
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        message.contains("ADVANCED_FACE #46 on CONICAL_SURFACE (#5): edge EDGE_CURVE #33 on OFFSET_CURVE_3D (#32)"),
+        "{message}"
+    );
+    // Named before truck-stepio is called, which would print a lookup failure of its own.
+    assert!(!message.contains("Lookup failed"), "{message}");
+}
+
+/// A SolidWorks 2018 export (`samples/base_interface_solidworks.step`, from trimesh, MIT): a
+/// 3/16 in plate with holes and slots, in inches through an inch context. Open CASCADE (FreeCAD
+/// 0.20, `Part.read(path).Area`) integrates 541917.241 mm². Its long plate edges meet the short
+/// pieces of small holes' edges at shared vertices: before edges were graded there, the side
+/// faces had 4.1° slivers at those corners.
+#[test]
+fn a_solidworks_plate_keeps_its_area_units_and_graded_corners() {
+    let jobs = load_parts(
+        &sample("base_interface_solidworks.step"),
+        &RunOptions::default(),
+    )
+    .expect("loads");
+    assert_eq!(jobs.len(), 1, "one closed solid");
+    let job = &jobs[0];
+    let area = job.model.area();
+    let reference = 541917.241;
+    assert!(
+        (area - reference).abs() / reference <= AREA_TOLERANCE,
+        "area {area} vs {reference}"
+    );
+    let largest = job
+        .model
+        .positions()
+        .iter()
+        .map(|p| p.x.abs())
+        .fold(0.0, f64::max);
+    assert!((largest - 11.7994561 * 25.4).abs() < 0.01, "{largest}");
+    let angle = job.tessellation.expect("figures").minimum_angle;
+    assert!(angle >= 7.0, "worst angle {angle}");
+}
+
+/// A sphere of radius 50 split into two half-sphere lunes, each bounded by two meridians from
+/// pole to pole (the layout CATIA V4 writes): not meshed yet, so an error naming the face.
+const SPHERE_LUNES: &str = "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('lunes'),'2;1');\n\
+    FILE_NAME('lunes.step','2026-11-22T00:00:00',(''),(''),'','','');\n\
+    FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n\
+    #1=CARTESIAN_POINT('',(0.,0.,0.));\n#2=DIRECTION('',(0.,0.,1.));\n#3=DIRECTION('',(1.,0.,0.));\n\
+    #4=AXIS2_PLACEMENT_3D('',#1,#2,#3);\n#5=SPHERICAL_SURFACE('',#4,50.);\n\
+    #6=CARTESIAN_POINT('',(0.,0.,50.));\n#7=VERTEX_POINT('',#6);\n\
+    #8=CARTESIAN_POINT('',(0.,0.,-50.));\n#9=VERTEX_POINT('',#8);\n\
+    #10=DIRECTION('',(0.,1.,0.));\n#11=AXIS2_PLACEMENT_3D('',#1,#10,#2);\n#12=CIRCLE('',#11,50.);\n\
+    #13=DIRECTION('',(0.,-1.,0.));\n#14=AXIS2_PLACEMENT_3D('',#1,#13,#2);\n#15=CIRCLE('',#14,50.);\n\
+    #16=EDGE_CURVE('',#7,#9,#12,.T.);\n#17=EDGE_CURVE('',#7,#9,#15,.T.);\n\
+    #18=ORIENTED_EDGE('',*,*,#16,.T.);\n#19=ORIENTED_EDGE('',*,*,#17,.F.);\n\
+    #20=EDGE_LOOP('',(#18,#19));\n#21=FACE_OUTER_BOUND('',#20,.T.);\n#22=ADVANCED_FACE('',(#21),#5,.T.);\n\
+    #23=ORIENTED_EDGE('',*,*,#17,.T.);\n#24=ORIENTED_EDGE('',*,*,#16,.F.);\n\
+    #25=EDGE_LOOP('',(#23,#24));\n#26=FACE_OUTER_BOUND('',#25,.T.);\n#27=ADVANCED_FACE('',(#26),#5,.T.);\n\
+    #28=CLOSED_SHELL('',(#22,#27));\n#29=MANIFOLD_SOLID_BREP('',#28);\n\
+    #30=(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.));\n\
+    #31=(GEOMETRIC_REPRESENTATION_CONTEXT(3)GLOBAL_UNIT_ASSIGNED_CONTEXT((#30))REPRESENTATION_CONTEXT('',''));\n\
+    #32=ADVANCED_BREP_SHAPE_REPRESENTATION('',(#29),#31);\nENDSEC;\nEND-ISO-10303-21;\n";
+
+#[test]
+fn a_sphere_split_into_lunes_is_an_error_naming_the_face() {
+    let output = flatten_step_text(SPHERE_LUNES);
+    assert_eq!(output.status.code(), Some(1));
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        message.contains("shell #28, ADVANCED_FACE #22 on SPHERICAL_SURFACE (#5)")
+            && message.contains("both poles"),
         "{message}"
     );
 }

@@ -79,7 +79,13 @@ pub fn run(args: TessellateArgs) -> anyhow::Result<Outcome> {
             );
             (tessellation.soup().clone(), summary)
         }
-        Input::Step(step) => (step.soup.clone(), "STEP faces in mm".to_string()),
+        Input::Step(step) => (
+            step.soup.clone(),
+            format!(
+                "STEP faces in mm, mesh size {:.4} mm, chord {:.4} mm, smallest angle {:.2}°",
+                step.mesh_size, step.chord, step.minimum_angle
+            ),
+        ),
         Input::Mesh(mesh) => (mesh.soup.clone(), "mesh file".to_string()),
     };
     let validated = flatcut::mesh::validate(&soup).map_err(|defects| {

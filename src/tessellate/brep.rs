@@ -41,7 +41,7 @@ use truck_topology::compress::{CompressedFace, CompressedShell};
 use super::face_domain::{BoundaryLoop, FaceSurface, PoleToPole, apex_curvature, face_domain};
 use super::patch::mesh_patch;
 use super::surface::{PatchGeometry, PatchSurface};
-use crate::mesh::TriangleSoup;
+use crate::mesh::{DEGENERATE_AREA_RATIO, TriangleSoup};
 
 /// A shell as truck-stepio converts it.
 pub type StepShell = CompressedShell<Point3, Curve3D, StepSurface>;
@@ -149,6 +149,7 @@ pub fn mesh_shell(
             None => sample_edge(&shell.edges[e].curve, vertices(e), edge_sizes[e], chord),
         })
         .collect();
+    let edges = graded_at_vertices(shell, edges, &apexes, size);
     for (index, face) in shell.faces.iter().enumerate() {
         let error = |message: String| FaceError {
             face: index,
@@ -161,6 +162,21 @@ pub fn mesh_shell(
             }))
             .map_err(|_| error("the face could not be tessellated".into()))?
             .map_err(error)?;
+            if face_mesh.triangles.is_empty() {
+                return Err(error(
+                    "its mesh has no triangle: flatcut cannot mesh this face's layout yet (a face \
+                     bounded by meridians through both poles of a sphere)"
+                        .into(),
+                ));
+            }
+            let degenerate = degenerate_triangles(&face_mesh);
+            if degenerate > 0 {
+                return Err(error(format!(
+                    "its mesh has {degenerate} zero-area triangle(s): flatcut cannot mesh this \
+                     face's layout yet (a face bounded by meridians through both poles of a \
+                     sphere, or two faces of a cone that both reach its apex)"
+                )));
+            }
             append_face(soup, &face_mesh, first_source + index as u32);
         }
     }
@@ -237,6 +253,26 @@ pub fn weld_coincident(soup: &mut TriangleSoup) {
 struct MeshedFace {
     positions: Vec<DVec3>,
     triangles: Vec<[u32; 3]>,
+}
+
+/// Triangles of a face's mesh that the mesh check would refuse as having zero area (see
+/// [`DEGENERATE_AREA_RATIO`]); triangles with two corners at the same position are not counted
+/// (welding drops them).
+fn degenerate_triangles(face: &MeshedFace) -> usize {
+    face.triangles
+        .iter()
+        .filter(|t| {
+            let [a, b, c] = t.map(|v| face.positions[v as usize]);
+            if a == b || b == c || c == a {
+                return false;
+            }
+            let longest = (b - a)
+                .length_squared()
+                .max((c - b).length_squared())
+                .max((a - c).length_squared());
+            0.5 * (b - a).cross(c - a).length() <= DEGENERATE_AREA_RATIO * longest
+        })
+        .count()
 }
 
 fn append_face(soup: &mut TriangleSoup, face: &MeshedFace, source: u32) {
@@ -342,6 +378,132 @@ fn sample_toward_apex(
     if !at_start {
         points.reverse();
     }
+    points
+}
+
+/// Edges whose pieces are more than this times longer than the shortest piece at one of their
+/// vertices are resampled graded toward that vertex.
+const GRADE_TRIGGER: f64 = 1.5;
+/// Growth of the piece length per unit of length along a graded edge (pieces grow by about
+/// 20 % from one to the next).
+const GRADE_SLOPE: f64 = 0.2;
+/// Dense samples per uniform piece of an edge's arc-length table.
+const ARC_SAMPLES_PER_PIECE: usize = 16;
+
+/// Edge samples graded at the vertices: where an edge with long pieces meets, at a vertex, an
+/// edge with much shorter pieces (a long side of a sheet next to a small hole or bend radius),
+/// the face between them would get a sliver triangle at the corner, since its boundary pieces
+/// stay as they are. Such an edge is resampled with pieces growing from the shortest piece at
+/// each of its vertices by [`GRADE_SLOPE`] per unit length up to its own piece length (equal
+/// steps of `∫ ds / size(s)` along its arc length). Edges that end at a cone's apex keep their
+/// own grading.
+fn graded_at_vertices(
+    shell: &StepShell,
+    mut edges: Vec<Vec<DVec3>>,
+    apexes: &[Option<EdgeApex>],
+    size: f64,
+) -> Vec<Vec<DVec3>> {
+    let degenerate = 1e-9 * size.max(f64::MIN_POSITIVE);
+    let mut shortest = vec![f64::INFINITY; shell.vertices.len()];
+    for (edge, samples) in shell.edges.iter().zip(&edges) {
+        let (a, b) = edge.vertices;
+        if let [first, second, ..] = samples.as_slice() {
+            let piece = first.distance(*second);
+            if piece > degenerate {
+                shortest[a] = shortest[a].min(piece);
+            }
+        }
+        if let [.., before, last] = samples.as_slice() {
+            let piece = before.distance(*last);
+            if piece > degenerate {
+                shortest[b] = shortest[b].min(piece);
+            }
+        }
+    }
+    for (index, edge) in shell.edges.iter().enumerate() {
+        let samples = &edges[index];
+        if apexes[index].is_some() || samples.len() < 2 {
+            continue;
+        }
+        let longest = samples
+            .windows(2)
+            .map(|w| w[0].distance(w[1]))
+            .fold(0.0, f64::max);
+        let (a, b) = edge.vertices;
+        let ends = (shortest[a].min(longest), shortest[b].min(longest));
+        if longest <= GRADE_TRIGGER * ends.0.min(ends.1) {
+            continue;
+        }
+        let range = edge_range(
+            &edge.curve,
+            (samples[0], samples[samples.len() - 1]),
+            longest,
+        );
+        edges[index] = sample_graded(
+            |t| to_dvec(edge.curve.subs(t)),
+            range,
+            (samples[0], samples[samples.len() - 1]),
+            (samples.len() - 1, longest),
+            ends,
+        );
+    }
+    edges
+}
+
+/// Samples `point` over the parameter `range` with pieces `min(longest, h₀ + k s, h₁ + k (L −
+/// s))` long at arc length `s` (`k` = [`GRADE_SLOPE`], `L` the length, `(h₀, h₁)` = `ends`),
+/// the ends exactly `ends_at`; `(pieces, longest)` is the edge's uniform sampling.
+fn sample_graded(
+    point: impl Fn(f64) -> DVec3,
+    (start, end): (f64, f64),
+    ends_at: (DVec3, DVec3),
+    (pieces, longest): (usize, f64),
+    ends: (f64, f64),
+) -> Vec<DVec3> {
+    let dense = (pieces * ARC_SAMPLES_PER_PIECE).max(64);
+    let parameters: Vec<f64> = (0..=dense)
+        .map(|k| start + (end - start) * k as f64 / dense as f64)
+        .collect();
+    let mut arc = vec![0.0];
+    let mut previous = point(start);
+    for &t in &parameters[1..] {
+        let next = point(t);
+        arc.push(arc[arc.len() - 1] + previous.distance(next));
+        previous = next;
+    }
+    let length = arc[dense];
+    let piece_at = |s: f64| {
+        longest
+            .min(ends.0 + GRADE_SLOPE * s)
+            .min(ends.1 + GRADE_SLOPE * (length - s))
+    };
+    // Cumulative ∫ ds / size at the dense samples (trapezoids).
+    let mut weight = vec![0.0];
+    for k in 1..=dense {
+        let step = arc[k] - arc[k - 1];
+        let mean = 0.5 * (1.0 / piece_at(arc[k - 1]) + 1.0 / piece_at(arc[k]));
+        weight.push(weight[k - 1] + step * mean);
+    }
+    let count = (weight[dense].ceil() as usize).clamp(1, MAX_EDGE_PIECES);
+    let mut points = Vec::with_capacity(count + 1);
+    points.push(ends_at.0);
+    let mut k = 0;
+    for j in 1..count {
+        let target = weight[dense] * j as f64 / count as f64;
+        while k + 1 < dense && weight[k + 1] < target {
+            k += 1;
+        }
+        let span = weight[k + 1] - weight[k];
+        let fraction = if span > 0.0 {
+            (target - weight[k]) / span
+        } else {
+            0.0
+        };
+        points.push(point(
+            parameters[k] + (parameters[k + 1] - parameters[k]) * fraction,
+        ));
+    }
+    points.push(ends_at.1);
     points
 }
 
@@ -677,4 +839,26 @@ fn follows_face_normal(
 
 fn to_dvec(p: Point3) -> DVec3 {
     DVec3::new(p.x, p.y, p.z)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn graded_samples_grow_from_the_short_ends_to_the_edge_piece_length() {
+        let line = |t: f64| DVec3::new(100.0 * t, 0.0, 0.0);
+        let ends = (DVec3::ZERO, DVec3::new(100.0, 0.0, 0.0));
+        let points = sample_graded(line, (0.0, 1.0), ends, (10, 10.0), (0.5, 2.0));
+        let pieces: Vec<f64> = points.windows(2).map(|w| w[0].distance(w[1])).collect();
+        assert_eq!(points[0], ends.0);
+        assert_eq!(points[points.len() - 1], ends.1);
+        assert!((pieces[0] - 0.5).abs() < 0.1, "{pieces:?}");
+        assert!((pieces[pieces.len() - 1] - 2.0).abs() < 0.3, "{pieces:?}");
+        assert!(pieces.iter().all(|&p| p <= 10.0 + 1e-9), "{pieces:?}");
+        for pair in pieces.windows(2) {
+            let ratio = pair[1].max(pair[0]) / pair[1].min(pair[0]);
+            assert!(ratio < 1.3, "{pieces:?}");
+        }
+    }
 }

@@ -3,9 +3,10 @@
 //! soup in millimetres.
 //!
 //! Input: the file's bytes and [`TessellateOptions`] (mesh size and chord tolerance in
-//! millimetres, defaults from the part's size). Output: a [`StepInput`]. The length unit declared
-//! in the file (`SI_UNIT` with its prefix, or a `CONVERSION_BASED_UNIT` of inch or foot) is
-//! applied: the reader does not apply it. Each shell is converted and meshed under
+//! millimetres, defaults from the part's size). Output: a [`StepInput`]. The units of the
+//! context each shell's representation is in are applied ([`units`]: a length unit `SI_UNIT`
+//! with its prefix or a `CONVERSION_BASED_UNIT` such as the inch, and degrees for cone angles):
+//! truck-stepio applies neither. Each shell is converted, scaled to millimetres and meshed under
 //! `catch_unwind`, so a file that makes truck panic gives an error naming the shell, never a
 //! crash; a face truck-stepio drops (its surface is of a kind it cannot read) is an error naming
 //! the face and its surface entity. Faces are meshed by [`crate::tessellate::brep`] (each edge
@@ -13,16 +14,21 @@
 //! file with no shell (a surface-only export) has its loose B-spline and NURBS surfaces meshed
 //! over their whole parameter domains by the patch mesher.
 
-use std::collections::{BTreeMap, BTreeSet};
+mod statements;
+mod units;
+
+use std::collections::BTreeSet;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::Path;
 
 use glam::DVec2;
 use truck_meshalgo::prelude::*;
-use truck_modeling::{BSplineSurface, NurbsSurface, Vector4};
+use truck_modeling::{BSplineSurface, Matrix4, NurbsSurface, Vector4};
 use truck_stepio::r#in::Table;
 use truck_stepio::r#in::ruststep::tables::IntoOwned;
 
+use self::statements::{Statement, Statements};
+use self::units::{ContextUnits, file_units, units_of};
 use super::IngestError;
 use crate::mesh::TriangleSoup;
 use crate::tessellate::brep::{StepShell, mesh_shell, shells_size, weld_coincident};
@@ -35,7 +41,8 @@ use crate::tessellate::{
 /// Options of STEP ingest: the tessellation options (mesh size and chord, millimetres).
 pub type StepOptions = TessellateOptions;
 
-/// Geometric entities truck-stepio converts; other `*_SURFACE` and `*_CURVE` entities are not.
+/// Geometric entities truck-stepio converts (and `TRIMMED_CURVE`, which flatcut replaces by its
+/// basis curve); other `*_SURFACE` and `*_CURVE` entities are not.
 const SUPPORTED_GEOMETRY: &[&str] = &[
     "LINE",
     "POLYLINE",
@@ -53,6 +60,7 @@ const SUPPORTED_GEOMETRY: &[&str] = &[
     "PCURVE",
     "SURFACE_CURVE",
     "SEAM_CURVE",
+    "TRIMMED_CURVE",
     "EDGE_CURVE",
     "PLANE",
     "SPHERICAL_SURFACE",
@@ -81,8 +89,6 @@ pub struct StepInput {
     /// The faces, in millimetres; face sources number the shells' faces in file order (a face
     /// boundary is an edge between triangles of different sources).
     pub soup: TriangleSoup,
-    /// Millimetres per file unit that were applied.
-    pub unit_millimetres: f64,
     /// Target edge length used, millimetres.
     pub mesh_size: f64,
     /// Chord tolerance used, millimetres.
@@ -103,8 +109,8 @@ pub fn read_step(
     };
     let text =
         std::str::from_utf8(bytes).map_err(|e| error(format!("not a text STEP file: {e}")))?;
-    let unit_millimetres = length_unit_millimetres(text).map_err(error)?;
-    let statements = statements(text);
+    let statements = Statements::parse(text);
+    let default_units = file_units(&statements).map_err(error)?;
     let unsupported = unsupported_entities(&statements);
     let unsupported_note = || {
         if unsupported.is_empty() {
@@ -121,19 +127,16 @@ pub fn read_step(
         }
     };
     let text = &prefer_3d_curves(text);
+    let text = &rewritten_for_truck(text, &statements, default_units).map_err(error)?;
     let table = catch_unwind(|| Table::from_step(text))
         .ok()
         .flatten()
         .ok_or_else(|| error("not a valid STEP exchange structure (ISO 10303-21); export it again from the CAD system".into()))?;
-    let file_units = TessellateOptions {
-        mesh_size: options.mesh_size.map(|m| m / unit_millimetres),
-        chord: options.chord.map(|c| c / unit_millimetres),
-    };
     let mut shell_ids: Vec<u64> = table.shell.keys().copied().collect();
     shell_ids.sort_unstable();
     let mut soup = TriangleSoup::default();
     let (mesh_size, chord) = if shell_ids.is_empty() {
-        let surfaces = loose_surfaces(&table)
+        let surfaces = loose_surfaces(&table, &statements, default_units)
             .map_err(|message| error(format!("{message}{}", unsupported_note())))?;
         if surfaces.is_empty() {
             return Err(error(format!(
@@ -141,13 +144,13 @@ pub fn read_step(
                 unsupported_note()
             )));
         }
-        append_loose_surfaces(&mut soup, &surfaces, &file_units).map_err(error)?
+        append_loose_surfaces(&mut soup, &surfaces, options).map_err(error)?
     } else {
-        let shells = convert_shells(&table, &shell_ids, &statements)
+        let shells = convert_shells(&table, &shell_ids, &statements, default_units)
             .map_err(|message| error(format!("{message}{}", unsupported_note())))?;
         let size = shells_size(&shells);
         let (mesh_size, chord) =
-            sizes_for_diagonal(size, &file_units).map_err(|e| error(e.to_string()))?;
+            sizes_for_diagonal(size, options).map_err(|e| error(e.to_string()))?;
         for (shell_id, shell) in shell_ids.iter().zip(&shells) {
             let first_source = soup.face_sources.last().map_or(0, |s| s + 1);
             mesh_shell(&mut soup, shell, first_source, mesh_size, chord, size).map_err(|e| {
@@ -167,9 +170,6 @@ pub fn read_step(
             unsupported_note()
         )));
     }
-    for p in &mut soup.positions {
-        *p *= unit_millimetres;
-    }
     let name = path
         .file_stem()
         .and_then(|s| s.to_str())
@@ -179,9 +179,8 @@ pub fn read_step(
         name,
         minimum_angle: minimum_angle(&soup),
         soup,
-        unit_millimetres,
-        mesh_size: mesh_size * unit_millimetres,
-        chord: chord * unit_millimetres,
+        mesh_size,
+        chord,
     })
 }
 
@@ -194,14 +193,124 @@ fn prefer_3d_curves(text: &str) -> String {
         .replace(".PCURVE_S2.", ".CURVE_3D.")
 }
 
-/// Converts the shells with truck-stepio; a face it drops (an unreadable surface) is an error
-/// naming the face. Faces on surfaces flatcut knows truck-stepio cannot read are named before
+/// The file rewritten where truck-stepio would misread it: every `CONICAL_SURFACE`'s
+/// semi-angle in radians (truck-stepio reads it as radians, but it is in the plane angle unit of
+/// its representation's context: degrees in files CATIA V4 writes), and every `TRIMMED_CURVE`
+/// replaced by its basis curve (truck-stepio cannot read trimmed curves; an edge's vertices
+/// bound its curve anyway).
+fn rewritten_for_truck(
+    text: &str,
+    statements: &Statements,
+    default_units: ContextUnits,
+) -> Result<String, String> {
+    let mut replacements = Vec::new();
+    for (&id, statement) in statements.iter() {
+        if statement.is("CONICAL_SURFACE") {
+            let radians = units_of(statements, id)?.unwrap_or(default_units).radians;
+            if radians != 1.0 {
+                let rewritten = with_last_argument_scaled(&statement.body, radians)
+                    .ok_or_else(|| format!("CONICAL_SURFACE #{id} could not be read"))?;
+                replacements.push((id, rewritten));
+            }
+        } else if statement.is("TRIMMED_CURVE")
+            && let Some(basis) = basis_curve(statements, id)
+        {
+            replacements.push((id, basis.body.clone()));
+        }
+    }
+    let mut spans = Vec::with_capacity(replacements.len());
+    for (id, body) in replacements {
+        let (start, end) =
+            statement_span(text, id).ok_or_else(|| format!("#{id} could not be read"))?;
+        spans.push((start, end, format!("#{id}={body}")));
+    }
+    spans.sort_unstable_by_key(|&(start, _, _)| start);
+    let mut rewritten = String::with_capacity(text.len());
+    let mut copied = 0;
+    for (start, end, statement) in spans {
+        rewritten.push_str(&text[copied..start]);
+        rewritten.push_str(&statement);
+        copied = end;
+    }
+    rewritten.push_str(&text[copied..]);
+    Ok(rewritten)
+}
+
+/// Trimmed curves are nested at most this deep.
+const MAX_TRIM_DEPTH: usize = 8;
+
+/// The curve a `TRIMMED_CURVE` (possibly of another trimmed curve) trims.
+fn basis_curve(statements: &Statements, id: u64) -> Option<&Statement> {
+    let mut current = statements.get(&id)?;
+    for _ in 0..MAX_TRIM_DEPTH {
+        if !current.is("TRIMMED_CURVE") {
+            return Some(current);
+        }
+        current = statements.get(current.references.first()?)?;
+    }
+    None
+}
+
+/// `NAME(..., x)` with its last argument (a number) multiplied by `factor`.
+fn with_last_argument_scaled(body: &str, factor: f64) -> Option<String> {
+    let close = body.rfind(')')?;
+    let comma = body[..close].rfind(',')?;
+    let value: f64 = body[comma + 1..close].trim().parse().ok()?;
+    Some(format!(
+        "{},{:?}{}",
+        &body[..comma],
+        value * factor,
+        &body[close..]
+    ))
+}
+
+/// The byte range of instance `#id`'s statement in `text`, from its `#` to before its `;`.
+fn statement_span(text: &str, id: u64) -> Option<(usize, usize)> {
+    let label = format!("#{id}");
+    let mut from = 0;
+    while let Some(found) = text[from..].find(&label) {
+        let start = from + found;
+        let after = &text[start + label.len()..];
+        let before = text[..start].trim_end();
+        let at_statement = before.is_empty() || before.ends_with(';') || before.ends_with("*/");
+        if after.trim_start().starts_with('=') && at_statement {
+            let end = start + after.find(';')? + label.len();
+            return Some((start, end));
+        }
+        from = start + label.len();
+    }
+    None
+}
+
+/// A shell with its vertices, curves and surfaces scaled by `factor` (file units to
+/// millimetres).
+fn scaled_shell(mut shell: StepShell, factor: f64) -> StepShell {
+    if factor == 1.0 {
+        return shell;
+    }
+    let scale = Matrix4::from_scale(factor);
+    for vertex in &mut shell.vertices {
+        *vertex = Point3::from_vec(vertex.to_vec() * factor);
+    }
+    for edge in &mut shell.edges {
+        edge.curve.transform_by(scale);
+    }
+    for face in &mut shell.faces {
+        face.surface.transform_by(scale);
+    }
+    shell
+}
+
+/// Converts the shells with truck-stepio and scales each to millimetres by the units of its
+/// representation (`default_units` where none is found); a face it drops (an unreadable
+/// surface) is an error naming the face. Faces on surfaces flatcut knows truck-stepio cannot read are named before
 /// truck-stepio is called: it would print `Lookup failed for #N` on stderr for each (it
 /// reports a failed lookup of a referenced entity on stderr and drops the face).
 fn convert_shells(
     table: &Table,
     shell_ids: &[u64],
     statements: &Statements,
+    default_units: ContextUnits,
 ) -> Result<Vec<StepShell>, String> {
     let mut shells = Vec::with_capacity(shell_ids.len());
     for &id in shell_ids {
@@ -228,60 +337,120 @@ fn convert_shells(
         if converted.faces.len() < declared.len() {
             return Err(cannot_read(declared.len() - converted.faces.len()));
         }
-        shells.push(converted);
+        let units = units_of(statements, id)?.unwrap_or(default_units);
+        shells.push(scaled_shell(converted, units.millimetres));
     }
     Ok(shells)
 }
 
-/// The faces among `faces` whose surface is missing or of a kind truck-stepio cannot read,
-/// described for an error message.
+/// The faces among `faces` whose surface or one of whose edges' curves is missing or of a kind
+/// truck-stepio cannot read, described for an error message.
 fn unreadable_faces(statements: &Statements, faces: &[u64]) -> Vec<String> {
     faces
         .iter()
-        .filter(|&&face| {
-            face_surface(statements, face)
-                .is_none_or(|(_, names)| names.iter().any(|name| is_unsupported_geometry(name)))
+        .filter_map(|&face| {
+            let surface_unreadable = face_surface(statements, face)
+                .is_none_or(|(_, names)| names.iter().any(|name| is_unsupported_geometry(name)));
+            if surface_unreadable {
+                return Some(describe_face(statements, face));
+            }
+            unreadable_edge(statements, face)
+                .map(|edge| format!("{}: {edge}", describe_face(statements, face)))
         })
-        .map(|&face| describe_face(statements, face))
         .collect()
+}
+
+/// The first edge of a face whose curve truck-stepio cannot read, described (`edge
+/// EDGE_CURVE #33 on OFFSET_CURVE_3D (#32)`).
+fn unreadable_edge(statements: &Statements, face: u64) -> Option<String> {
+    let mut statement = statements.get(&face)?;
+    if statement.is("ORIENTED_FACE") {
+        statement = statements.get(statement.references.last()?)?;
+    }
+    let bounds = statement
+        .references
+        .iter()
+        .filter_map(|r| statements.get(r));
+    let loops = bounds.filter_map(|bound| statements.get(bound.references.first()?));
+    for edge_loop in loops.filter(|l| l.is("EDGE_LOOP")) {
+        for oriented in edge_loop
+            .references
+            .iter()
+            .filter_map(|r| statements.get(r))
+        {
+            let Some(&edge) = oriented.references.last() else {
+                continue;
+            };
+            let Some(curve) = statements.get(&edge).and_then(|e| e.references.get(2)) else {
+                return Some(format!("edge #{edge} is missing"));
+            };
+            if let Some(unreadable) = unreadable_curve(statements, curve) {
+                return Some(format!("edge EDGE_CURVE #{edge} on {unreadable}"));
+            }
+        }
+    }
+    None
+}
+
+/// The curve (or the 3D curve of a surface curve, or the basis of a trimmed curve) truck-stepio
+/// cannot read, described (`OFFSET_CURVE_3D (#32)`).
+fn unreadable_curve(statements: &Statements, curve: u64) -> Option<String> {
+    let Some(statement) = statements.get(&curve) else {
+        return Some(format!("#{curve}, which is missing"));
+    };
+    let describe =
+        |statement: &Statement, id: u64| format!("{} (#{id})", statement.names.join(" "));
+    if statement.is("SURFACE_CURVE") || statement.is("SEAM_CURVE") {
+        return unreadable_curve(statements, *statement.references.first()?);
+    }
+    if statement.is("TRIMMED_CURVE") {
+        return match basis_curve(statements, curve) {
+            Some(_) => unreadable_curve(statements, *statement.references.first()?),
+            None => Some(describe(statement, curve)),
+        };
+    }
+    statement
+        .names
+        .iter()
+        .any(|name| is_unsupported_geometry(name))
+        .then(|| describe(statement, curve))
 }
 
 /// The face entities a shell statement lists, in order.
 fn shell_faces(statements: &Statements, shell: u64) -> Vec<u64> {
-    statements
-        .get(&shell)
-        .map_or(Vec::new(), |(_, references)| {
-            references
-                .iter()
-                .copied()
-                .filter(|r| {
-                    statements.get(r).is_some_and(|(names, _)| {
-                        names
-                            .iter()
-                            .any(|name| FACE_ENTITIES.contains(&name.as_str()))
-                    })
+    statements.get(&shell).map_or(Vec::new(), |statement| {
+        statement
+            .references
+            .iter()
+            .copied()
+            .filter(|r| {
+                statements.get(r).is_some_and(|face| {
+                    face.names
+                        .iter()
+                        .any(|name| FACE_ENTITIES.contains(&name.as_str()))
                 })
-                .collect()
-        })
+            })
+            .collect()
+    })
 }
 
 /// A face's surface entity `(id, names)` (through an oriented face).
 fn face_surface(statements: &Statements, face: u64) -> Option<(u64, Vec<String>)> {
-    let (names, references) = statements.get(&face)?;
-    if names.iter().any(|name| name == "ORIENTED_FACE") {
-        return face_surface(statements, *references.last()?);
+    let statement = statements.get(&face)?;
+    if statement.is("ORIENTED_FACE") {
+        return face_surface(statements, *statement.references.last()?);
     }
-    let surface = *references.last()?;
+    let surface = *statement.references.last()?;
     statements
         .get(&surface)
-        .map(|(names, _)| (surface, names.clone()))
+        .map(|found| (surface, found.names.clone()))
 }
 
 /// `ADVANCED_FACE #17 on CONICAL_SURFACE #31`.
 fn describe_face(statements: &Statements, face: u64) -> String {
     let name = statements
         .get(&face)
-        .and_then(|(names, _)| names.first())
+        .and_then(|statement| statement.names.first())
         .map_or("face", String::as_str);
     match face_surface(statements, face) {
         Some((id, surface)) => format!("{name} #{face} on {} (#{id})", surface.join(" ")),
@@ -290,8 +459,18 @@ fn describe_face(statements: &Statements, face: u64) -> String {
 }
 
 /// The B-spline and NURBS surfaces of a file with no shell (a surface-only export), each with
-/// its entity id, as truck-geometry NURBS patches.
-fn loose_surfaces(table: &Table) -> Result<Vec<(u64, PatchGeometry)>, String> {
+/// its entity id, as truck-geometry NURBS patches in millimetres (by the units of each
+/// surface's representation, `default_units` where none is found).
+fn loose_surfaces(
+    table: &Table,
+    statements: &Statements,
+    default_units: ContextUnits,
+) -> Result<Vec<(u64, PatchGeometry)>, String> {
+    let millimetres = |id: u64| -> Result<f64, String> {
+        Ok(units_of(statements, id)?
+            .unwrap_or(default_units)
+            .millimetres)
+    };
     let mut surfaces = Vec::new();
     let mut ids: Vec<u64> = table.b_spline_surface_with_knots.keys().copied().collect();
     ids.sort_unstable();
@@ -317,7 +496,9 @@ fn loose_surfaces(table: &Table) -> Result<Vec<(u64, PatchGeometry)>, String> {
             .collect();
         let surface = BSplineSurface::try_new(knots, homogeneous)
             .map_err(|e| format!("B_SPLINE_SURFACE_WITH_KNOTS #{id}: {e}"))?;
-        surfaces.push((id, PatchGeometry::nurbs(surface)));
+        let scale = Matrix4::from_scale(millimetres(id)?);
+        let surface = NurbsSurface::new(surface).transformed(scale);
+        surfaces.push((id, PatchGeometry::Nurbs(surface)));
     }
     let mut ids: Vec<u64> = table.rational_b_spline_surface.keys().copied().collect();
     ids.sort_unstable();
@@ -329,17 +510,18 @@ fn loose_surfaces(table: &Table) -> Result<Vec<(u64, PatchGeometry)>, String> {
         }))
         .map_err(|_| format!("RATIONAL_B_SPLINE_SURFACE #{id}: truck-stepio failed on it"))?
         .map_err(|e| format!("RATIONAL_B_SPLINE_SURFACE #{id}: {e}"))?;
-        surfaces.push((id, PatchGeometry::Nurbs(converted)));
+        let scale = Matrix4::from_scale(millimetres(id)?);
+        surfaces.push((id, PatchGeometry::Nurbs(converted.transformed(scale))));
     }
     Ok(surfaces)
 }
 
-/// Meshes loose surfaces over their whole parameter domains with the patch mesher (file units);
-/// returns the mesh size and chord of the last surface.
+/// Meshes loose surfaces over their whole parameter domains with the patch mesher
+/// (millimetres); returns the mesh size and chord of the last surface.
 fn append_loose_surfaces(
     soup: &mut TriangleSoup,
     surfaces: &[(u64, PatchGeometry)],
-    file_units: &TessellateOptions,
+    options: &TessellateOptions,
 ) -> Result<(f64, f64), String> {
     let mut sizes = (0.0, 0.0);
     for (index, (id, geometry)) in surfaces.iter().enumerate() {
@@ -369,7 +551,7 @@ fn append_loose_surfaces(
             weld: true,
         };
         let (mesh_size, chord) =
-            resolve_sizes(&part, file_units).map_err(|e| format!("surface #{id}: {e}"))?;
+            resolve_sizes(&part, options).map_err(|e| format!("surface #{id}: {e}"))?;
         sizes = (mesh_size, chord);
         let mesh = catch_unwind(AssertUnwindSafe(|| {
             mesh_patch(&patch, &[], mesh_size, chord)
@@ -386,62 +568,6 @@ fn append_loose_surfaces(
     Ok(sizes)
 }
 
-/// Each entity instance of the data section: its names (several for a complex instance) and
-/// the instances it refers to, in order.
-type Statements = BTreeMap<u64, (Vec<String>, Vec<u64>)>;
-
-/// Entity instances `#id = NAME(...)` of the data section (see [`Statements`]).
-fn statements(text: &str) -> Statements {
-    let mut statements = Statements::new();
-    for statement in text.split(';') {
-        let statement = statement.trim();
-        let Some(rest) = statement.strip_prefix('#') else {
-            continue;
-        };
-        let Some((id, body)) = rest.split_once('=') else {
-            continue;
-        };
-        let Ok(id) = id.trim().parse::<u64>() else {
-            continue;
-        };
-        let body = body.trim();
-        let mut names = Vec::new();
-        if let Some(complex) = body.strip_prefix('(') {
-            let mut depth = 0usize;
-            let mut word = String::new();
-            for c in complex.chars() {
-                match c {
-                    '(' => {
-                        if depth == 0 && !word.trim().is_empty() {
-                            names.push(word.trim().to_string());
-                        }
-                        word.clear();
-                        depth += 1;
-                    }
-                    ')' => depth = depth.saturating_sub(1),
-                    _ if depth == 0 => word.push(c),
-                    _ => {}
-                }
-            }
-        } else if let Some((name, _)) = body.split_once('(') {
-            names.push(name.trim().to_string());
-        }
-        statements.insert(id, (names, references(body)));
-    }
-    statements
-}
-
-/// The `#id` references of a statement's body, in order.
-fn references(body: &str) -> Vec<u64> {
-    body.split('#')
-        .skip(1)
-        .filter_map(|rest| {
-            let digits: String = rest.chars().take_while(char::is_ascii_digit).collect();
-            digits.parse().ok()
-        })
-        .collect()
-}
-
 /// Whether a name is a geometric entity (`*_SURFACE`, `*_CURVE`) truck-stepio does not convert.
 fn is_unsupported_geometry(name: &str) -> bool {
     (name.ends_with("_SURFACE") || name.ends_with("_CURVE") || name.ends_with("_CURVE_3D"))
@@ -453,8 +579,9 @@ fn is_unsupported_geometry(name: &str) -> bool {
 fn unsupported_entities(statements: &Statements) -> BTreeSet<(u64, String)> {
     statements
         .iter()
-        .flat_map(|(id, (names, _))| {
-            names
+        .flat_map(|(id, statement)| {
+            statement
+                .names
                 .iter()
                 .filter(|name| is_unsupported_geometry(name))
                 .map(|name| (*id, name.clone()))
@@ -462,65 +589,14 @@ fn unsupported_entities(statements: &Statements) -> BTreeSet<(u64, String)> {
         .collect()
 }
 
-/// Millimetres per length unit of the file: its `LENGTH_UNIT` (SI metre with a prefix, or a
-/// conversion-based inch or foot). Millimetres when the file declares none.
-pub fn length_unit_millimetres(text: &str) -> Result<f64, String> {
-    let compact: String = text
-        .chars()
-        .filter(|c| !c.is_whitespace())
-        .collect::<String>()
-        .to_ascii_uppercase();
-    let length_units: Vec<&str> = compact
-        .split(';')
-        .filter(|statement| statement.contains("LENGTH_UNIT("))
-        .collect();
-    // A conversion-based unit refers to an SI unit of its own: it is the file's unit.
-    let marker = "CONVERSION_BASED_UNIT('";
-    if let Some(statement) = length_units.iter().find(|s| s.contains(marker)) {
-        let start = statement.find(marker).map_or(0, |i| i + marker.len());
-        let name = statement[start..].split('\'').next().unwrap_or_default();
-        return match name {
-            "INCH" | "IN" => Ok(25.4),
-            "FOOT" | "FT" => Ok(304.8),
-            "MILLIMETRE" | "MM" => Ok(1.0),
-            other => Err(format!(
-                "the length unit '{other}' is not supported; export in millimetres, metres, inches or feet"
-            )),
-        };
-    }
-    let si = length_units
-        .iter()
-        .find(|s| s.contains("SI_UNIT(") && s.contains(".METRE."));
-    Ok(match si {
-        Some(statement) if statement.contains(".MILLI.") => 1.0,
-        Some(statement) if statement.contains(".CENTI.") => 10.0,
-        Some(statement) if statement.contains(".MICRO.") => 1e-3,
-        Some(statement) if statement.contains(".KILO.") => 1e6,
-        Some(_) => 1000.0,
-        None => 1.0,
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn units_are_read_from_the_length_unit() {
-        let millimetres = "#1=(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.));";
-        let metres = "#1=( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT($,.METRE.) );";
-        let inches = "#3=(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.));\n#2=(CONVERSION_BASED_UNIT('INCH',#3)LENGTH_UNIT()NAMED_UNIT(#4));";
-        let feet = "#2=(CONVERSION_BASED_UNIT('FOOT',#3)LENGTH_UNIT()NAMED_UNIT(#4));";
-        assert_eq!(length_unit_millimetres(millimetres), Ok(1.0));
-        assert_eq!(length_unit_millimetres(metres), Ok(1000.0));
-        assert_eq!(length_unit_millimetres(inches), Ok(25.4));
-        assert_eq!(length_unit_millimetres(feet), Ok(304.8));
-    }
-
-    #[test]
     fn unsupported_geometry_is_named() {
         let text = "#10=OFFSET_SURFACE('',#11,2.,.F.);\n#11=PLANE('',#12);\n#12=SURFACE_STYLE_USAGE(.BOTH.,#13);";
-        let found = unsupported_entities(&statements(text));
+        let found = unsupported_entities(&Statements::parse(text));
         assert_eq!(
             found.into_iter().collect::<Vec<_>>(),
             vec![(10, "OFFSET_SURFACE".to_string())]
