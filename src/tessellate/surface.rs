@@ -151,7 +151,7 @@ impl Fraction {
 
 /// The fractions (in `(0, 1]`, increasing, ending at 1) that split `[0, 1]` at `stations` and
 /// each stretch between them into `pieces(stretch)` equal pieces. Stations outside `(0, 1)` or
-/// within [`STATION_TOLERANCE`] of an end or of each other are dropped.
+/// within `STATION_TOLERANCE` (1e-9) of an end or of each other are dropped.
 pub fn fractions_through(stations: &[f64], pieces: impl Fn(f64) -> usize) -> Vec<Fraction> {
     let mut stops: Vec<f64> = stations
         .iter()

@@ -4,7 +4,7 @@
 //!
 //! Input: the file's bytes and [`TessellateOptions`] (mesh size and chord tolerance in
 //! millimetres, defaults from the part's size). Output: a [`StepInput`]. The units of the
-//! context each shell's representation is in are applied ([`units`]: a length unit `SI_UNIT`
+//! context each shell's representation is in are applied (`units.rs`: a length unit `SI_UNIT`
 //! with its prefix or a `CONVERSION_BASED_UNIT` such as the inch, and degrees for cone angles):
 //! truck-stepio applies neither. Each shell is converted, scaled to millimetres and meshed under
 //! `catch_unwind`, so a file that makes truck panic gives an error naming the shell, never a
