@@ -39,15 +39,19 @@ pub fn check_loops(
             "a loop needs at least three points",
         )?;
         check(
-            points.iter().all(|p| p.is_finite())
-                && polygon_area(points).abs() > tolerance * extent(points),
+            points.iter().all(|p| p.is_finite()),
             field,
-            "the loop has (almost) no area",
+            "every point must be a finite number",
         )?;
         check(
             !self_intersects(points),
             field,
             "the loop intersects itself",
+        )?;
+        check(
+            polygon_area(points).abs() > tolerance * extent(points),
+            field,
+            "the loop has (almost) no area",
         )?;
     }
     for (i, (field, hole)) in named.iter().enumerate().skip(1) {

@@ -583,5 +583,6 @@ mod tests {
         let error = error_of(text);
         assert_eq!(error.field, "surface[0].trim.holes[0]");
         assert_eq!(error.line, Some(5));
+        assert!(error.to_string().contains("intersects itself"), "{error}");
     }
 }
