@@ -370,8 +370,13 @@ fn unsupported_step_content_is_named() {
 
 /// Writes `text` as a STEP file in a temporary directory and flattens it with the CLI.
 fn flatten_step_text(text: &str) -> std::process::Output {
+    flatten_text_as("part.step", text)
+}
+
+/// Writes `text` to a file called `name` in a temporary directory and flattens it with the CLI.
+fn flatten_text_as(name: &str, text: &str) -> std::process::Output {
     let directory = tempfile::tempdir().expect("temporary directory");
-    let path = directory.path().join("part.step");
+    let path = directory.path().join(name);
     std::fs::write(&path, text).expect("writes");
     flatcut(&[
         "flatten",
@@ -379,6 +384,15 @@ fn flatten_step_text(text: &str) -> std::process::Output {
         "-o",
         directory.path().join("out").to_str().expect("utf-8"),
     ])
+}
+
+/// Flattens the part file `text` with the CLI and checks that it exits 1 with `expected` (the
+/// file, line and field) on stderr.
+fn assert_part_text_exits_1_naming(text: &str, expected: &str) {
+    let output = flatten_text_as("part.toml", text);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains(expected), "{stderr}");
 }
 
 #[test]
@@ -996,7 +1010,6 @@ fn folds_on_an_oblique_cone_an_extrusion_a_loft_and_a_dome_are_carried_onto_the_
 
 #[test]
 fn a_fold_polyline_off_its_surface_or_through_a_trim_hole_exits_1_naming_it() {
-    let directory = tempfile::tempdir().expect("temporary directory");
     let cases = [
         (
             "[[surface]]\nkind = \"cylinder\"\nradius = 50.0\nheight = 100.0\n\n\
@@ -1012,17 +1025,7 @@ fn a_fold_polyline_off_its_surface_or_through_a_trim_hole_exits_1_naming_it() {
         ),
     ];
     for (text, expected) in cases {
-        let path = directory.path().join("part.toml");
-        std::fs::write(&path, text).expect("writes");
-        let output = flatcut(&[
-            "flatten",
-            path.to_str().expect("utf-8"),
-            "-o",
-            directory.path().join("out").to_str().expect("utf-8"),
-        ]);
-        let stderr = String::from_utf8_lossy(&output.stderr);
-        assert_eq!(output.status.code(), Some(1), "{stderr}");
-        assert!(stderr.contains(expected), "{stderr}");
+        assert_part_text_exits_1_naming(text, expected);
     }
 }
 
@@ -1193,7 +1196,6 @@ fn parameter_regions_select_the_springs_inside_them_on_every_kind() {
 
 #[test]
 fn a_parameter_region_off_its_surface_or_a_reversed_box_exits_1_naming_it() {
-    let directory = tempfile::tempdir().expect("temporary directory");
     let cylinder = "[[surface]]\nkind = \"cylinder\"\nradius = 50.0\nheight = 100.0\nangles = [0.0, 120.0]\n\n\
                     [[stiffness_region]]\nfactor = 5.0\nsurface = 0\n";
     let cases = [
@@ -1211,17 +1213,7 @@ fn a_parameter_region_off_its_surface_or_a_reversed_box_exits_1_naming_it() {
         ),
     ];
     for (text, expected) in cases {
-        let path = directory.path().join("part.toml");
-        std::fs::write(&path, text).expect("writes");
-        let output = flatcut(&[
-            "flatten",
-            path.to_str().expect("utf-8"),
-            "-o",
-            directory.path().join("out").to_str().expect("utf-8"),
-        ]);
-        let stderr = String::from_utf8_lossy(&output.stderr);
-        assert_eq!(output.status.code(), Some(1), "{stderr}");
-        assert!(stderr.contains(expected), "{stderr}");
+        assert_part_text_exits_1_naming(&text, expected);
     }
 }
 

@@ -234,9 +234,9 @@ fn build_profile(start: [f64; 2], segments: &[ProfileSegmentSpec]) -> Result<Pro
 /// Pieces per arc when a profile is checked for crossing itself or the axis.
 const PROFILE_CHECK_PIECES: usize = 64;
 
-/// The profile as a polyline: its points, and for each piece (between points `k` and `k + 1`) the
-/// index of the segment it belongs to.
-fn profile_polyline(profile: &Profile) -> (Vec<DVec2>, Vec<usize>) {
+/// The profile as a polyline: its points, for each piece (between points `k` and `k + 1`) the
+/// index of the segment it belongs to, and the geometry tolerance at the profile's size.
+fn profile_polyline(profile: &Profile) -> (Vec<DVec2>, Vec<usize>, f64) {
     let mut points = vec![profile.start];
     let mut segment_of_piece = Vec::new();
     for (index, segment) in profile.segments.iter().enumerate() {
@@ -256,18 +256,17 @@ fn profile_polyline(profile: &Profile) -> (Vec<DVec2>, Vec<usize>) {
         segment_of_piece.extend(std::iter::repeat_n(index, sampled.len() - 1));
         points.extend(&sampled[1..]);
     }
-    (points, segment_of_piece)
+    let size = points
+        .iter()
+        .map(|p| p.distance(profile.start))
+        .fold(0.0, f64::max);
+    (points, segment_of_piece, GEOMETRY_TOLERANCE * size)
 }
 
 /// Checks that a profile neither crosses nor touches itself (a closed profile only at its start)
 /// and never turns straight back over itself.
 fn check_simple_profile(profile: &Profile) -> Result<(), SpecDefect> {
-    let (points, segment_of_piece) = profile_polyline(profile);
-    let size = points
-        .iter()
-        .map(|p| p.distance(profile.start))
-        .fold(0.0, f64::max);
-    let tolerance = GEOMETRY_TOLERANCE * size;
+    let (points, segment_of_piece, tolerance) = profile_polyline(profile);
     let closed = profile.is_closed(tolerance);
     let pieces = points.len() - 1;
     let crossing = |i: usize, j: usize| {
@@ -326,12 +325,7 @@ fn point_segment_distance(point: DVec2, (from, to): (DVec2, DVec2)) -> f64 {
 /// at its ends (a pole); a stretch on the axis, or a touch between the ends, would pinch the
 /// surface to a point.
 fn check_profile_off_axis(profile: &Profile) -> Result<(), SpecDefect> {
-    let (points, segment_of_piece) = profile_polyline(profile);
-    let size = points
-        .iter()
-        .map(|p| p.distance(profile.start))
-        .fold(0.0, f64::max);
-    let tolerance = GEOMETRY_TOLERANCE * size;
+    let (points, segment_of_piece, tolerance) = profile_polyline(profile);
     let last = points.len() - 1;
     let on_axis = (1..last).find(|&k| points[k].x <= tolerance);
     let beyond = (0..=last).find(|&k| points[k].x < -tolerance);
