@@ -368,9 +368,12 @@ fn unsupported_step_content_is_named() {
     );
 }
 
-/// Writes `text` as a STEP file in a temporary directory and flattens it with the CLI.
-fn flatten_step_text(text: &str) -> std::process::Output {
-    flatten_text_as("part.step", text)
+/// Writes the STEP `text` to a temporary file, flattens it with the CLI, checks that it exits 1 and returns its stderr.
+fn step_text_error(text: &str) -> String {
+    let output = flatten_text_as("part.step", text);
+    let message = String::from_utf8_lossy(&output.stderr).into_owned();
+    assert_eq!(output.status.code(), Some(1), "{message}");
+    message
 }
 
 /// Writes `text` to a file called `name` in a temporary directory and flattens it with the CLI.
@@ -403,9 +406,7 @@ fn a_face_on_an_unsupported_surface_and_a_file_without_surfaces_exit_1_naming_wh
         "#5 = RECTANGULAR_TRIMMED_SURFACE('',#6,0.,6.28,0.,4.,.T.,.T.);\n#6 = CONICAL_SURFACE(",
     );
     assert_ne!(trimmed, cone);
-    let output = flatten_step_text(&trimmed);
-    assert_eq!(output.status.code(), Some(1));
-    let message = String::from_utf8_lossy(&output.stderr);
+    let message = step_text_error(&trimmed);
     assert!(
         message.contains("ADVANCED_FACE #46 on RECTANGULAR_TRIMMED_SURFACE (#5)"),
         "{message}"
@@ -416,9 +417,7 @@ fn a_face_on_an_unsupported_surface_and_a_file_without_surfaces_exit_1_naming_wh
         FILE_NAME('p.step','2026-11-22T00:00:00',(''),(''),'','','');\n\
         FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n\
         #1 = CARTESIAN_POINT('',(0.,0.,0.));\nENDSEC;\nEND-ISO-10303-21;\n";
-    let output = flatten_step_text(points_only);
-    assert_eq!(output.status.code(), Some(1));
-    let message = String::from_utf8_lossy(&output.stderr);
+    let message = step_text_error(points_only);
     assert!(
         message.contains("no shell, face or B-spline surface"),
         "{message}"
@@ -441,9 +440,7 @@ fn a_trimmed_edge_curve_is_read_as_its_basis_and_an_unreadable_one_is_named() {
         .model
         .area();
     assert!((trimmed - reference).abs() <= 1e-9 * reference, "{trimmed}");
-    let output = flatten_step_text(&with_curve("OFFSET_CURVE_3D('',#38,1.,.F.,#30)"));
-    assert_eq!(output.status.code(), Some(1));
-    let message = String::from_utf8_lossy(&output.stderr);
+    let message = step_text_error(&with_curve("OFFSET_CURVE_3D('',#38,1.,.F.,#30)"));
     assert!(
         message.contains("ADVANCED_FACE #46 on CONICAL_SURFACE (#5): edge EDGE_CURVE #33 on OFFSET_CURVE_3D (#32)"),
         "{message}"
@@ -506,9 +503,7 @@ const SPHERE_LUNES: &str = "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('lunes'),'
 
 #[test]
 fn a_sphere_split_into_lunes_is_an_error_naming_the_face() {
-    let output = flatten_step_text(SPHERE_LUNES);
-    assert_eq!(output.status.code(), Some(1));
-    let message = String::from_utf8_lossy(&output.stderr);
+    let message = step_text_error(SPHERE_LUNES);
     assert!(
         message.contains("shell #28, ADVANCED_FACE #22 on SPHERICAL_SURFACE (#5)")
             && message.contains("both poles"),

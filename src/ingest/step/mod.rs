@@ -458,6 +458,25 @@ fn describe_face(statements: &Statements, face: u64) -> String {
     }
 }
 
+/// Entity ids in increasing order, so that loose surfaces are met in file order.
+fn sorted_ids<'a>(ids: impl Iterator<Item = &'a u64>) -> Vec<u64> {
+    let mut ids: Vec<u64> = ids.copied().collect();
+    ids.sort_unstable();
+    ids
+}
+
+/// Runs truck-stepio's conversion of the loose surface `entity #id` under `catch_unwind`, so a
+/// panic or a refusal is an error naming the entity.
+fn convert_loose<T>(
+    entity: &str,
+    id: u64,
+    convert: impl FnOnce() -> Result<T, String>,
+) -> Result<T, String> {
+    catch_unwind(AssertUnwindSafe(convert))
+        .map_err(|_| format!("{entity} #{id}: truck-stepio failed on it"))?
+        .map_err(|e| format!("{entity} #{id}: {e}"))
+}
+
 /// The B-spline and NURBS surfaces of a file with no shell (a surface-only export), each with
 /// its entity id, as truck-geometry NURBS patches in millimetres (by the units of each
 /// surface's representation, `default_units` where none is found).
@@ -472,16 +491,12 @@ fn loose_surfaces(
             .millimetres)
     };
     let mut surfaces = Vec::new();
-    let mut ids: Vec<u64> = table.b_spline_surface_with_knots.keys().copied().collect();
-    ids.sort_unstable();
-    for id in ids {
+    for id in sorted_ids(table.b_spline_surface_with_knots.keys()) {
         let holder = table.b_spline_surface_with_knots[&id].clone();
-        let converted = catch_unwind(AssertUnwindSafe(|| {
+        let converted = convert_loose("B_SPLINE_SURFACE_WITH_KNOTS", id, || {
             let owned = holder.into_owned(table).map_err(|e| e.to_string())?;
             BSplineSurface::<Point3>::try_from(&owned).map_err(|e| e.to_string())
-        }))
-        .map_err(|_| format!("B_SPLINE_SURFACE_WITH_KNOTS #{id}: truck-stepio failed on it"))?
-        .map_err(|e| format!("B_SPLINE_SURFACE_WITH_KNOTS #{id}: {e}"))?;
+        })?;
         let (knots, points) = (
             converted.knot_vecs().clone(),
             converted.control_points().clone(),
@@ -500,16 +515,12 @@ fn loose_surfaces(
         let surface = NurbsSurface::new(surface).transformed(scale);
         surfaces.push((id, PatchGeometry::Nurbs(surface)));
     }
-    let mut ids: Vec<u64> = table.rational_b_spline_surface.keys().copied().collect();
-    ids.sort_unstable();
-    for id in ids {
+    for id in sorted_ids(table.rational_b_spline_surface.keys()) {
         let holder = table.rational_b_spline_surface[&id].clone();
-        let converted = catch_unwind(AssertUnwindSafe(|| {
+        let converted = convert_loose("RATIONAL_B_SPLINE_SURFACE", id, || {
             let owned = holder.into_owned(table).map_err(|e| e.to_string())?;
             NurbsSurface::<Vector4>::try_from(&owned).map_err(|e| e.to_string())
-        }))
-        .map_err(|_| format!("RATIONAL_B_SPLINE_SURFACE #{id}: truck-stepio failed on it"))?
-        .map_err(|e| format!("RATIONAL_B_SPLINE_SURFACE #{id}: {e}"))?;
+        })?;
         let scale = Matrix4::from_scale(millimetres(id)?);
         surfaces.push((id, PatchGeometry::Nurbs(converted.transformed(scale))));
     }
