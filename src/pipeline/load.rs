@@ -1,20 +1,17 @@
-//! The pipeline for one input: ingest, tessellate (part files), validate (one part per
-//! connected component), stiffness (fold lines, regions), flatten. Values in, values out; the
-//! binary writes the files through [`crate::export`].
+//! Loading one input: ingest, tessellate (part files), validate (one part per connected
+//! component), stiffness (fold lines, regions).
 
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use serde::Serialize;
 
-use crate::cut::{Cut, CutConstraints, CutOptions, CutStop, Seam, UncutPattern, cut_and_flatten};
+use crate::cut::{Cut, CutConstraints, CutOptions, CutStop, Seam, UncutPattern};
 use crate::error::Error;
-use crate::flatten::orient::orient;
 use crate::flatten::{FlattenOptions, Flattened, Stiffness};
 use crate::ingest::part::{PartAttributes, PartInput, RegionShape};
 use crate::ingest::{Input, read_cut_sidecar, read_input};
 use crate::mesh::{FacetModel, TriangleSoup, validate};
-use crate::progress::Progress;
 use crate::tessellate::parameter_region::ParameterRegion;
 use crate::tessellate::surface_domain::SurfaceDomain;
 use crate::tessellate::{TessellateOptions, Tessellation, tessellate};
@@ -261,44 +258,4 @@ fn split_parts(
             }
         })
         .collect())
-}
-
-/// Flattens one part, with seams and crest-line cuts until it is within tolerance or the cut
-/// budget is spent.
-pub fn flatten_part(
-    mut job: PartJob,
-    options: &RunOptions,
-    progress: &dyn Progress,
-) -> Result<PartResult, Error> {
-    let started = std::time::Instant::now();
-    let mut result = cut_and_flatten(
-        &job.model,
-        &job.stiffness,
-        &job.constraints,
-        &options.flatten,
-        &options.cut,
-        progress,
-    )
-    .map_err(|reason| Error::Cut {
-        path: job.source.clone(),
-        part: job.name.clone(),
-        reason,
-    })?;
-    let grain = job.attributes.grain;
-    orient(&result.model, &mut result.flattened, grain);
-    if let Some(uncut) = &mut result.uncut {
-        orient(&uncut.model, &mut uncut.flattened, grain);
-    }
-    // The part's time is the whole of it: seams, every cut tried and every flattening.
-    result.flattened.stats.seconds = started.elapsed().as_secs_f64();
-    job.model = result.model;
-    job.stiffness = result.stiffness;
-    Ok(PartResult {
-        job,
-        flattened: result.flattened,
-        seams: result.seams,
-        cuts: result.cuts,
-        cut_stop: result.stop,
-        uncut: result.uncut,
-    })
 }
