@@ -17,6 +17,10 @@ use serde::Serialize;
 
 use crate::mesh::FacetModel;
 
+/// Default permissible `E_S` and `E_C` (1 %, the paper's): the bound on the area and shape errors
+/// at which the paper's solver stops.
+pub const DEFAULT_TOLERANCE: f64 = 0.01;
+
 /// The accuracy figures of a flat pattern.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Accuracy {
@@ -193,7 +197,7 @@ pub fn segments_intersect(p: DVec2, q: DVec2, r: DVec2, s: DVec2) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::flatten::accuracy::*;
 
     #[test]
     fn crossing_and_disjoint_segments() {

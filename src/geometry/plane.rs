@@ -2,6 +2,8 @@
 
 use glam::DVec2;
 
+use super::segment::distance_to_segment;
+
 /// Signed area of a closed ring (positive when counter-clockwise), by the shoelace formula. The
 /// ring's last point may or may not repeat its first.
 pub fn signed_area(ring: &[DVec2]) -> f64 {
@@ -90,15 +92,13 @@ pub fn inside(point: DVec2, ring: &[DVec2]) -> bool {
         == 1
 }
 
-/// Distance from `point` to the straight segment from `start` to `end`.
-pub fn distance_to_segment(point: DVec2, start: DVec2, end: DVec2) -> f64 {
-    let direction = end - start;
-    let length_squared = direction.length_squared();
-    if length_squared <= f64::MIN_POSITIVE {
-        return point.distance(start);
-    }
-    let t = ((point - start).dot(direction) / length_squared).clamp(0.0, 1.0);
-    point.distance(start + direction * t)
+/// The axis-aligned bounding box of `points`: (lowest corner, highest corner); infinite corners
+/// (low +∞, high −∞) for no points.
+pub fn bounding_box(points: &[DVec2]) -> (DVec2, DVec2) {
+    points.iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(low, high), &p| (low.min(p), high.max(p)),
+    )
 }
 
 /// Grid points per side of each search in [`deep_interior_point`].
@@ -111,10 +111,7 @@ const DEEP_POINT_REFINEMENTS: usize = 4;
 /// the region farthest from every ring (an approximate pole of inaccessibility). The bounding
 /// box's centre when no grid point lies inside.
 pub fn deep_interior_point(outer: &[DVec2], holes: &[Vec<DVec2>]) -> DVec2 {
-    let (low, high) = outer.iter().fold(
-        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-        |(low, high), &p| (low.min(p), high.max(p)),
-    );
+    let (low, high) = bounding_box(outer);
     let clearance = |point: DVec2| {
         let in_region = inside(point, outer) && !holes.iter().any(|hole| inside(point, hole));
         in_region.then(|| {
@@ -147,7 +144,7 @@ pub fn deep_interior_point(outer: &[DVec2], holes: &[Vec<DVec2>]) -> DVec2 {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::geometry::plane::*;
 
     #[test]
     fn unit_square_both_ways() {
