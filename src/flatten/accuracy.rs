@@ -116,6 +116,11 @@ pub fn boundary_self_intersects(model: &FacetModel, pattern: &[DVec2]) -> bool {
     any_segments_cross(&segments, pattern)
 }
 
+/// Smallest grid cell of the boundary crossing test, relative to the boundary's extent: keeps
+/// the grid finite when the segments are all but zero-length; it does not change which crossings
+/// are found, only how they are bucketed.
+const SMALLEST_CELL_RELATIVE: f64 = 1e-12;
+
 /// Tests segment pairs that share no vertex, bucketed on a uniform grid so the cost stays near
 /// linear for well-spread boundaries.
 fn any_segments_cross(segments: &[[u32; 2]], pattern: &[DVec2]) -> bool {
@@ -131,7 +136,7 @@ fn any_segments_cross(segments: &[[u32; 2]], pattern: &[DVec2]) -> bool {
         total_length += p.distance(q);
     }
     let cell = (total_length / segments.len() as f64)
-        .max(1e-12 * (max - min).length())
+        .max(SMALLEST_CELL_RELATIVE * (max - min).length())
         .max(f64::MIN_POSITIVE);
     let columns = (((max.x - min.x) / cell) as usize + 1).min(1 << 12);
     let rows = (((max.y - min.y) / cell) as usize + 1).min(1 << 12);

@@ -13,6 +13,10 @@ pub fn signed_area(ring: &[DVec2]) -> f64 {
         .sum::<f64>()
 }
 
+/// Two rectangle areas closer than this fraction of the smaller are a tie in
+/// [`long_side_of_smallest_rectangle`], so round-off cannot pick between equal rectangles.
+const AREA_TIE_RELATIVE: f64 = 1e-12;
+
 /// The unit direction of the longer side of the smallest-area rectangle around `points` (one of
 /// the convex hull's edge directions, by the rotating-calipers theorem), pointing into the
 /// half-plane x > 0 (or +y); `None` for fewer than three non-collinear points.
@@ -38,7 +42,7 @@ pub fn long_side_of_smallest_rectangle(points: &[DVec2]) -> Option<DVec2> {
         let (along, across) = (extent(edge), extent(edge.perp()));
         let area = along * across;
         // A strictly smaller area wins, so ties keep the first edge: deterministic.
-        if best.is_none_or(|(smallest, _)| area < smallest * (1.0 - 1e-12)) {
+        if best.is_none_or(|(smallest, _)| area < smallest * (1.0 - AREA_TIE_RELATIVE)) {
             best = Some((area, if along >= across { edge } else { edge.perp() }));
         }
     }

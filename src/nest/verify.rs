@@ -26,7 +26,9 @@ use super::item::NestItem;
 use super::layout::{NestLayout, Placement};
 use crate::geometry::distance_to_segment;
 
-/// Distances within this fraction of the sheet's largest side are considered equal.
+/// Distances within this fraction of the sheet's largest side are considered equal: the slack of
+/// every check (inside the sheet, inside a hole, the gap, the depth of an overlap), so round-off
+/// and the engine's f32 margin raise no false alarm.
 pub const TOLERANCE_RELATIVE: f64 = 1e-7;
 /// How far inside a convex corner the corner test point lies, as a fraction of the shorter of
 /// the corner's two edges.

@@ -8,7 +8,8 @@ use rayon::prelude::*;
 
 use super::chunked::dot;
 
-/// Relative Tikhonov term on the Anderson least-squares problem, against its own scale.
+/// Tikhonov term added to the diagonal of the Anderson least-squares problem, relative to its
+/// trace: bounds its condition number, so a nearly dependent history still gives finite weights.
 const ANDERSON_REGULARISATION: f64 = 1e-10;
 
 /// Anderson acceleration (type II) of the fixed-point map `G`: from the last iterates `x_k`

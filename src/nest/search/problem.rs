@@ -17,7 +17,8 @@ use crate::nest::options::NestOptions;
 /// Clearance (relative to the stock scale) kept from the stock edge and from the front, above the
 /// shapes' inflation, so that a candidate is not rejected for touching after f32 rounding.
 pub(super) const CLEARANCE_RELATIVE: f64 = 1e-6;
-/// Two lengths closer than this (relative to the stock scale) are equal.
+/// Two lengths closer than this (relative to the stock scale) are equal when the search compares
+/// right edges, bottom edges and used lengths; squared, two areas left out.
 pub(super) const LENGTH_TOLERANCE_RELATIVE: f64 = 1e-9;
 
 /// One copy of an item in one orientation, in the item's rotated frame.
