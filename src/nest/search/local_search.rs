@@ -36,7 +36,8 @@ const MAX_ROLL_DOUBLINGS: u32 = 8;
 const INITIAL_ROLL_FACTOR: f64 = 2.0;
 
 impl Problem<'_> {
-    /// Runs the construction and the local search, and returns the best layout.
+    /// Places small copies in the holes of large ones (when asked), runs the construction and the
+    /// local search, and returns the best layout.
     pub(crate) fn solve(&self, progress: &dyn Progress) -> Result<NestLayout, NestError> {
         let guests = self.fill_holes();
         let started = Instant::now();
