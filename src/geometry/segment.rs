@@ -15,9 +15,10 @@ pub fn distance_to_segment(point: DVec2, start: DVec2, end: DVec2) -> f64 {
     point.distance(start + direction * t)
 }
 
-/// Distance from `point` to the straight segment from `start` to `end` in space. A segment of
-/// zero squared length is measured as the point `start`; a shorter guard than the plane
-/// version's, kept from the fold-line stiffness this serves so its output does not move.
+/// Distance from `point` to the straight segment from `start` to `end` in space. Only a segment
+/// of exactly zero squared length is measured as the point `start` (unlike the plane version, a
+/// subnormal one is still projected on): the formula the fold-line stiffness has always used, kept
+/// so that its output does not move.
 pub fn distance_to_segment_3d(point: DVec3, start: DVec3, end: DVec3) -> f64 {
     let direction = end - start;
     let length_squared = direction.length_squared();
