@@ -122,8 +122,8 @@ fn relax(
     energy.release(&system, positions, &parameters, true)
 }
 
-/// Phase two of the fast solver: the spring energy minimised by [`FastSolver`]; returns the
-/// iterations and why it stopped.
+/// Phase two of the fast solver: the spring energy minimised by
+/// [`FastSolver`](super::fast::FastSolver); returns the iterations and why it stopped.
 fn minimise(
     model: &FacetModel,
     springs: &SpringSystem,

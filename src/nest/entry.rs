@@ -1,5 +1,5 @@
 //! The one call that nests: validates the items and options, places every copy, searches for a
-//! shorter layout and returns it (see [`search`](super::search) for how).
+//! shorter layout and returns it (see `search/` for how).
 
 use super::errors::NestError;
 use super::item::NestItem;

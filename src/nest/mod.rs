@@ -9,14 +9,14 @@
 //! * **Roll** (`Stock::Roll`): a strip whose *width* is its extent along y; the used length along x
 //!   is minimised (the ESICUP strip-packing problem, where `strip_height` is the roll width).
 //!
-//! Collisions are detected by jagua-rs 1.1.0 behind our own trait ([`collision::CollisionEngine`]);
-//! the search ([`search`]) is ours: a bottom-left constructive placement followed by a seeded local
-//! search over the placement order. Every result can be checked by [`verify::verify`], an
+//! Collisions are detected by jagua-rs 1.1.0 behind our own trait (`CollisionEngine` in
+//! `collision.rs`); the search (`search/`) is ours: a bottom-left constructive placement followed
+//! by a seeded local search over the placement order. Every result can be checked by [`verify::verify`], an
 //! independent exact f64 check that shares no code with the collision engine.
 //!
 //! Parts with holes are placed by their outer ring: nothing is placed inside a hole.
 
-pub mod collision;
+mod collision;
 mod entry;
 mod errors;
 pub mod instance;
@@ -25,7 +25,7 @@ mod layout;
 mod options;
 pub mod parts;
 mod rotations;
-pub mod search;
+mod search;
 mod stock;
 pub mod verify;
 
