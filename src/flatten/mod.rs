@@ -10,7 +10,7 @@
 //!   prefactored spring Laplacian with Anderson acceleration and an orientation guard (see
 //!   [`fast`] and `docs/solver.md`).
 
-pub mod accuracy;
+mod accuracy;
 pub mod energy_release;
 mod entry;
 mod errors;
@@ -25,7 +25,7 @@ pub mod orient;
 pub mod outline;
 #[cfg(test)]
 mod samples;
-pub mod springs;
+mod springs;
 pub mod stiffness;
 
 pub use accuracy::{Accuracy, DEFAULT_TOLERANCE};
