@@ -17,6 +17,10 @@ use serde::Serialize;
 
 use crate::mesh::FacetModel;
 
+/// Default permissible `E_S` and `E_C` (1 %, the paper's): the bound on the area and shape errors
+/// at which the paper's solver stops.
+pub const DEFAULT_TOLERANCE: f64 = 0.01;
+
 /// The accuracy figures of a flat pattern.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Accuracy {
@@ -112,6 +116,11 @@ pub fn boundary_self_intersects(model: &FacetModel, pattern: &[DVec2]) -> bool {
     any_segments_cross(&segments, pattern)
 }
 
+/// Smallest grid cell of the boundary crossing test, relative to the boundary's extent: keeps
+/// the grid finite when the segments are all but zero-length; it does not change which crossings
+/// are found, only how they are bucketed.
+const SMALLEST_CELL_RELATIVE: f64 = 1e-12;
+
 /// Tests segment pairs that share no vertex, bucketed on a uniform grid so the cost stays near
 /// linear for well-spread boundaries.
 fn any_segments_cross(segments: &[[u32; 2]], pattern: &[DVec2]) -> bool {
@@ -127,7 +136,7 @@ fn any_segments_cross(segments: &[[u32; 2]], pattern: &[DVec2]) -> bool {
         total_length += p.distance(q);
     }
     let cell = (total_length / segments.len() as f64)
-        .max(1e-12 * (max - min).length())
+        .max(SMALLEST_CELL_RELATIVE * (max - min).length())
         .max(f64::MIN_POSITIVE);
     let columns = (((max.x - min.x) / cell) as usize + 1).min(1 << 12);
     let rows = (((max.y - min.y) / cell) as usize + 1).min(1 << 12);
@@ -193,7 +202,7 @@ pub fn segments_intersect(p: DVec2, q: DVec2, r: DVec2, s: DVec2) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::flatten::accuracy::*;
 
     #[test]
     fn crossing_and_disjoint_segments() {

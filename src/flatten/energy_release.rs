@@ -24,7 +24,7 @@
 
 use glam::DVec2;
 
-use super::accuracy::{area_error, shape_error};
+use super::accuracy::{DEFAULT_TOLERANCE, area_error, shape_error};
 use super::springs::SpringSystem;
 use crate::mesh::{FacetModel, NONE};
 
@@ -71,7 +71,7 @@ impl Default for ReleaseParameters {
         Self {
             time_step: PAPER_TIME_STEP,
             energy_variation: PAPER_ENERGY_VARIATION,
-            tolerance: super::DEFAULT_TOLERANCE,
+            tolerance: DEFAULT_TOLERANCE,
             max_steps: PAPER_STEP_BUDGET,
         }
     }
@@ -350,61 +350,9 @@ pub const PENALTY_REACH: f64 = 0.25;
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-    use crate::flatten::{InitRelease, Stiffness, init_flatten};
-    use crate::progress::NoProgress;
-
-    fn sample(name: &str) -> FacetModel {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("samples")
-            .join(name);
-        let soup = crate::ingest::read_mesh(&path, Default::default())
-            .expect("sample reads")
-            .soup;
-        crate::mesh::validate(&soup)
-            .expect("sample is valid")
-            .components
-            .remove(0)
-    }
-
-    #[test]
-    fn kinetic_damping_releases_energy_cycle_after_cycle() {
-        for name in ["hemisphere.obj", "saddle.obj"] {
-            let model = sample(name);
-            let springs = SpringSystem::new(&model, Stiffness::uniform(&model).factors(), 0.5);
-            let start = init_flatten(
-                &model,
-                &springs,
-                InitRelease::Neighbourhood { sweeps: 2 },
-                &NoProgress,
-            );
-            let release = EnergyRelease::new(&model, &springs);
-            let mut energies = vec![springs.energy(&start)];
-            for steps in (500..=4000).step_by(500) {
-                let parameters = ReleaseParameters {
-                    max_steps: steps,
-                    tolerance: 0.0,
-                    energy_variation: 0.0,
-                    ..ReleaseParameters::default()
-                };
-                let mut positions = start.clone();
-                release.release(&release.whole_system(), &mut positions, &parameters, true);
-                energies.push(springs.energy(&positions));
-            }
-            for pair in energies.windows(2) {
-                assert!(
-                    pair[1] < pair[0],
-                    "{name}: energy rose from {} to {}: {energies:?}",
-                    pair[0],
-                    pair[1]
-                );
-            }
-            assert!(
-                energies[energies.len() - 1] < 0.8 * energies[0],
-                "{name}: {energies:?}"
-            );
-        }
-    }
+    use crate::flatten::energy_release::*;
+    use crate::flatten::samples::sample;
+    use crate::flatten::stiffness::Stiffness;
 
     #[test]
     fn masses_follow_equation_10() {

@@ -46,7 +46,7 @@ pub const GRAIN_IN_PLANE_FRACTION: f64 = 1e-3;
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::flatten::grain::*;
     use crate::mesh::{TriangleSoup, validate};
 
     /// A 100 x 50 strip bent around the y axis into a half cylinder of radius 100 / π, its

@@ -352,3 +352,52 @@ impl<'a> Placer<'a> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::flatten::energy_release::{EnergyRelease, ReleaseParameters};
+    use crate::flatten::init_flatten::{InitRelease, init_flatten};
+    use crate::flatten::samples::sample;
+    use crate::flatten::springs::SpringSystem;
+    use crate::flatten::stiffness::Stiffness;
+    use crate::progress::NoProgress;
+
+    #[test]
+    fn kinetic_damping_releases_energy_cycle_after_cycle() {
+        for name in ["hemisphere.obj", "saddle.obj"] {
+            let model = sample(name);
+            let springs = SpringSystem::new(&model, Stiffness::uniform(&model).factors(), 0.5);
+            let start = init_flatten(
+                &model,
+                &springs,
+                InitRelease::Neighbourhood { sweeps: 2 },
+                &NoProgress,
+            );
+            let release = EnergyRelease::new(&model, &springs);
+            let mut energies = vec![springs.energy(&start)];
+            for steps in (500..=4000).step_by(500) {
+                let parameters = ReleaseParameters {
+                    max_steps: steps,
+                    tolerance: 0.0,
+                    energy_variation: 0.0,
+                    ..ReleaseParameters::default()
+                };
+                let mut positions = start.clone();
+                release.release(&release.whole_system(), &mut positions, &parameters, true);
+                energies.push(springs.energy(&positions));
+            }
+            for pair in energies.windows(2) {
+                assert!(
+                    pair[1] < pair[0],
+                    "{name}: energy rose from {} to {}: {energies:?}",
+                    pair[0],
+                    pair[1]
+                );
+            }
+            assert!(
+                energies[energies.len() - 1] < 0.8 * energies[0],
+                "{name}: {energies:?}"
+            );
+        }
+    }
+}

@@ -113,7 +113,7 @@ fn crossing_point(positions: &[DVec2], values: &[f64], [a, b]: [u32; 2], level: 
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::flatten::isolines::*;
 
     /// A unit square of two triangles with the field `x`.
     fn square() -> (Vec<DVec2>, Vec<[u32; 3]>, Vec<f64>) {

@@ -6,8 +6,9 @@
 
 use glam::{DVec2, DVec3};
 
+use super::accuracy::Accuracy;
+use super::flattened::Flattened;
 use super::grain::flat_grain;
-use super::{Accuracy, Flattened};
 use crate::geometry::long_side_of_smallest_rectangle;
 use crate::mesh::FacetModel;
 

@@ -68,7 +68,7 @@ pub use crate::geometry::signed_area;
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::flatten::outline::*;
     use crate::mesh::{TriangleSoup, validate};
     use glam::DVec3;
 

@@ -122,7 +122,7 @@ impl SpringSystem {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::flatten::springs::*;
 
     fn two_springs() -> SpringSystem {
         SpringSystem {

@@ -4,6 +4,7 @@
 
 use glam::DVec3;
 
+use crate::geometry::distance_to_segment_3d;
 use crate::mesh::{FacetModel, NONE};
 
 /// Default factor for edges near a fold line.
@@ -70,19 +71,7 @@ impl Stiffness {
             model.edge_fold_lines()[e] == fold_line
                 || fold_segments
                     .iter()
-                    .any(|&[p, q]| distance_to_segment(midpoint, p, q) <= half_width)
+                    .any(|&[p, q]| distance_to_segment_3d(midpoint, p, q) <= half_width)
         });
     }
-}
-
-/// Distance from `point` to the segment `pq` in 3D.
-pub fn distance_to_segment(point: DVec3, p: DVec3, q: DVec3) -> f64 {
-    let edge = q - p;
-    let length_squared = edge.length_squared();
-    let t = if length_squared > 0.0 {
-        ((point - p).dot(edge) / length_squared).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    point.distance(p + edge * t)
 }

@@ -1,8 +1,10 @@
 //! Geometry shared by every stage.
 
 mod plane;
+mod segment;
 
 pub use plane::{
-    convex_hull, deep_interior_point, distance_to_segment, inside, long_side_of_smallest_rectangle,
+    bounding_box, convex_hull, deep_interior_point, inside, long_side_of_smallest_rectangle,
     signed_area,
 };
+pub use segment::{distance_to_segment, distance_to_segment_3d};

@@ -2,6 +2,8 @@
 
 use glam::DVec2;
 
+use super::segment::distance_to_segment;
+
 /// Signed area of a closed ring (positive when counter-clockwise), by the shoelace formula. The
 /// ring's last point may or may not repeat its first.
 pub fn signed_area(ring: &[DVec2]) -> f64 {
@@ -10,6 +12,10 @@ pub fn signed_area(ring: &[DVec2]) -> f64 {
         .map(|index| ring[index].perp_dot(ring[(index + 1) % count]))
         .sum::<f64>()
 }
+
+/// Two rectangle areas closer than this fraction of the smaller are a tie in
+/// [`long_side_of_smallest_rectangle`], so round-off cannot pick between equal rectangles.
+const AREA_TIE_RELATIVE: f64 = 1e-12;
 
 /// The unit direction of the longer side of the smallest-area rectangle around `points` (one of
 /// the convex hull's edge directions, by the rotating-calipers theorem), pointing into the
@@ -36,7 +42,7 @@ pub fn long_side_of_smallest_rectangle(points: &[DVec2]) -> Option<DVec2> {
         let (along, across) = (extent(edge), extent(edge.perp()));
         let area = along * across;
         // A strictly smaller area wins, so ties keep the first edge: deterministic.
-        if best.is_none_or(|(smallest, _)| area < smallest * (1.0 - 1e-12)) {
+        if best.is_none_or(|(smallest, _)| area < smallest * (1.0 - AREA_TIE_RELATIVE)) {
             best = Some((area, if along >= across { edge } else { edge.perp() }));
         }
     }
@@ -90,15 +96,13 @@ pub fn inside(point: DVec2, ring: &[DVec2]) -> bool {
         == 1
 }
 
-/// Distance from `point` to the straight segment from `start` to `end`.
-pub fn distance_to_segment(point: DVec2, start: DVec2, end: DVec2) -> f64 {
-    let direction = end - start;
-    let length_squared = direction.length_squared();
-    if length_squared <= f64::MIN_POSITIVE {
-        return point.distance(start);
-    }
-    let t = ((point - start).dot(direction) / length_squared).clamp(0.0, 1.0);
-    point.distance(start + direction * t)
+/// The axis-aligned bounding box of `points`: (lowest corner, highest corner); infinite corners
+/// (low +∞, high −∞) for no points.
+pub fn bounding_box(points: &[DVec2]) -> (DVec2, DVec2) {
+    points.iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(low, high), &p| (low.min(p), high.max(p)),
+    )
 }
 
 /// Grid points per side of each search in [`deep_interior_point`].
@@ -111,10 +115,7 @@ const DEEP_POINT_REFINEMENTS: usize = 4;
 /// the region farthest from every ring (an approximate pole of inaccessibility). The bounding
 /// box's centre when no grid point lies inside.
 pub fn deep_interior_point(outer: &[DVec2], holes: &[Vec<DVec2>]) -> DVec2 {
-    let (low, high) = outer.iter().fold(
-        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-        |(low, high), &p| (low.min(p), high.max(p)),
-    );
+    let (low, high) = bounding_box(outer);
     let clearance = |point: DVec2| {
         let in_region = inside(point, outer) && !holes.iter().any(|hole| inside(point, hole));
         in_region.then(|| {
@@ -147,7 +148,7 @@ pub fn deep_interior_point(outer: &[DVec2], holes: &[Vec<DVec2>]) -> DVec2 {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::geometry::plane::*;
 
     #[test]
     fn unit_square_both_ways() {

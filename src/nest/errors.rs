@@ -11,7 +11,7 @@ pub enum NestError {
     /// The stock has a zero, negative, non-finite or absurdly large dimension.
     #[error(
         "the stock {dimension} is {value}: give a positive size in mm, at most {} mm",
-        crate::nest::search::MAXIMUM_STOCK_MM
+        super::stock::MAXIMUM_STOCK_MM
     )]
     InvalidStock {
         /// Which dimension (`sheet width`, `sheet height`, `roll width`).
@@ -26,7 +26,7 @@ pub enum NestError {
     /// larger than a full turn.
     #[error(
         "part '{item}': rotation step {step} degrees is invalid: give a step in [{}, 360]",
-        crate::nest::MINIMUM_ROTATION_STEP_DEGREES
+        super::rotations::MINIMUM_ROTATION_STEP_DEGREES
     )]
     InvalidRotationStep {
         /// The part's name.

@@ -16,7 +16,9 @@ use std::path::Path;
 use glam::DVec2;
 use serde::Deserialize;
 
-use super::{NestError, NestItem, Rotations};
+use super::errors::NestError;
+use super::item::NestItem;
+use super::rotations::Rotations;
 
 /// A benchmark instance: its items and the strip (roll) width.
 #[derive(Debug, Clone, PartialEq)]
@@ -127,7 +129,7 @@ fn ring_points(ring: &[[f64; 2]]) -> Vec<DVec2> {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::nest::instance::*;
 
     #[test]
     fn reads_items_demands_and_orientations() {

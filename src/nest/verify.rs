@@ -22,9 +22,13 @@ use std::fmt;
 use glam::DVec2;
 use serde::Serialize;
 
-use super::{NestItem, NestLayout, Placement};
+use super::item::NestItem;
+use super::layout::{NestLayout, Placement};
+use crate::geometry::distance_to_segment;
 
-/// Distances within this fraction of the sheet's largest side are considered equal.
+/// Distances within this fraction of the sheet's largest side are considered equal: the slack of
+/// every check (inside the sheet, inside a hole, the gap, the depth of an overlap), so round-off
+/// and the engine's f32 margin raise no false alarm.
 pub const TOLERANCE_RELATIVE: f64 = 1e-7;
 /// How far inside a convex corner the corner test point lies, as a fraction of the shorter of
 /// the corner's two edges.
@@ -326,9 +330,8 @@ fn enclosing_hole<'a>(
             !crossing
                 && probes(&guest.ring).all(|point| {
                     strictly_inside(point, hole, tolerance)
-                        || edges(hole).any(|(start, end)| {
-                            point_segment_distance(point, start, end) <= tolerance
-                        })
+                        || edges(hole)
+                            .any(|(start, end)| distance_to_segment(point, start, end) <= tolerance)
                 })
         })
         .map(|hole| (hole.as_slice(), guest.ring.as_slice()))
@@ -397,7 +400,7 @@ fn properly_cross((a, b): (DVec2, DVec2), (c, d): (DVec2, DVec2), tolerance: f64
 fn strictly_inside(point: DVec2, ring: &[DVec2], tolerance: f64) -> bool {
     let mut inside = false;
     for (start, end) in edges(ring) {
-        if point_segment_distance(point, start, end) <= tolerance {
+        if distance_to_segment(point, start, end) <= tolerance {
             return false;
         }
         if (start.y > point.y) != (end.y > point.y) {
@@ -410,26 +413,15 @@ fn strictly_inside(point: DVec2, ring: &[DVec2], tolerance: f64) -> bool {
     inside
 }
 
-fn point_segment_distance(point: DVec2, start: DVec2, end: DVec2) -> f64 {
-    let direction = end - start;
-    let length_squared = direction.length_squared();
-    let along = if length_squared > 0.0 {
-        ((point - start).dot(direction) / length_squared).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    point.distance(start + direction * along)
-}
-
 /// Smallest distance between the boundaries of two non-overlapping rings.
 fn ring_distance(first: &[DVec2], second: &[DVec2]) -> f64 {
     let mut smallest = f64::INFINITY;
     for (a, b) in edges(first) {
         for (c, d) in edges(second) {
-            let distance = point_segment_distance(a, c, d)
-                .min(point_segment_distance(b, c, d))
-                .min(point_segment_distance(c, a, b))
-                .min(point_segment_distance(d, a, b));
+            let distance = distance_to_segment(a, c, d)
+                .min(distance_to_segment(b, c, d))
+                .min(distance_to_segment(c, a, b))
+                .min(distance_to_segment(d, a, b));
             smallest = smallest.min(distance);
         }
     }
@@ -438,8 +430,10 @@ fn ring_distance(first: &[DVec2], second: &[DVec2]) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-    use crate::nest::{Rotations, SheetLayout, Stock, StopReason};
+    use crate::nest::layout::{SheetLayout, StopReason};
+    use crate::nest::rotations::Rotations;
+    use crate::nest::stock::Stock;
+    use crate::nest::verify::*;
 
     fn square(name: &str, side: f64, quantity: u32) -> NestItem {
         NestItem {

@@ -17,9 +17,11 @@ use std::sync::Arc;
 
 use glam::DVec2;
 
-use super::{COMPACTION_STEP_FRACTION, Problem, bounds, compact};
+use super::compaction::{COMPACTION_STEP_FRACTION, compact};
+use super::problem::Problem;
+use crate::geometry::{bounding_box, signed_area};
 use crate::nest::collision::{CollisionEngine, JaguaEngine, ShapeId};
-use crate::nest::{Placement, polygon_area};
+use crate::nest::layout::Placement;
 
 /// Grid intervals per axis (so `HOLE_GRID + 1` points) tried for a copy in a hole.
 pub const HOLE_GRID: u32 = 24;
@@ -43,8 +45,7 @@ impl Problem<'_> {
             return guests;
         }
         let mut is_guest = vec![false; self.copies.len()];
-        let outer_area =
-            |copy: usize| polygon_area(&self.items[self.copies[copy].item].outer).abs();
+        let outer_area = |copy: usize| signed_area(&self.items[self.copies[copy].item].outer).abs();
         for host in 0..self.copies.len() {
             let host_item = self.copies[host].item;
             if is_guest[host] {
@@ -55,7 +56,7 @@ impl Problem<'_> {
                 else {
                     continue;
                 };
-                let hole_area = polygon_area(hole).abs();
+                let hole_area = signed_area(hole).abs();
                 let mut failed_items = Vec::new();
                 for (guest, guest_copy) in self.copies.iter().enumerate().skip(host + 1) {
                     let guest_item = guest_copy.item;
@@ -93,7 +94,7 @@ impl Problem<'_> {
         guest_item: usize,
         hole: &[DVec2],
     ) -> Option<(ShapeId, DVec2)> {
-        let (hole_min, hole_max) = bounds(hole);
+        let (hole_min, hole_max) = bounding_box(hole);
         for &shape in &self.item_shapes[guest_item] {
             if !self.allowed_under_every_host_pose(host_item, shape) {
                 continue;
@@ -145,9 +146,15 @@ impl Problem<'_> {
         })
     }
 
-    /// The placements of the guests of a copy placed at `host`.
-    pub(super) fn guest_placements(&self, copy: usize, host: &Placement) -> Vec<Placement> {
-        self.guests[copy]
+    /// The placements of the guests (`guests`, from [`Problem::fill_holes`]) of a copy placed at
+    /// `host`.
+    pub(super) fn guest_placements(
+        &self,
+        guests: &[Vec<Guest>],
+        copy: usize,
+        host: &Placement,
+    ) -> Vec<Placement> {
+        guests[copy]
             .iter()
             .map(|guest| {
                 let orientation = &self.orientations[guest.shape];
@@ -163,14 +170,10 @@ impl Problem<'_> {
             .collect()
     }
 
-    /// The copies the search places itself: all but the guests, in order of decreasing area.
-    pub(super) fn hosts_and_others(&self) -> Vec<usize> {
-        let guests: Vec<usize> = self
-            .guests
-            .iter()
-            .flatten()
-            .map(|guest| guest.copy)
-            .collect();
+    /// The copies the search places itself: all but the guests (`guests`, from
+    /// [`Problem::fill_holes`]), in order of decreasing area.
+    pub(super) fn hosts_and_others(&self, guests: &[Vec<Guest>]) -> Vec<usize> {
+        let guests: Vec<usize> = guests.iter().flatten().map(|guest| guest.copy).collect();
         (0..self.copies.len())
             .filter(|copy| !guests.contains(copy))
             .collect()

@@ -1,0 +1,166 @@
+//! The stage's entry points: phase one (the initial pattern) then phase two (the energy
+//! minimised by the chosen solver), the pattern moved to the origin, and its figures.
+
+use std::time::Instant;
+
+use glam::DVec2;
+
+use super::accuracy::Accuracy;
+use super::energy_release::{EnergyRelease, ReleaseOutcome, ReleaseParameters, StopReason};
+use super::errors::FlattenError;
+use super::fast::fast_solve;
+use super::flattened::{FlattenStats, Flattened};
+use super::init_flatten::{InitRelease, NEIGHBOURHOOD_SWEEPS, init_flatten};
+use super::options::{FlattenOptions, Solver};
+use super::orient::move_to_origin;
+use super::springs::SpringSystem;
+use super::stiffness::Stiffness;
+use crate::mesh::FacetModel;
+use crate::progress::Progress;
+
+/// Flattens a facet model with per-edge stiffness factors.
+pub fn flatten(
+    model: &FacetModel,
+    stiffness: &Stiffness,
+    options: &FlattenOptions,
+    progress: &dyn Progress,
+) -> Result<Flattened, FlattenError> {
+    let started = Instant::now();
+    check_input(model, stiffness)?;
+    let springs = SpringSystem::new(model, stiffness.factors(), options.spring_constant);
+    let release = match options.solver {
+        Solver::Paper => InitRelease::WholeSystem {
+            steps: options.init_release_steps,
+            time_step: options.time_step,
+        },
+        Solver::Fast => InitRelease::Neighbourhood {
+            sweeps: NEIGHBOURHOOD_SWEEPS,
+        },
+    };
+    let positions = init_flatten(model, &springs, release, progress);
+    finish(model, &springs, positions, options, started)
+}
+
+/// Flattens a facet model from given flat positions (a warm start: phase one is skipped), for
+/// the cut → re-flatten loop, where the pattern before a cut is a good start for the cut model.
+/// `initial[v]` is the start of vertex `v`; a missing or extra entry is an error.
+pub fn flatten_from(
+    model: &FacetModel,
+    stiffness: &Stiffness,
+    initial: &[DVec2],
+    options: &FlattenOptions,
+) -> Result<Flattened, FlattenError> {
+    let started = Instant::now();
+    check_input(model, stiffness)?;
+    if initial.len() != model.vertex_count() {
+        return Err(FlattenError::InitialMismatch {
+            expected: model.vertex_count(),
+            found: initial.len(),
+        });
+    }
+    let springs = SpringSystem::new(model, stiffness.factors(), options.spring_constant);
+    finish(model, &springs, initial.to_vec(), options, started)
+}
+
+/// Refuses closed surfaces and stiffness maps of another model.
+fn check_input(model: &FacetModel, stiffness: &Stiffness) -> Result<(), FlattenError> {
+    if model.is_closed() {
+        return Err(FlattenError::ClosedSurface);
+    }
+    if stiffness.factors().len() != model.edges().len() {
+        return Err(FlattenError::StiffnessMismatch {
+            expected: model.edges().len(),
+            found: stiffness.factors().len(),
+        });
+    }
+    Ok(())
+}
+
+/// Phase two from the initial pattern `positions`, then the figures.
+fn finish(
+    model: &FacetModel,
+    springs: &SpringSystem,
+    mut positions: Vec<DVec2>,
+    options: &FlattenOptions,
+    started: Instant,
+) -> Result<Flattened, FlattenError> {
+    let initial_accuracy = Accuracy::measure(model, &positions);
+    let (iterations, stop_reason) = match options.solver {
+        Solver::Paper => {
+            let outcome = relax(model, springs, &mut positions, options);
+            (outcome.steps, outcome.stop_reason)
+        }
+        Solver::Fast => minimise(model, springs, &mut positions, options)?,
+    };
+    move_to_origin(&mut positions);
+    let stats = FlattenStats {
+        accuracy: Accuracy::measure(model, &positions),
+        initial_accuracy,
+        energy: springs.energy(&positions),
+        iterations,
+        stop_reason,
+        seconds: started.elapsed().as_secs_f64(),
+    };
+    Ok(Flattened { positions, stats })
+}
+
+/// Phase two of the paper's solver: EnergyRelease over the whole model.
+fn relax(
+    model: &FacetModel,
+    springs: &SpringSystem,
+    positions: &mut [DVec2],
+    options: &FlattenOptions,
+) -> ReleaseOutcome {
+    let energy = EnergyRelease::new(model, springs);
+    let system = energy.whole_system();
+    let parameters = ReleaseParameters {
+        time_step: options.time_step,
+        energy_variation: options.energy_variation,
+        tolerance: options.tolerance,
+        max_steps: options.max_steps,
+    };
+    energy.release(&system, positions, &parameters, true)
+}
+
+/// Phase two of the fast solver: the spring energy minimised by
+/// [`FastSolver`](super::fast::FastSolver); returns the iterations and why it stopped.
+fn minimise(
+    model: &FacetModel,
+    springs: &SpringSystem,
+    positions: &mut [DVec2],
+    options: &FlattenOptions,
+) -> Result<(usize, StopReason), FlattenError> {
+    let outcome = fast_solve(model, springs, positions, options.fast)?;
+    Ok((outcome.iterations, outcome.stop_reason))
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::flatten::entry::flatten;
+    use crate::flatten::options::{FlattenOptions, Solver};
+    use crate::flatten::samples::sample;
+    use crate::flatten::stiffness::Stiffness;
+    use crate::progress::NoProgress;
+
+    #[test]
+    fn fast_ends_at_or_below_the_paper_solvers_energy() {
+        for name in ["hemisphere.obj", "saddle.obj"] {
+            let model = sample(name);
+            let stiffness = Stiffness::uniform(&model);
+            let run = |solver| {
+                let options = FlattenOptions {
+                    solver,
+                    ..FlattenOptions::default()
+                };
+                flatten(&model, &stiffness, &options, &NoProgress).expect("flattens")
+            };
+            let (fast, paper) = (run(Solver::Fast).stats, run(Solver::Paper).stats);
+            assert!(fast.energy <= paper.energy, "{name}: {fast:?} {paper:?}");
+            assert!(
+                fast.accuracy.shape_error <= paper.accuracy.shape_error,
+                "{name}: {fast:?} {paper:?}"
+            );
+            assert_eq!(fast.accuracy.flipped + paper.accuracy.flipped, 0, "{name}");
+        }
+    }
+}
