@@ -13,11 +13,8 @@ use std::fmt;
 use glam::DVec3;
 
 use super::facet::{FacetModel, NONE};
-use super::soup::TriangleSoup;
-
-/// A triangle whose area is below this fraction of its longest edge squared is degenerate: its
-/// height is under a millionth of its length, too thin for a meaningful flat shape.
-pub const DEGENERATE_AREA_RATIO: f64 = 1e-12;
+use crate::cad::TriangleSoup;
+use crate::geometry::tolerance::DEGENERATE_AREA_RATIO;
 
 /// One defect of an input mesh.
 #[derive(Debug, Clone, PartialEq)]
@@ -175,6 +172,9 @@ impl fmt::Display for MeshDefects {
 pub struct ValidatedMesh {
     /// One facet model per connected component, ordered by their lowest input triangle.
     pub components: Vec<FacetModel>,
+    /// Per component, the soup vertex of each model vertex (model vertices are the component's
+    /// soup vertices in ascending order): the identity of a vertex through validation.
+    pub soup_vertices: Vec<Vec<u32>>,
     /// Repairs made (each [`Defect::is_repaired`]).
     pub warnings: Vec<Defect>,
 }
@@ -207,9 +207,11 @@ pub fn validate(soup: &TriangleSoup) -> Result<ValidatedMesh, MeshDefects> {
     if !errors.is_empty() {
         return Err(MeshDefects(errors));
     }
-    let components = split_components(soup, &kept, &triangles, &component_of, &mut warnings);
+    let (components, soup_vertices) =
+        split_components(soup, &kept, &triangles, &component_of, &mut warnings);
     Ok(ValidatedMesh {
         components,
+        soup_vertices,
         warnings,
     })
 }
@@ -399,17 +401,19 @@ fn check_vertex_fans(vertex_count: usize, triangles: &[[u32; 3]], errors: &mut V
     }
 }
 
-/// One facet model per component label, vertices renumbered in ascending input order.
+/// One facet model per component label, vertices renumbered in ascending input order, each with
+/// its model-to-soup vertex map.
 fn split_components(
     soup: &TriangleSoup,
     kept: &[usize],
     triangles: &[[u32; 3]],
     component_of: &[u32],
     warnings: &mut Vec<Defect>,
-) -> Vec<FacetModel> {
+) -> (Vec<FacetModel>, Vec<Vec<u32>>) {
     let component_count = component_of.iter().max().map_or(0, |&m| m as usize + 1);
     let mut referenced = vec![false; soup.positions.len()];
     let mut models = Vec::with_capacity(component_count);
+    let mut soup_vertices = Vec::with_capacity(component_count);
     for label in 0..component_count as u32 {
         let faces: Vec<usize> = (0..triangles.len())
             .filter(|&f| component_of[f] == label)
@@ -445,6 +449,7 @@ fn split_components(
             })
             .collect();
         models.push(FacetModel::from_checked(positions, local, sources, &folds));
+        soup_vertices.push(vertices);
     }
     let unreferenced: Vec<usize> = (0..referenced.len()).filter(|&v| !referenced[v]).collect();
     if let Some(&first) = unreferenced.first() {
@@ -453,12 +458,12 @@ fn split_components(
             first,
         });
     }
-    models
+    (models, soup_vertices)
 }
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::mesh::validate::*;
 
     fn soup(positions: &[[f64; 3]], triangles: &[[u32; 3]]) -> TriangleSoup {
         TriangleSoup::new(

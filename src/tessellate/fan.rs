@@ -29,10 +29,8 @@ use glam::{DVec2, DVec3};
 
 use super::face_mesh::FaceMesh;
 use super::strip::stitch_rows;
+use crate::geometry::tolerance::FAN_TOLERANCE_RATIO;
 
-/// A chord between two rulings of a row may be shorter than its development by at most this
-/// fraction of the mesh size.
-pub const FAN_TOLERANCE_RATIO: f64 = 1e-4;
 /// Radial step between rows over the row's spacing (cells 1.5 times as long as wide).
 pub const RADIAL_ASPECT: f64 = 1.5;
 /// A bound on the rows of one fan (they shrink geometrically towards the apex).
@@ -259,7 +257,7 @@ impl Chart {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::tessellate::fan::*;
 
     fn angle_at(a: DVec3, b: DVec3, c: DVec3) -> f64 {
         (b - a).angle_between(c - a).to_degrees()

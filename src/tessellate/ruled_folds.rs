@@ -29,9 +29,9 @@
 
 use glam::{DVec2, DVec3};
 
-use super::fold_insert::with_crossings;
-use super::ruled::{FoldSegment, RulingFolds, Rulings, fan_wedges};
-use super::surface_domain::SurfaceDomain;
+use super::crossings::with_crossings;
+use super::ruled::{FoldSegment, RulingFolds, fan_wedges};
+use crate::cad::{Rulings, SurfaceDomain};
 
 /// Two points closer than this fraction of the mesh size are one point.
 const SAME_POINT_RATIO: f64 = 1e-7;

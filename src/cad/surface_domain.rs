@@ -17,8 +17,10 @@
 
 use glam::{DVec2, DVec3};
 
-use super::ruled::rulings;
-use super::surface::{Frame, PatchSurface, Profile, RuledSurface, Section, Surface};
+use super::frame::Frame;
+use super::profile::Profile;
+use super::rulings::rulings;
+use super::surface::{PatchSurface, RuledSurface, Section, Surface};
 use crate::geometry::{distance_to_segment, inside};
 
 /// A domain point closer than this (degrees, or part units) to the domain's edge is on it.
@@ -341,8 +343,8 @@ fn crosses_ring(from: DVec2, to: DVec2, ring: &[DVec2]) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-    use crate::tessellate::surface::RuledCircle;
+    use crate::cad::surface::RuledCircle;
+    use crate::cad::surface_domain::*;
 
     #[test]
     fn an_oblique_cone_ruling_has_one_angle() {
