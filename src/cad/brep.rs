@@ -7,13 +7,15 @@
 //! (truck's plane, sphere, cylinder, cone and torus with their placement, surfaces of revolution
 //! and extrusion with their curves, B-spline and NURBS surfaces with their control nets), not
 //! samples. [`BrepShell`] adds what the file says about each face (its entity id and a
-//! description for messages) and answers which faces share an edge. A file with no shell (a
+//! description for messages), reads each face's exact parameters ([`SurfaceGeometry`]) and
+//! answers which faces share an edge. A file with no shell (a
 //! surface-only export) gives loose NURBS surfaces ([`LooseSurface`]) instead.
 
 use truck_meshalgo::prelude::Point3;
-use truck_stepio::r#in::alias::{Curve3D, ElementarySurface, Surface as StepSurface, SweptCurve};
+use truck_stepio::r#in::alias::{Curve3D, Surface as StepSurface};
 use truck_topology::compress::CompressedShell;
 
+use super::face_geometry::SurfaceGeometry;
 use super::surface::PatchGeometry;
 
 /// A shell as truck-stepio converts it: vertices, edges on 3D curves, faces on exact surfaces.
@@ -39,54 +41,10 @@ pub struct BrepShell {
     pub faces: Vec<FaceSource>,
 }
 
-/// The kind of a face's surface (its exact parameters are in the face's truck surface).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum SurfaceKind {
-    /// A plane.
-    Plane,
-    /// A cylinder.
-    Cylinder,
-    /// A cone.
-    Cone,
-    /// A sphere.
-    Sphere,
-    /// A torus.
-    Torus,
-    /// A curve turned about an axis.
-    Revolution,
-    /// A curve swept along a straight direction.
-    Extrusion,
-    /// A B-spline surface.
-    BSpline,
-    /// A NURBS surface.
-    Nurbs,
-}
-
-impl SurfaceKind {
-    /// The kind of a truck-stepio surface.
-    pub fn of(surface: &StepSurface) -> Self {
-        match surface {
-            StepSurface::ElementarySurface(elementary) => match elementary.as_ref() {
-                ElementarySurface::Plane(_) => Self::Plane,
-                ElementarySurface::Sphere(_) => Self::Sphere,
-                ElementarySurface::CylindricalSurface(_) => Self::Cylinder,
-                ElementarySurface::ToroidalSurface(_) => Self::Torus,
-                ElementarySurface::ConicalSurface(_) => Self::Cone,
-            },
-            StepSurface::SweptCurve(swept) => match swept.as_ref() {
-                SweptCurve::ExtrudedCurve(_) => Self::Extrusion,
-                SweptCurve::RevolutedCurve(_) => Self::Revolution,
-            },
-            StepSurface::BSplineSurface(_) => Self::BSpline,
-            StepSurface::NurbsSurface(_) => Self::Nurbs,
-        }
-    }
-}
-
 impl BrepShell {
-    /// The kind of face `face`'s surface.
-    pub fn surface_kind(&self, face: usize) -> SurfaceKind {
-        SurfaceKind::of(&self.shell.faces[face].surface)
+    /// Face `face`'s surface with its exact parameters.
+    pub fn surface_geometry(&self, face: usize) -> SurfaceGeometry {
+        SurfaceGeometry::of(&self.shell.faces[face].surface)
     }
 
     /// The description of face `face` for messages (`face N` when the file did not list it).

@@ -8,6 +8,7 @@
 //! [`crate::tessellate`] meshes them, [`crate::mesh`] validates soups.
 
 mod brep;
+mod face_geometry;
 mod features;
 mod frame;
 mod parameter_region;
@@ -18,7 +19,8 @@ mod soup;
 mod surface;
 mod surface_domain;
 
-pub use brep::{Brep, BrepShell, FaceSource, LooseSurface, StepShell, SurfaceKind};
+pub use brep::{Brep, BrepShell, FaceSource, LooseSurface, StepShell};
+pub use face_geometry::SurfaceGeometry;
 pub use features::{
     DEFAULT_FOLD_STIFFNESS, FoldLineGeometry, FoldStiffness, RegionShape, StiffnessRegion,
 };
