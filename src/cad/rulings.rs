@@ -35,10 +35,10 @@ pub fn rulings(surface: &RuledSurface, mesh_size: f64, chord: f64) -> Rulings {
 }
 
 /// [`rulings`] with a ruling at each domain `u` of `through` (the angle in degrees of a cylinder
-/// or a cone, the arc length along an extrusion's profile; see [`super::surface_domain`]): the
-/// stretches of the sections between them are sampled each on its own, so that the rulings next
-/// to them keep about their usual spacing. A loft's rulings are fixed by its sections' tangents
-/// and ignore `through`.
+/// or a cone, the arc length along an extrusion's profile; see
+/// [`SurfaceDomain`](super::SurfaceDomain)): the stretches of the sections between them are
+/// sampled each on its own, so that the rulings next to them keep about their usual spacing. A
+/// loft's rulings are fixed by its sections' tangents and ignore `through`.
 pub fn rulings_through(
     surface: &RuledSurface,
     mesh_size: f64,

@@ -19,7 +19,8 @@ pub const MINIMUM_MESH_SIZE_RATIO: f64 = 1.0 / 2000.0;
 /// radius half the diagonal it asks for edges near the smallest mesh size (a chord of 1e-12 mm
 /// refined without end).
 pub const MINIMUM_CHORD_RATIO: f64 = 1e-7;
-/// Options of the tessellation of part files and STEP files. `Default` is the only source of defaults.
+/// Options of the tessellation of part files and STEP files. `Default` is the only source of
+/// defaults.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct TessellateOptions {
     /// Target edge length (part units); default the bounding diagonal / [`DEFAULT_DIVISIONS`].
