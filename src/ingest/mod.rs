@@ -8,8 +8,8 @@ mod cut_sidecar;
 mod errors;
 mod input;
 mod obj;
-pub mod part;
-pub mod step;
+mod part;
+mod step;
 mod stl;
 
 pub use crate::geometry::tolerance::STL_WELD_TOLERANCE;
@@ -17,5 +17,6 @@ pub use cut_sidecar::{CutSidecar, SidecarRegion, cut_sidecar_path, read_cut_side
 pub use errors::{FormatDefect, IngestError};
 pub use input::{Input, InputKind, MeshInput, read_input, read_mesh};
 pub use obj::parse_obj;
+pub use part::{PartError, SpecDefect, parse_part, read_part_text};
 pub use step::read_step;
 pub use stl::parse_stl;
