@@ -2,6 +2,7 @@
 //! facet models with adjacency, one per connected component.
 
 mod chains;
+mod defects;
 mod facet;
 mod rows;
 mod validate;
@@ -11,4 +12,5 @@ pub use crate::geometry::tolerance::DEGENERATE_AREA_RATIO;
 pub use chains::chain_edges;
 pub use facet::{FacetModel, NONE};
 pub use rows::compressed_rows;
-pub use validate::{Defect, MeshDefects, ValidatedMesh, validate};
+pub use defects::{Defect, MeshDefects};
+pub use validate::{ValidatedMesh, validate};
