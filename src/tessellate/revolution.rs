@@ -90,8 +90,8 @@ fn doubled_or_halved(previous: usize, needed: usize) -> usize {
 mod tests {
     use std::f64::consts::{PI, TAU};
 
-    use crate::tessellate::revolution::*;
     use crate::cad::{Frame, Profile, ProfileSegment};
+    use crate::tessellate::revolution::*;
 
     #[test]
     fn a_spherical_cap_has_its_analytic_area() {
