@@ -6,8 +6,9 @@ use truck_meshalgo::prelude::*;
 use truck_stepio::r#in::alias::{ElementarySurface, Surface as StepSurface};
 
 use super::domain_map::Axis;
-use super::inversion::{INVERSION_TOLERANCE_RATIO, global_inversion};
-use super::native::{POLE_RATIO, native_derivatives, native_point};
+use super::inversion::global_inversion;
+use super::native::{native_derivatives, native_point};
+use crate::geometry::tolerance::{INVERSION_TOLERANCE_RATIO, STEP_POLE_RATIO};
 
 /// Grid intervals per parameter on which a face's curvature is sampled.
 const CURVATURE_SAMPLES: usize = 6;
@@ -97,7 +98,7 @@ pub fn apex_curvature(surface: &StepSurface, apex: DVec3, far: DVec3, size: f64)
         [None, Some(_)] => sv.length(),
         _ => return None,
     };
-    if angular_speed > POLE_RATIO * size {
+    if angular_speed > STEP_POLE_RATIO * size {
         return None;
     }
     let product = principal_curvature(surface, on_surface(far)?)? * far.distance(apex);

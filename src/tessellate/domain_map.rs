@@ -8,19 +8,14 @@ use truck_meshalgo::prelude::*;
 use truck_stepio::r#in::alias::{ElementarySurface, Surface as StepSurface, SweptCurve};
 
 use super::native::native_derivatives;
+use crate::geometry::tolerance::{CYLINDER_SLOPE, REVOLUTION_TOLERANCE, SMOOTH_POLE_TOLERANCE};
 
 /// A cone face reaching closer to its apex than this fraction of its largest distance from it
 /// keeps its own parameters (the log-polar map is singular at the apex).
 const APEX_RATIO: f64 = 1e-3;
 
-/// A cone whose radius changes less than this per unit of ruling length is a cylinder.
-const CYLINDER_SLOPE: f64 = 1e-9;
-
 /// Samples of a polar map's table along the meridian.
 const POLAR_SAMPLES: usize = 1024;
-
-/// A polar map's `c` within this of 1 is a smooth pole (`c = 1`).
-const SMOOTH_POLE_TOLERANCE: f64 = 1e-3;
 
 /// Finite-difference step of a polar map's derivatives, fraction of the domain's radius.
 const POLAR_DIFFERENCE_RATIO: f64 = 1e-6;
@@ -390,10 +385,6 @@ pub fn domain_map(
         reference: far,
     }
 }
-
-/// Relative change of a surface of revolution's parallel radius and meridian speed along a
-/// parallel below which the angular parameter is the angle about its axis.
-const REVOLUTION_TOLERANCE: f64 = 1e-9;
 
 /// Whether `surface` is a sphere, a torus or a revolved curve (the surfaces the Mercator map is
 /// for; cylinders and cones have their own maps).

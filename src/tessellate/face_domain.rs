@@ -31,8 +31,10 @@ use truck_stepio::r#in::alias::Surface as StepSurface;
 use super::curvature::largest_curvature;
 use super::domain_map::{Axis, DomainMap, domain_map, polar_map};
 use super::inversion::{DomainError, invert_loop, parameter_ranges};
-use super::native::{POLE_RATIO, native_derivatives, native_point};
+use super::native::{native_derivatives, native_point};
 use crate::cad::MappedSurface;
+use crate::geometry::tolerance::ISO_LINE_RATIO;
+use crate::geometry::tolerance::STEP_POLE_RATIO;
 
 /// A face's surface evaluated at domain coordinates.
 #[derive(Debug, Clone)]
@@ -66,11 +68,6 @@ impl MappedSurface for FaceSurface {
         (su * dx.x + sv * dx.y, su * dy.x + sv * dy.y)
     }
 }
-
-/// Relative spread of a parameter along an edge below which the edge lies on an iso-parameter
-/// line (a seam, a circle of a cone, a B-spline patch's side); its points then get exactly the
-/// same parameter, so the loop is straight there and the mesher makes no sliver along it.
-const ISO_LINE_RATIO: f64 = 1e-7;
 
 /// A boundary loop of a face: points on the surface (the loop does not repeat its first point)
 /// and the index of each edge's first point.
@@ -178,7 +175,7 @@ fn close_at_pole(
         else {
             continue;
         };
-        if smallest > POLE_RATIO * size || smallest.is_nan() || count < 3 {
+        if smallest > STEP_POLE_RATIO * size || smallest.is_nan() || count < 3 {
             continue;
         }
         let angle = |p: DVec2| axis.split(p).1;

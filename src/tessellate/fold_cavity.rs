@@ -9,13 +9,12 @@ use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 
 use super::face_mesh::FaceMesh;
 use super::fold_locate::{
-    BOUNDARY_SPLIT_RATIO, CORNER_TOLERANCE, INSIDE_TOLERANCE, Located, PIECE_GRADING, locate, min3,
-    position, segment_meets_triangle,
+    BOUNDARY_SPLIT_RATIO, Located, PIECE_GRADING, locate, min3, position, segment_meets_triangle,
 };
 use super::options::TessellateError;
 use super::patch::{classify_regions, insert_point, refine, surround_with_guard_box};
 use crate::geometry::distance_to_segment;
-use crate::geometry::tolerance::ON_POLYLINE_RATIO;
+use crate::geometry::tolerance::{CORNER_TOLERANCE, INSIDE_TOLERANCE, ON_POLYLINE_RATIO};
 
 /// Refinement may add at most this many vertices per expected triangle of the cavity's hull.
 const VERTEX_BUDGET_FACTOR: f64 = 20.0;

@@ -7,6 +7,7 @@ use glam::{DVec2, DVec3};
 use super::face_mesh::FaceMesh;
 use super::options::TessellateError;
 use crate::cad::SurfaceDomain;
+use crate::geometry::tolerance::{CORNER_TOLERANCE, INSIDE_TOLERANCE};
 
 /// Samples of a polyline segment when its length on the mesh is measured.
 const LENGTH_SAMPLES: usize = 256;
@@ -16,12 +17,6 @@ pub const BOUNDARY_SPLIT_RATIO: f64 = 2.5;
 
 /// Consecutive pieces of a split polyline grow by at most this ratio.
 pub const PIECE_GRADING: f64 = 1.5;
-
-/// A point whose smallest barycentric coordinate is above minus this is inside a triangle.
-pub const INSIDE_TOLERANCE: f64 = 1e-9;
-
-/// A barycentric coordinate above one minus this puts a point on that corner.
-pub const CORNER_TOLERANCE: f64 = 1e-9;
 
 /// A polyline point located on the mesh: its triangle and barycentric coordinates there.
 #[derive(Debug, Clone, Copy)]

@@ -9,16 +9,13 @@ use truck_meshalgo::prelude::*;
 use truck_stepio::r#in::alias::Surface as StepSurface;
 
 use super::native::{native_derivatives, native_point};
+use crate::geometry::tolerance::INVERSION_TOLERANCE_RATIO;
 
 /// Gauss-Newton steps of a point inversion.
 const INVERSION_STEPS: usize = 12;
 
 /// Grid samples per parameter of the fallback search of a point inversion.
 const SEARCH_GRID: usize = 24;
-
-/// A boundary point farther than this fraction of the face's size from its inverted surface point
-/// means the inversion failed.
-pub const INVERSION_TOLERANCE_RATIO: f64 = 1e-5;
 
 /// A boundary point inverted onto the surface failed; the message says where.
 #[derive(Debug, Clone, PartialEq)]

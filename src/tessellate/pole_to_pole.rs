@@ -9,7 +9,8 @@ use truck_meshalgo::prelude::*;
 use truck_stepio::r#in::alias::Surface as StepSurface;
 
 use super::domain_map::Axis;
-use super::native::{POLE_RATIO, native_derivatives, native_point};
+use super::native::{native_derivatives, native_point};
+use crate::geometry::tolerance::STEP_POLE_RATIO;
 
 /// Samples along the meridian when a surface is checked for poles at both ends.
 const MERIDIAN_SAMPLES: usize = 16;
@@ -87,7 +88,7 @@ impl PoleToPole {
         if !(largest > 0.0 && largest.is_finite()) {
             return None;
         }
-        let is_pole = |t: f64| closed.parallel_radius(t) <= POLE_RATIO * largest;
+        let is_pole = |t: f64| closed.parallel_radius(t) <= STEP_POLE_RATIO * largest;
         let poles = match meridian_period {
             None => [t0, t1],
             Some(_) => {

@@ -22,6 +22,7 @@ use super::fan::mesh_cone_fan;
 use super::ruled_plane::{graded_sides, mesh_plane, newell_normal, plane_boundary};
 use super::strip::stitch_rows;
 use crate::cad::{RuledSurface, Rulings, pieces_for_length, rulings};
+use crate::geometry::tolerance::COPLANAR_TOLERANCE;
 
 /// Fold polylines carried by the rulings ([`super::ruled_folds`] builds them): the points that
 /// must be vertices on each ruling and the fold segments that must be mesh edges. Every segment
@@ -92,9 +93,6 @@ enum Piece {
     /// not in one plane: a cone fan.
     Fan(usize, usize, bool),
 }
-
-/// Two wedge normals closer than this (sine of the angle) are parallel.
-const COPLANAR_TOLERANCE: f64 = 1e-9;
 
 /// Meshes rulings. Consecutive rulings in one plane are meshed together as a planar polygon
 /// (refined to well-shaped triangles, exact since the piece is flat), cone fans by

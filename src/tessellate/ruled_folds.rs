@@ -32,9 +32,8 @@ use glam::{DVec2, DVec3};
 use super::crossings::with_crossings;
 use super::ruled::{FoldSegment, RulingFolds, fan_wedges};
 use crate::cad::{Rulings, SurfaceDomain};
+use crate::geometry::tolerance::SAME_POINT_RATIO;
 
-/// Two points closer than this fraction of the mesh size are one point.
-const SAME_POINT_RATIO: f64 = 1e-7;
 /// Bisection steps (the interval halves each time: far below round-off after 64).
 const BISECTION_STEPS: usize = 64;
 

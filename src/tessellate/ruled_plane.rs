@@ -7,6 +7,7 @@ use super::face_mesh::FaceMesh;
 use super::patch::mesh_patch;
 use crate::cad::{Frame, PatchGeometry, PatchSurface, Rulings};
 use crate::geometry::tolerance::SLIVER_AREA_RATIO;
+use crate::geometry::tolerance::{COLLINEAR_TOLERANCE, PLANE_MATCH_RATIO, PLANE_SIDE_MARGIN};
 
 pub fn newell_normal(points: &[DVec3]) -> DVec3 {
     let count = points.len();
@@ -60,9 +61,6 @@ const SIDE_GRADING: f64 = 1.2;
 
 /// Integration step of the graded spacing, as a fraction of the local size.
 const GRADING_STEP: f64 = 0.05;
-
-/// Two consecutive section edges whose directions differ by less than this (sine) are one side.
-const COLLINEAR_TOLERANCE: f64 = 1e-9;
 
 /// Adds points on the straight section sides of `boundary` next to a much shorter boundary edge
 /// (a fan's ruling graded towards its apex), so that the corner can be meshed with well-shaped
@@ -237,9 +235,3 @@ fn is_sliver(triangle: &[u32; 3], positions: &[DVec3]) -> bool {
         .max(c.distance_squared(a));
     0.5 * (b - a).cross(c - a).length() < SLIVER_AREA_RATIO * longest
 }
-
-/// Relative margin on the longest side of a planar piece, so that the patch mesher splits none.
-const PLANE_SIDE_MARGIN: f64 = 1e-6;
-
-/// A patch vertex this close to a boundary corner (fraction of the longest side) is that corner.
-const PLANE_MATCH_RATIO: f64 = 1e-9;

@@ -6,6 +6,7 @@ use glam::DVec2;
 use super::checks::check;
 use super::errors::SpecDefect;
 pub use crate::geometry::signed_area as polygon_area;
+use crate::geometry::tolerance::LOOP_TOLERANCE;
 use crate::geometry::{distance_to_segment, inside};
 
 /// Checks trim loops: simple, nested (holes inside the outer loop, apart from each other);
@@ -76,9 +77,6 @@ pub fn check_loops(
     }
     Ok((outer, holes))
 }
-
-/// Loops closer than this fraction of the outer loop's size touch.
-const LOOP_TOLERANCE: f64 = 1e-6;
 
 /// The larger side of the loop's bounding box.
 fn extent(points: &[DVec2]) -> f64 {
