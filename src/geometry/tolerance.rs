@@ -112,3 +112,22 @@ pub const REVOLUTION_TOLERANCE: f64 = 1e-9;
 
 /// STEP faces: a polar map's `c` within this of 1 is a smooth pole (`c = 1`).
 pub const SMOOTH_POLE_TOLERANCE: f64 = 1e-3;
+
+/// Part-file sections: a polygon whose edge directions turn through a full turn within this
+/// (radians) winds once.
+pub const TURNING_TOLERANCE: f64 = 1e-6;
+
+/// STEP faces: consecutive edges of a boundary loop whose ends are closer than this fraction of
+/// the part's size meet (a larger gap is an open loop).
+pub const LOOP_GAP_RATIO: f64 = 1e-6;
+
+/// Fold polylines on rulings: a domain `u` within this fraction of `1 + |u|` of a ruling's is on
+/// that ruling.
+pub const SAME_STATION_RATIO: f64 = 1e-12;
+
+/// STEP edges: edge pieces shorter than this fraction of the part's size are degenerate and do
+/// not set the shortest piece at a vertex.
+pub const DEGENERATE_PIECE_RATIO: f64 = 1e-9;
+
+/// STEP edges: a vertex within this fraction of the mesh size of its curve's end is that end.
+pub const EDGE_END_RATIO: f64 = 1e-6;

@@ -44,7 +44,7 @@ use super::face_domain::{BoundaryLoop, FaceSurface, face_domain};
 use super::patch::mesh_patch;
 use super::pole_to_pole::PoleToPole;
 use crate::cad::{PatchGeometry, PatchSurface, StepShell, TriangleSoup};
-use crate::geometry::tolerance::{DEGENERATE_AREA_RATIO, SNAP_RATIO};
+use crate::geometry::tolerance::{DEGENERATE_AREA_RATIO, LOOP_GAP_RATIO, SNAP_RATIO};
 use crate::geometry::weld::PointWelder;
 
 /// Probe samples per edge when the shells' size is measured.
@@ -324,7 +324,7 @@ fn face_loops(
     edges: &[Vec<DVec3>],
     size: f64,
 ) -> Result<Vec<BoundaryLoop>, String> {
-    let gap_tolerance = 1e-6 * size.max(f64::MIN_POSITIVE);
+    let gap_tolerance = LOOP_GAP_RATIO * size.max(f64::MIN_POSITIVE);
     let mut loops = Vec::with_capacity(face.boundaries.len());
     for boundary in &face.boundaries {
         let mut points: Vec<DVec3> = Vec::new();

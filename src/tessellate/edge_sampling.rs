@@ -10,6 +10,7 @@ use truck_stepio::r#in::alias::Curve3D;
 
 use super::curvature::apex_curvature;
 use crate::cad::StepShell;
+use crate::geometry::tolerance::{DEGENERATE_PIECE_RATIO, EDGE_END_RATIO};
 
 /// Edge pieces are at most this fraction of the mesh size, so the patch mesher never splits a
 /// boundary piece again (its length on the surface stays under the mesh size).
@@ -140,7 +141,7 @@ pub fn graded_at_vertices(
     apexes: &[Option<EdgeApex>],
     size: f64,
 ) -> Vec<Vec<DVec3>> {
-    let degenerate = 1e-9 * size.max(f64::MIN_POSITIVE);
+    let degenerate = DEGENERATE_PIECE_RATIO * size.max(f64::MIN_POSITIVE);
     let mut shortest = vec![f64::INFINITY; shell.vertices.len()];
     for (edge, samples) in shell.edges.iter().zip(&edges) {
         let (a, b) = edge.vertices;
@@ -300,7 +301,7 @@ pub fn sample_curve(
 /// size of the curve's end is that end).
 fn edge_range(curve: &Curve3D, ends: (DVec3, DVec3), mesh_size: f64) -> (f64, f64) {
     let (start, end) = curve.range_tuple();
-    let tolerance = 1e-6 * mesh_size;
+    let tolerance = EDGE_END_RATIO * mesh_size;
     let nearest = |vertex: DVec3, own: f64| {
         if to_dvec(curve.subs(own)).distance(vertex) <= tolerance {
             return own;

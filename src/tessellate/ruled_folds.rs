@@ -32,7 +32,7 @@ use glam::{DVec2, DVec3};
 use super::crossings::with_crossings;
 use super::ruled::{FoldSegment, RulingFolds, fan_wedges};
 use crate::cad::{Rulings, SurfaceDomain};
-use crate::geometry::tolerance::SAME_POINT_RATIO;
+use crate::geometry::tolerance::{SAME_POINT_RATIO, SAME_STATION_RATIO};
 
 /// Bisection steps (the interval halves each time: far below round-off after 64).
 const BISECTION_STEPS: usize = 64;
@@ -235,7 +235,7 @@ fn place(
         _ => u,
     };
     let scale = 1.0 + u.abs();
-    let close = |k: usize| (samples[k].1 - u).abs() <= 1e-12 * scale;
+    let close = |k: usize| (samples[k].1 - u).abs() <= SAME_STATION_RATIO * scale;
     if let Some(k) = (0..samples.len()).find(|&k| close(k)) {
         return Some(Place::On(k, samples[k].2));
     }

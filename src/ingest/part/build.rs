@@ -23,7 +23,7 @@ use crate::cad::{
     Frame, PatchGeometry, PatchSurface, RevolutionSurface, RuledCircle, RuledSurface, Section,
     Surface,
 };
-use crate::geometry::tolerance::GEOMETRY_TOLERANCE;
+use crate::geometry::tolerance::{GEOMETRY_TOLERANCE, TURNING_TOLERANCE};
 
 /// The largest mitre tilt accepted, degrees.
 pub const MAXIMUM_CUT_DEGREES: f64 = 80.0;
@@ -255,7 +255,7 @@ fn turning_once(corners: &[DVec2]) -> bool {
             a.angle_to(b)
         })
         .sum();
-    (total - TAU).abs() < 1e-6
+    (total - TAU).abs() < TURNING_TOLERANCE
 }
 
 fn build_loft(spec: &LoftSpec) -> Result<Surface, SpecDefect> {
