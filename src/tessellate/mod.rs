@@ -39,10 +39,10 @@ mod step;
 mod strip;
 mod weld;
 
-pub use figures::{Tessellation, TessellationFigures, minimum_angle};
+pub use figures::{Tessellation, TessellationFigures};
 pub use options::{
     BrepError, DEFAULT_CHORD_RATIO, DEFAULT_DIVISIONS, MINIMUM_CHORD_RATIO,
-    MINIMUM_MESH_SIZE_RATIO, TessellateError, TessellateOptions, resolve_sizes, sizes_for_diagonal,
+    MINIMUM_MESH_SIZE_RATIO, TessellateError, TessellateOptions,
 };
 pub use part::tessellate_part;
 pub use region_vertices::vertices_inside;
