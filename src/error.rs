@@ -31,6 +31,14 @@ pub enum Error {
         /// Why.
         defect: crate::tessellate::TessellateError,
     },
+    /// A STEP file's B-rep could not be tessellated.
+    #[error("{path}: {defect}")]
+    Brep {
+        /// The input file.
+        path: PathBuf,
+        /// Why, naming the shell and face or the surface.
+        defect: crate::tessellate::BrepError,
+    },
     /// A part could not be flattened.
     #[error("{path}: part '{part}': {source}")]
     Flatten {

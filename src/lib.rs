@@ -2,11 +2,13 @@
 //! and Yuen (Computer-Aided Design, 2002).
 //!
 //! The pipeline runs one way, each stage a module that takes values and returns values:
-//! `ingest` (files to triangle soups) → `mesh` (validated facet models) → `flatten` (the paper's
-//! energy model) → `cut` → `nest` → `export` (the only module that writes files).
+//! `ingest` (files to the `cad` model: surfaces, B-reps, triangle soups) → `tessellate` (CAD
+//! model to triangle soup) → `mesh` (validated facet models) → `flatten` (the paper's energy
+//! model) → `cut` → `nest` → `export` (the only module that writes files).
 
 #![warn(missing_docs)]
 
+pub mod cad;
 pub mod cut;
 pub mod error;
 pub mod export;

@@ -1333,3 +1333,54 @@ fn folds_inside_the_wedges_of_a_loft_keep_it_exactly_developable() {
         lengths[1].length_3d
     );
 }
+
+/// A STEP file is read into a B-rep whose faces keep their surfaces' exact parameters, their
+/// STEP entities and their adjacency (`cad::BrepShell`), before any tessellation.
+#[test]
+fn step_faces_keep_their_exact_surfaces_and_adjacency() {
+    use flatcut::cad::SurfaceGeometry;
+    use flatcut::ingest::{Input, read_input};
+    let read = |name: &str| match read_input(&sample(name), Default::default()) {
+        Ok(Input::Step(brep)) => brep,
+        _ => panic!("{name}: not read as STEP"),
+    };
+    // Bottom radius 100 mm, top radius 50 mm, height 80 mm, about the z axis.
+    let frustum = read("cone_frustum_freecad.step");
+    let shell = &frustum.shells[0];
+    let cone = (0..shell.shell.faces.len())
+        .find_map(|face| match shell.surface_geometry(face) {
+            SurfaceGeometry::Cone {
+                origin,
+                axis,
+                radius,
+                half_angle,
+            } => Some((origin, axis, radius, half_angle)),
+            _ => None,
+        })
+        .expect("a conical face");
+    let (origin, axis, radius, half_angle) = cone;
+    assert!((axis.z.abs() - 1.0).abs() < 1e-9, "axis {axis}");
+    let radius_at = |z: f64| radius + (z - origin.z) / axis.z * half_angle.tan();
+    assert!((radius_at(0.0) - 100.0).abs() < 1e-6, "{}", radius_at(0.0));
+    assert!((radius_at(80.0) - 50.0).abs() < 1e-6, "{}", radius_at(80.0));
+    assert!(shell.describe_face(0).contains("CONICAL_SURFACE"));
+    // A solid cone: its side and its base share the base circle.
+    let solid = read("cone_apex_freecad.step");
+    let shell = &solid.shells[0];
+    let kinds: Vec<SurfaceGeometry> = (0..shell.shell.faces.len())
+        .map(|face| shell.surface_geometry(face))
+        .collect();
+    assert!(
+        kinds
+            .iter()
+            .any(|k| matches!(k, SurfaceGeometry::Plane { normal, .. } if normal.z.abs() > 0.999))
+    );
+    assert!(
+        shell
+            .adjacent_faces()
+            .iter()
+            .any(|&(faces, _)| faces == [0, 1]),
+        "{:?}",
+        shell.adjacent_faces()
+    );
+}

@@ -11,7 +11,7 @@ use flatcut::export::write_atomically;
 use flatcut::ingest::{Input, read_input};
 use flatcut::mesh::TriangleSoup;
 use flatcut::pipeline::tessellate_part;
-use flatcut::tessellate::TessellateOptions;
+use flatcut::tessellate::{TessellateOptions, tessellate_brep};
 use flatcut::units::Units;
 
 use super::Outcome;
@@ -65,27 +65,31 @@ impl MeshSizeArgs {
 /// Runs `tessellate`.
 pub fn run(args: TessellateArgs) -> anyhow::Result<Outcome> {
     let options = args.sizes.options()?;
-    let input = read_input(&args.input, args.units, &options)?;
+    let input = read_input(&args.input, args.units)?;
     let (soup, summary): (TriangleSoup, String) = match &input {
         Input::Part(part) => {
             let tessellation = tessellate_part(&args.input, part, &options)?;
+            let figures = tessellation.figures;
             let summary = format!(
                 "mesh size {:.4} {}, chord {:.4} {}, smallest angle {:.2}°",
-                tessellation.mesh_size,
+                figures.mesh_size,
                 part.units.symbol(),
-                tessellation.chord,
+                figures.chord,
                 part.units.symbol(),
-                tessellation.minimum_angle
+                figures.minimum_angle
             );
             (tessellation.soup().clone(), summary)
         }
-        Input::Step(step) => (
-            step.soup.clone(),
-            format!(
+        Input::Step(brep) => {
+            let tessellation = tessellate_brep(brep, &options)
+                .map_err(|defect| anyhow::anyhow!("{}: {defect}", args.input.display()))?;
+            let figures = tessellation.figures;
+            let summary = format!(
                 "STEP faces in mm, mesh size {:.4} mm, chord {:.4} mm, smallest angle {:.2}°",
-                step.mesh_size, step.chord, step.minimum_angle
-            ),
-        ),
+                figures.mesh_size, figures.chord, figures.minimum_angle
+            );
+            (tessellation.soup().clone(), summary)
+        }
         Input::Mesh(mesh) => (mesh.soup.clone(), "mesh file".to_string()),
     };
     let validated = flatcut::mesh::validate(&soup).map_err(|defects| {

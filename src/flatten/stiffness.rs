@@ -4,11 +4,9 @@
 
 use glam::DVec3;
 
+pub use crate::cad::DEFAULT_FOLD_STIFFNESS;
 use crate::geometry::distance_to_segment_3d;
 use crate::mesh::{FacetModel, NONE};
-
-/// Default factor for edges near a fold line.
-pub const DEFAULT_FOLD_STIFFNESS: f64 = 10.0;
 
 /// A stiffness factor per edge of a facet model (1 = the plain spring constant).
 #[derive(Debug, Clone, PartialEq)]

@@ -2,6 +2,8 @@
 
 mod plane;
 mod segment;
+pub mod tolerance;
+pub mod weld;
 
 pub use plane::{
     bounding_box, convex_hull, deep_interior_point, inside, long_side_of_smallest_rectangle,

@@ -15,8 +15,32 @@
 
 use std::path::{Path, PathBuf};
 
-use super::IngestError;
-use crate::cut::CutConstraints;
+use serde::Deserialize;
+
+use super::errors::IngestError;
+
+/// A cut sidecar as written: user seams and no-cut regions, in the mesh's coordinates (the
+/// pipeline hands them to the cut stage).
+#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, rename = "CutConstraints")]
+pub struct CutSidecar {
+    /// User seams: 3D polylines in model units.
+    #[serde(default)]
+    pub seams: Vec<Vec<[f64; 3]>>,
+    /// Balls of the part where nothing may be cut.
+    #[serde(default)]
+    pub no_cut_regions: Vec<SidecarRegion>,
+}
+
+/// A ball of the part where nothing may be cut, as written in a sidecar.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, rename = "NoCutRegion")]
+pub struct SidecarRegion {
+    /// Centre, model units.
+    pub center: [f64; 3],
+    /// Radius, model units.
+    pub radius: f64,
+}
 
 /// The sidecar's path for a mesh file: the extension replaced by `cut.json`.
 pub fn cut_sidecar_path(mesh: &Path) -> PathBuf {
@@ -24,14 +48,14 @@ pub fn cut_sidecar_path(mesh: &Path) -> PathBuf {
 }
 
 /// Reads the sidecar of `mesh` if there is one. `parts` is the number of parts the mesh holds.
-pub fn read_cut_sidecar(mesh: &Path, parts: usize) -> Result<Option<CutConstraints>, IngestError> {
+pub fn read_cut_sidecar(mesh: &Path, parts: usize) -> Result<Option<CutSidecar>, IngestError> {
     let path = cut_sidecar_path(mesh);
     let text = match std::fs::read_to_string(&path) {
         Ok(text) => text,
         Err(error) if error.kind() == std::io::ErrorKind::NotFound => return Ok(None),
         Err(source) => return Err(IngestError::Read { path, source }),
     };
-    let constraints: CutConstraints =
+    let constraints: CutSidecar =
         serde_json::from_str(&text).map_err(|error| IngestError::Sidecar {
             path: path.clone(),
             message: error.to_string(),
@@ -49,7 +73,7 @@ pub fn read_cut_sidecar(mesh: &Path, parts: usize) -> Result<Option<CutConstrain
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::ingest::cut_sidecar::*;
 
     #[test]
     fn a_missing_sidecar_is_no_constraint() {

@@ -5,7 +5,7 @@
 use glam::DVec3;
 
 use super::errors::FormatDefect;
-use crate::mesh::TriangleSoup;
+use crate::cad::TriangleSoup;
 
 /// True when the bytes look like an OBJ file: text whose statements start with `v ` or `f `.
 pub(crate) fn looks_like_obj(bytes: &[u8]) -> bool {
@@ -108,7 +108,7 @@ fn line_of_offset(bytes: &[u8], offset: usize) -> usize {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::ingest::obj::*;
 
     #[test]
     fn quad_with_texture_and_normal_indices_is_fanned() {

@@ -2,15 +2,12 @@
 //! closer than [`STL_WELD_TOLERANCE`] (relative to the bounding-box diagonal) are welded into
 //! one vertex, the first one seen keeping its position.
 
-use std::collections::HashMap;
-
 use glam::DVec3;
 
 use super::errors::FormatDefect;
-use crate::mesh::TriangleSoup;
-
-/// Corners of STL triangles closer than this fraction of the bounding-box diagonal are welded.
-pub const STL_WELD_TOLERANCE: f64 = 1e-9;
+use crate::cad::TriangleSoup;
+use crate::geometry::tolerance::STL_WELD_TOLERANCE;
+use crate::geometry::weld::PointWelder;
 
 const BINARY_HEADER: usize = 80;
 const BINARY_TRIANGLE: usize = 50;
@@ -126,48 +123,17 @@ fn weld(corners: &[[DVec3; 3]]) -> TriangleSoup {
         max = max.max(*p);
     }
     let tolerance = (STL_WELD_TOLERANCE * (max - min).length()).max(f64::MIN_POSITIVE);
-    let cell_of =
-        |p: DVec3| -> [i64; 3] { ((p - min) / tolerance).floor().as_i64vec3().to_array() };
-    let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
-    let mut positions: Vec<DVec3> = Vec::new();
-    let mut triangles = Vec::with_capacity(corners.len());
-    for triangle in corners {
-        triangles.push(triangle.map(|p| {
-            if !p.is_finite() {
-                positions.push(p);
-                return (positions.len() - 1) as u32;
-            }
-            let [x, y, z] = cell_of(p);
-            let mut found = None;
-            'search: for dx in -1..=1 {
-                for dy in -1..=1 {
-                    for dz in -1..=1 {
-                        for &v in grid
-                            .get(&[x + dx, y + dy, z + dz])
-                            .map_or(&[][..], Vec::as_slice)
-                        {
-                            if positions[v as usize].distance(p) <= tolerance {
-                                found = Some(v);
-                                break 'search;
-                            }
-                        }
-                    }
-                }
-            }
-            found.unwrap_or_else(|| {
-                positions.push(p);
-                let v = (positions.len() - 1) as u32;
-                grid.entry([x, y, z]).or_default().push(v);
-                v
-            })
-        }));
-    }
-    TriangleSoup::new(positions, triangles)
+    let mut welder = PointWelder::new(min, tolerance);
+    let triangles = corners
+        .iter()
+        .map(|triangle| triangle.map(|p| welder.insert(p)))
+        .collect();
+    TriangleSoup::new(welder.into_points(), triangles)
 }
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::ingest::stl::*;
 
     fn binary_stl(triangles: &[[[f32; 3]; 3]]) -> Vec<u8> {
         let mut bytes = vec![0u8; BINARY_HEADER];

@@ -58,7 +58,7 @@ fn walk<'a>(
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::mesh::chains::*;
 
     #[test]
     fn a_path_in_any_order_becomes_one_chain() {

@@ -12,6 +12,8 @@
 
 use glam::DVec3;
 
+use super::rows::compressed_rows;
+
 /// Sentinel for "no face" (the missing side of a boundary edge) and "no fold line".
 pub const NONE: u32 = u32::MAX;
 
@@ -220,7 +222,7 @@ fn build_vertex_faces(vertex_count: usize, triangles: &[[u32; 3]]) -> (Vec<u32>,
         .iter()
         .enumerate()
         .flat_map(|(f, t)| t.iter().map(move |&v| (v, f as u32)));
-    super::compressed_rows(vertex_count, entries)
+    compressed_rows(vertex_count, entries)
 }
 
 /// Boundary loops, each following the directed boundary half-edges (surface on the left).

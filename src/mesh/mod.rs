@@ -1,13 +1,16 @@
-//! The facet model: raw triangle soups, their validation, and the validated mesh with adjacency.
+//! The facet model: raw triangle soups ([`crate::cad::TriangleSoup`]) validated into checked
+//! facet models with adjacency, one per connected component.
 
 mod chains;
+mod defects;
 mod facet;
 mod rows;
-mod soup;
 mod validate;
 
+pub use crate::cad::{FoldEdge, NO_SOURCE_FACE, TriangleSoup};
+pub use crate::geometry::tolerance::DEGENERATE_AREA_RATIO;
 pub use chains::chain_edges;
+pub use defects::{Defect, MeshDefects};
 pub use facet::{FacetModel, NONE};
 pub use rows::compressed_rows;
-pub use soup::{FoldEdge, NO_SOURCE_FACE, TriangleSoup};
-pub use validate::{DEGENERATE_AREA_RATIO, Defect, MeshDefects, ValidatedMesh, validate};
+pub use validate::{ValidatedMesh, validate};

@@ -24,7 +24,7 @@ where
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::mesh::rows::*;
 
     #[test]
     fn rows_keep_the_entries_order_and_empty_rows_stay_empty() {

@@ -8,173 +8,21 @@
 //! range, zero-area triangles with three distinct vertices, edges with more than two faces,
 //! vertices whose faces form more than one fan, and non-orientable surfaces.
 
-use std::fmt;
-
 use glam::DVec3;
 
+use super::defects::{Defect, MeshDefects};
 use super::facet::{FacetModel, NONE};
-use super::soup::TriangleSoup;
-
-/// A triangle whose area is below this fraction of its longest edge squared is degenerate: its
-/// height is under a millionth of its length, too thin for a meaningful flat shape.
-pub const DEGENERATE_AREA_RATIO: f64 = 1e-12;
-
-/// One defect of an input mesh.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Defect {
-    /// The mesh has no triangles at all.
-    NoTriangles,
-    /// A vertex has a NaN or infinite coordinate.
-    NonFiniteVertex {
-        /// Vertex index.
-        vertex: usize,
-    },
-    /// A triangle references a vertex that does not exist.
-    IndexOutOfRange {
-        /// Triangle index.
-        triangle: usize,
-        /// The offending vertex index.
-        index: u32,
-        /// Number of vertices in the mesh.
-        vertex_count: usize,
-    },
-    /// A triangle uses the same vertex twice (dropped, with a warning).
-    RepeatedVertex {
-        /// Triangle index.
-        triangle: usize,
-    },
-    /// A triangle with three distinct vertices but (nearly) no area.
-    ZeroArea {
-        /// Triangle index.
-        triangle: usize,
-        /// Its area in model units squared.
-        area: f64,
-    },
-    /// An edge shared by more than two triangles.
-    NonManifoldEdge {
-        /// The edge's vertices.
-        vertices: [u32; 2],
-        /// How many triangles share it.
-        faces: usize,
-    },
-    /// A vertex whose triangles form several fans touching only at the vertex (a bow-tie).
-    NonManifoldVertex {
-        /// Vertex index.
-        vertex: usize,
-        /// Number of separate fans.
-        fans: usize,
-    },
-    /// A Möbius-like surface whose triangles cannot all be oriented the same way.
-    NonOrientable {
-        /// An edge where the orientations conflict.
-        vertices: [u32; 2],
-    },
-    /// Triangles whose orientation disagreed with their neighbours (reoriented, with a warning).
-    Reoriented {
-        /// How many triangles were flipped.
-        count: usize,
-    },
-    /// Vertices no triangle uses (dropped, with a warning).
-    UnreferencedVertices {
-        /// How many.
-        count: usize,
-        /// The first one.
-        first: usize,
-    },
-}
-
-impl Defect {
-    /// True for defects that were repaired (a warning), false for those that stop the run.
-    pub fn is_repaired(&self) -> bool {
-        matches!(
-            self,
-            Defect::RepeatedVertex { .. }
-                | Defect::Reoriented { .. }
-                | Defect::UnreferencedVertices { .. }
-        )
-    }
-}
-
-impl fmt::Display for Defect {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Defect::NoTriangles => write!(f, "the mesh has no triangles"),
-            Defect::NonFiniteVertex { vertex } => {
-                write!(f, "vertex {vertex} has a NaN or infinite coordinate")
-            }
-            Defect::IndexOutOfRange {
-                triangle,
-                index,
-                vertex_count,
-            } => write!(
-                f,
-                "triangle {triangle} references vertex {index}, but there are only {vertex_count} vertices"
-            ),
-            Defect::RepeatedVertex { triangle } => {
-                write!(
-                    f,
-                    "triangle {triangle} uses the same vertex twice (dropped)"
-                )
-            }
-            Defect::ZeroArea { triangle, area } => write!(
-                f,
-                "triangle {triangle} has zero area ({area:.3e}): its vertices are collinear; \
-                 remove it or collapse its shortest edge"
-            ),
-            Defect::NonManifoldEdge {
-                vertices: [a, b],
-                faces,
-            } => write!(
-                f,
-                "edge {a}-{b} is shared by {faces} triangles (non-manifold; at most 2 allowed)"
-            ),
-            Defect::NonManifoldVertex { vertex, fans } => write!(
-                f,
-                "vertex {vertex} joins {fans} separate fans of triangles (non-manifold vertex)"
-            ),
-            Defect::NonOrientable { vertices: [a, b] } => write!(
-                f,
-                "the surface is not orientable (orientations conflict at edge {a}-{b})"
-            ),
-            Defect::Reoriented { count } => {
-                write!(
-                    f,
-                    "{count} triangles had the opposite orientation and were flipped"
-                )
-            }
-            Defect::UnreferencedVertices { count, first } => {
-                write!(
-                    f,
-                    "{count} vertices are used by no triangle (first: {first}); dropped"
-                )
-            }
-        }
-    }
-}
-
-/// The defects that stop a mesh from being used, all of them.
-#[derive(Debug, Clone, PartialEq)]
-pub struct MeshDefects(pub Vec<Defect>);
-
-impl fmt::Display for MeshDefects {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        const SHOWN: usize = 20;
-        write!(f, "{} defect(s)", self.0.len())?;
-        for defect in self.0.iter().take(SHOWN) {
-            write!(f, "\n  - {defect}")?;
-        }
-        if self.0.len() > SHOWN {
-            write!(f, "\n  - ... and {} more", self.0.len() - SHOWN)?;
-        }
-        Ok(())
-    }
-}
+use crate::cad::TriangleSoup;
+use crate::geometry::tolerance::DEGENERATE_AREA_RATIO;
 
 /// A validated mesh: its connected components and the repairs made on the way.
 #[derive(Debug, Clone)]
 pub struct ValidatedMesh {
     /// One facet model per connected component, ordered by their lowest input triangle.
     pub components: Vec<FacetModel>,
+    /// Per component, the soup vertex of each model vertex (model vertices are the component's
+    /// soup vertices in ascending order): the identity of a vertex through validation.
+    pub soup_vertices: Vec<Vec<u32>>,
     /// Repairs made (each [`Defect::is_repaired`]).
     pub warnings: Vec<Defect>,
 }
@@ -207,9 +55,11 @@ pub fn validate(soup: &TriangleSoup) -> Result<ValidatedMesh, MeshDefects> {
     if !errors.is_empty() {
         return Err(MeshDefects(errors));
     }
-    let components = split_components(soup, &kept, &triangles, &component_of, &mut warnings);
+    let (components, soup_vertices) =
+        split_components(soup, &kept, &triangles, &component_of, &mut warnings);
     Ok(ValidatedMesh {
         components,
+        soup_vertices,
         warnings,
     })
 }
@@ -399,17 +249,19 @@ fn check_vertex_fans(vertex_count: usize, triangles: &[[u32; 3]], errors: &mut V
     }
 }
 
-/// One facet model per component label, vertices renumbered in ascending input order.
+/// One facet model per component label, vertices renumbered in ascending input order, each with
+/// its model-to-soup vertex map.
 fn split_components(
     soup: &TriangleSoup,
     kept: &[usize],
     triangles: &[[u32; 3]],
     component_of: &[u32],
     warnings: &mut Vec<Defect>,
-) -> Vec<FacetModel> {
+) -> (Vec<FacetModel>, Vec<Vec<u32>>) {
     let component_count = component_of.iter().max().map_or(0, |&m| m as usize + 1);
     let mut referenced = vec![false; soup.positions.len()];
     let mut models = Vec::with_capacity(component_count);
+    let mut soup_vertices = Vec::with_capacity(component_count);
     for label in 0..component_count as u32 {
         let faces: Vec<usize> = (0..triangles.len())
             .filter(|&f| component_of[f] == label)
@@ -445,6 +297,7 @@ fn split_components(
             })
             .collect();
         models.push(FacetModel::from_checked(positions, local, sources, &folds));
+        soup_vertices.push(vertices);
     }
     let unreferenced: Vec<usize> = (0..referenced.len()).filter(|&v| !referenced[v]).collect();
     if let Some(&first) = unreferenced.first() {
@@ -453,12 +306,13 @@ fn split_components(
             first,
         });
     }
-    models
+    (models, soup_vertices)
 }
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::mesh::defects::Defect;
+    use crate::mesh::validate::*;
 
     fn soup(positions: &[[f64; 3]], triangles: &[[u32; 3]]) -> TriangleSoup {
         TriangleSoup::new(

@@ -3,18 +3,21 @@
 
 use std::path::{Path, PathBuf};
 
-use glam::DVec3;
 use serde::Serialize;
 
-use crate::cut::{Cut, CutConstraints, CutOptions, CutStop, Seam, UncutPattern};
+use crate::cad::{
+    ParameterRegion, PartAttributes, PartModel, RegionShape, SurfaceDomain, TriangleSoup,
+};
+use crate::cut::{Cut, CutConstraints, CutOptions, CutStop, NoCutRegion, Seam, UncutPattern};
 use crate::error::Error;
 use crate::flatten::{FlattenOptions, Flattened, Stiffness};
-use crate::ingest::part::{PartAttributes, PartInput, RegionShape};
-use crate::ingest::{Input, read_cut_sidecar, read_input};
-use crate::mesh::{FacetModel, TriangleSoup, validate};
-use crate::tessellate::parameter_region::ParameterRegion;
-use crate::tessellate::surface_domain::SurfaceDomain;
-use crate::tessellate::{TessellateOptions, Tessellation, tessellate};
+use crate::ingest::{CutSidecar, Input, read_cut_sidecar, read_input};
+use crate::mesh::{FacetModel, validate};
+pub use crate::tessellate::TessellationFigures;
+use crate::tessellate::{
+    TessellateOptions, Tessellation, tessellate_brep, tessellate_part as tessellate_cad,
+    vertices_inside,
+};
 use crate::units::Units;
 
 /// Options of a run, echoed in the report.
@@ -28,17 +31,6 @@ pub struct RunOptions {
     pub cut: CutOptions,
     /// Tessellation of part and STEP files.
     pub tessellate: TessellateOptions,
-}
-
-/// Figures of the tessellation a part came from.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct TessellationFigures {
-    /// Target edge length used (part units).
-    pub mesh_size: f64,
-    /// Chord tolerance used (part units).
-    pub chord: f64,
-    /// Smallest triangle angle of the whole part's mesh, degrees.
-    pub minimum_angle: f64,
 }
 
 /// One part ready to flatten: a connected facet model with its stiffness map.
@@ -88,19 +80,20 @@ pub struct PartResult {
 /// Reads an input file (mesh, part file or STEP file) and splits it into parts, one per
 /// connected component.
 pub fn load_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> {
-    match read_input(path, options.units, &options.tessellate)? {
+    match read_input(path, options.units)? {
         Input::Mesh(mesh) => {
             let template = template(mesh.name, mesh.units);
-            split_parts(path, &mesh.soup, template, |_, _| {})
+            split_parts(path, &mesh.soup, template, |_, _, _| {})
         }
-        Input::Step(step) => {
-            let mut template = template(step.name, Units::Millimetres);
-            template.tessellation = Some(TessellationFigures {
-                mesh_size: step.mesh_size,
-                chord: step.chord,
-                minimum_angle: step.minimum_angle,
-            });
-            split_parts(path, &step.soup, template, |_, _| {})
+        Input::Step(brep) => {
+            let tessellation =
+                tessellate_brep(&brep, &options.tessellate).map_err(|defect| Error::Brep {
+                    path: path.to_path_buf(),
+                    defect,
+                })?;
+            let mut template = template(brep.name, Units::Millimetres);
+            template.tessellation = Some(tessellation.figures);
+            split_parts(path, tessellation.soup(), template, |_, _, _| {})
         }
         Input::Part(part) => load_part_file(path, &part, &options.tessellate),
     }
@@ -109,10 +102,10 @@ pub fn load_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Err
 /// Tessellates a part file's surfaces (for `flatcut tessellate` and the pipeline).
 pub fn tessellate_part(
     path: &Path,
-    part: &PartInput,
+    part: &PartModel,
     options: &TessellateOptions,
 ) -> Result<Tessellation, Error> {
-    tessellate(&part.cad, options).map_err(|defect| Error::Tessellate {
+    tessellate_cad(&part.cad, options).map_err(|defect| Error::Tessellate {
         path: path.to_path_buf(),
         defect,
     })
@@ -142,7 +135,7 @@ fn template(name: String, units: Units) -> PartHeader {
 
 fn load_part_file(
     path: &Path,
-    part: &PartInput,
+    part: &PartModel,
     options: &TessellateOptions,
 ) -> Result<Vec<PartJob>, Error> {
     let tessellation = tessellate_part(path, part, options)?;
@@ -150,80 +143,66 @@ fn load_part_file(
     template.quantity = part.quantity;
     template.attributes = part.attributes.clone();
     template.fold_line_count = part.fold_stiffness.len() as u32;
-    template.tessellation = Some(TessellationFigures {
-        mesh_size: tessellation.mesh_size,
-        chord: tessellation.chord,
-        minimum_angle: tessellation.minimum_angle,
-    });
-    let lookup = VertexLookup::new(tessellation.soup());
-    split_parts(path, tessellation.soup(), template, |model, stiffness| {
-        for (line, fold) in part.fold_stiffness.iter().enumerate() {
-            let width = fold.width.unwrap_or(2.0 * tessellation.mesh_size);
-            stiffness.raise_near_fold_line(model, line as u32, width / 2.0, fold.factor);
-        }
-        for region in &part.regions {
-            let members = match &region.shape {
-                RegionShape::Parameter { surface, polygon } => {
-                    let domain = SurfaceDomain::new(&part.cad.surfaces[*surface]);
-                    ParameterRegion::new(domain, polygon.clone())
-                        .vertices_inside(&tessellation.welded, *surface as u32)
-                }
-                RegionShape::Box { .. } => Vec::new(),
-            };
-            stiffness.raise_where(region.factor, |edge| {
-                let [a, b] = model.edges()[edge].map(|v| model.positions()[v as usize]);
-                match &region.shape {
-                    RegionShape::Box { min, max } => {
-                        let midpoint = (a + b) * 0.5;
-                        midpoint.cmpge(*min).all() && midpoint.cmple(*max).all()
+    template.tessellation = Some(tessellation.figures);
+    let mesh_size = tessellation.figures.mesh_size;
+    split_parts(
+        path,
+        tessellation.soup(),
+        template,
+        |model, soup_vertices, stiffness| {
+            for (line, fold) in part.fold_stiffness.iter().enumerate() {
+                let width = fold.width.unwrap_or(2.0 * mesh_size);
+                stiffness.raise_near_fold_line(model, line as u32, width / 2.0, fold.factor);
+            }
+            for region in &part.regions {
+                let members = match &region.shape {
+                    RegionShape::Parameter { surface, polygon } => {
+                        let domain = SurfaceDomain::new(&part.cad.surfaces[*surface]);
+                        let region = ParameterRegion::new(domain, polygon.clone());
+                        vertices_inside(&region, &tessellation.welded, *surface as u32)
                     }
-                    RegionShape::Parameter { .. } => [a, b]
-                        .iter()
-                        .all(|&p| lookup.find(p).is_some_and(|v| members[v])),
-                }
-            });
-        }
-    })
+                    RegionShape::Box { .. } => Vec::new(),
+                };
+                stiffness.raise_where(region.factor, |edge| {
+                    let ends = model.edges()[edge];
+                    match &region.shape {
+                        RegionShape::Box { min, max } => {
+                            let [a, b] = ends.map(|v| model.positions()[v as usize]);
+                            let midpoint = (a + b) * 0.5;
+                            midpoint.cmpge(*min).all() && midpoint.cmple(*max).all()
+                        }
+                        RegionShape::Parameter { .. } => ends
+                            .iter()
+                            .all(|&v| members[soup_vertices[v as usize] as usize]),
+                    }
+                });
+            }
+        },
+    )
 }
 
-/// Soup vertices sorted by position, to find the soup vertex of a model vertex (validation keeps
-/// positions bit for bit).
-struct VertexLookup {
-    sorted: Vec<([u64; 3], usize)>,
-}
-
-impl VertexLookup {
-    fn new(soup: &TriangleSoup) -> Self {
-        let mut sorted: Vec<([u64; 3], usize)> = soup
-            .positions
+/// The cut stage's constraints from a part's sidecar.
+fn cut_constraints(sidecar: CutSidecar) -> CutConstraints {
+    CutConstraints {
+        seams: sidecar.seams,
+        no_cut_regions: sidecar
+            .no_cut_regions
             .iter()
-            .enumerate()
-            .map(|(v, p)| (key(*p), v))
-            .collect();
-        sorted.sort_unstable();
-        Self { sorted }
-    }
-
-    fn find(&self, position: DVec3) -> Option<usize> {
-        let wanted = key(position);
-        let index = self.sorted.partition_point(|(k, _)| *k < wanted);
-        self.sorted
-            .get(index)
-            .filter(|(k, _)| *k == wanted)
-            .map(|&(_, v)| v)
+            .map(|region| NoCutRegion {
+                center: region.center,
+                radius: region.radius,
+            })
+            .collect(),
     }
 }
 
-fn key(p: DVec3) -> [u64; 3] {
-    [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()]
-}
-
-/// Validates a soup into one job per component, each with its stiffness set by `stiffen`.
+/// Validates a soup into one job per component, each with its stiffness set by `stiffen` (given
+/// the component's model, the soup vertex of each model vertex, and the stiffness to raise).
 fn split_parts(
     path: &Path,
     soup: &TriangleSoup,
     header: PartHeader,
-    mut stiffen: impl FnMut(&FacetModel, &mut Stiffness),
+    mut stiffen: impl FnMut(&FacetModel, &[u32], &mut Stiffness),
 ) -> Result<Vec<PartJob>, Error> {
     let validated = validate(soup).map_err(|defects| Error::Mesh {
         path: path.to_path_buf(),
@@ -231,14 +210,17 @@ fn split_parts(
     })?;
     let warnings: Vec<String> = validated.warnings.iter().map(ToString::to_string).collect();
     let several = validated.components.len() > 1;
-    let constraints = read_cut_sidecar(path, validated.components.len())?.unwrap_or_default();
+    let constraints = read_cut_sidecar(path, validated.components.len())?
+        .map(cut_constraints)
+        .unwrap_or_default();
     Ok(validated
         .components
         .into_iter()
+        .zip(&validated.soup_vertices)
         .enumerate()
-        .map(|(i, model)| {
+        .map(|(i, (model, soup_vertices))| {
             let mut stiffness = Stiffness::uniform(&model);
-            stiffen(&model, &mut stiffness);
+            stiffen(&model, soup_vertices, &mut stiffness);
             PartJob {
                 name: if several {
                     format!("{}-{}", header.name, i + 1)

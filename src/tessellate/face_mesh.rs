@@ -20,6 +20,7 @@ pub struct FaceMesh {
 
 impl FaceMesh {
     /// The total area of the triangles (part units squared).
+    #[cfg(test)]
     pub fn area(&self) -> f64 {
         self.triangles
             .iter()

@@ -29,10 +29,9 @@ use glam::{DVec2, DVec3};
 
 use super::face_mesh::FaceMesh;
 use super::strip::stitch_rows;
+use crate::geometry::tolerance::FAN_TOLERANCE_RATIO;
+use crate::geometry::tolerance::FOLD_ROW_TOLERANCE;
 
-/// A chord between two rulings of a row may be shorter than its development by at most this
-/// fraction of the mesh size.
-pub const FAN_TOLERANCE_RATIO: f64 = 1e-4;
 /// Radial step between rows over the row's spacing (cells 1.5 times as long as wide).
 pub const RADIAL_ASPECT: f64 = 1.5;
 /// A bound on the rows of one fan (they shrink geometrically towards the apex).
@@ -103,9 +102,6 @@ fn halved(subset: &[usize]) -> Vec<usize> {
 
 /// The vertices a fan put on each of its rulings, from the apex outwards.
 pub type RulingVertices = Vec<Vec<u32>>;
-
-/// Fold rows closer than this (fraction of the rulings) are one row.
-const FOLD_ROW_TOLERANCE: f64 = 1e-9;
 
 /// Meshes the fan with apex vertex `apex` and far vertices `far` (see the module
 /// documentation). `apex_at_bottom` tells which end of the rulings the apex is (for the
@@ -259,7 +255,7 @@ impl Chart {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::tessellate::fan::*;
 
     fn angle_at(a: DVec3, b: DVec3, c: DVec3) -> f64 {
         (b - a).angle_between(c - a).to_degrees()

@@ -20,11 +20,12 @@ use spade::{
     AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation,
 };
 
-use super::TessellateError;
+use super::crossings::with_crossings;
 use super::face_mesh::FaceMesh;
-use super::fold_insert::with_crossings;
-use super::surface::{PatchSurface, pieces_for_length};
-use crate::ingest::part::loops::inside;
+use super::options::TessellateError;
+use crate::cad::{PatchSurface, pieces_for_length};
+use crate::geometry::tolerance::{ON_POLYLINE_RATIO, SLIVER_AREA_RATIO};
+use crate::geometry::{distance_to_segment, inside};
 
 /// The smallest triangle angle refinement aims for, degrees.
 pub const MINIMUM_ANGLE_DEGREES: f64 = 25.0;
@@ -34,8 +35,6 @@ pub const CHORD_ROUNDS: usize = 6;
 const SPEED_SAMPLES: usize = 9;
 /// Sub-samples of a boundary segment when its length on the surface is measured.
 const LENGTH_SAMPLES: usize = 8;
-/// A vertex within this fraction of the mesh size (scaled domain) of a fold polyline is on it.
-const ON_POLYLINE_RATIO: f64 = 1e-7;
 /// The guard box around a triangulation is this many mesh sizes away from it.
 const GUARD_MARGIN: f64 = 2.0;
 /// Refinement may add at most this many vertices per expected triangle of the patch.
@@ -186,11 +185,6 @@ pub(super) fn classify_regions(cdt: &Cdt, contains: impl Fn([DVec2; 3]) -> bool)
         .map(|&label| label != usize::MAX && region_inside[label])
         .collect()
 }
-
-/// A triangle whose area is below this fraction of its longest edge squared, with two edges on
-/// constraint edges, is a rounding sliver along a trim loop and is dropped (the loop then runs
-/// along its third edge; the surface stays manifold).
-const SLIVER_AREA_RATIO: f64 = 1e-10;
 
 fn is_degenerate_ear(cdt: &Cdt, face: FaceHandle<'_>, positions: &[DVec3]) -> bool {
     let [a, b, c] = face.vertices().map(|v| positions[v.fix().index()]);
@@ -430,5 +424,3 @@ fn extract_mesh(
     }
     mesh
 }
-
-pub use crate::geometry::distance_to_segment;

@@ -13,10 +13,8 @@ use glam::{DVec2, DVec3};
 
 use super::face_mesh::FaceMesh;
 use super::strip::stitch_rows;
-use super::surface::{RevolutionSurface, pieces_for_arc};
-
-/// A profile point closer to the axis than this fraction of the mesh size is on the axis (a pole).
-pub const POLE_TOLERANCE_RATIO: f64 = 1e-9;
+use crate::cad::{RevolutionSurface, pieces_for_arc};
+use crate::geometry::tolerance::POLE_TOLERANCE_RATIO;
 
 /// Meshes a surface of revolution.
 pub fn mesh_revolution(surface: &RevolutionSurface, mesh_size: f64, chord: f64) -> FaceMesh {
@@ -92,8 +90,8 @@ fn doubled_or_halved(previous: usize, needed: usize) -> usize {
 mod tests {
     use std::f64::consts::{PI, TAU};
 
-    use super::*;
-    use crate::tessellate::surface::{Frame, Profile, ProfileSegment};
+    use crate::cad::{Frame, Profile, ProfileSegment};
+    use crate::tessellate::revolution::*;
 
     #[test]
     fn a_spherical_cap_has_its_analytic_area() {

@@ -29,12 +29,11 @@
 
 use glam::{DVec2, DVec3};
 
-use super::fold_insert::with_crossings;
-use super::ruled::{FoldSegment, RulingFolds, Rulings, fan_wedges};
-use super::surface_domain::SurfaceDomain;
+use super::crossings::with_crossings;
+use super::ruled::{FoldSegment, RulingFolds, fan_wedges};
+use crate::cad::{Rulings, SurfaceDomain};
+use crate::geometry::tolerance::{SAME_POINT_RATIO, SAME_STATION_RATIO};
 
-/// Two points closer than this fraction of the mesh size are one point.
-const SAME_POINT_RATIO: f64 = 1e-7;
 /// Bisection steps (the interval halves each time: far below round-off after 64).
 const BISECTION_STEPS: usize = 64;
 
@@ -236,7 +235,7 @@ fn place(
         _ => u,
     };
     let scale = 1.0 + u.abs();
-    let close = |k: usize| (samples[k].1 - u).abs() <= 1e-12 * scale;
+    let close = |k: usize| (samples[k].1 - u).abs() <= SAME_STATION_RATIO * scale;
     if let Some(k) = (0..samples.len()).find(|&k| close(k)) {
         return Some(Place::On(k, samples[k].2));
     }

@@ -47,7 +47,7 @@ pub fn stitch_rows(
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::tessellate::strip::*;
 
     #[test]
     fn rows_of_different_lengths_make_a_full_strip() {

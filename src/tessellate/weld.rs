@@ -7,10 +7,11 @@
 //! merged, so a seam that a face keeps open (a full turn) stays open. Deterministic: vertices are
 //! visited in a sorted order and merged into the lowest index.
 
-use glam::{DVec2, DVec3};
+use glam::DVec2;
 
 use super::face_mesh::FaceMesh;
-use crate::mesh::{FoldEdge, TriangleSoup};
+use crate::cad::{FoldEdge, TriangleSoup};
+use crate::geometry::weld::merge_close_points;
 
 /// A welded soup and, per soup vertex, the faces it came from with its parameter-domain
 /// position on each.
@@ -52,7 +53,7 @@ pub fn weld_faces(faces: &[FaceMesh], weld: bool, tolerance: f64) -> Welded {
         owners.extend(std::iter::repeat_n(index as u32, face.positions.len()));
     }
     let representative = if weld {
-        merge_close_vertices(&positions, &owners, tolerance)
+        merge_close_points(&positions, &owners, tolerance)
     } else {
         (0..positions.len() as u32).collect()
     };
@@ -104,43 +105,6 @@ fn vertex_sources(
     sources
 }
 
-/// For each vertex, the lowest-numbered vertex of another face within `tolerance` (or itself).
-fn merge_close_vertices(positions: &[DVec3], owners: &[u32], tolerance: f64) -> Vec<u32> {
-    let mut order: Vec<u32> = (0..positions.len() as u32).collect();
-    order.sort_by(|&a, &b| {
-        positions[a as usize]
-            .x
-            .total_cmp(&positions[b as usize].x)
-            .then(a.cmp(&b))
-    });
-    let mut representative: Vec<u32> = (0..positions.len() as u32).collect();
-    for (rank, &v) in order.iter().enumerate() {
-        let p = positions[v as usize];
-        for &w in order[rank + 1..].iter() {
-            let q = positions[w as usize];
-            if q.x - p.x > tolerance {
-                break;
-            }
-            if owners[v as usize] != owners[w as usize] && p.distance(q) <= tolerance {
-                let (low, high) = (v.min(w), v.max(w));
-                let target = representative[low as usize];
-                if target < representative[high as usize] {
-                    representative[high as usize] = target;
-                }
-            }
-        }
-    }
-    // Resolve chains so every vertex points at a vertex that points at itself.
-    for v in 0..representative.len() {
-        let mut r = representative[v];
-        while representative[r as usize] != r {
-            r = representative[r as usize];
-        }
-        representative[v] = r;
-    }
-    representative
-}
-
 /// Drops unreferenced vertices, renumbering in ascending order; `representative` maps each input
 /// vertex to the vertex it was welded into.
 fn compact(
@@ -189,7 +153,9 @@ fn compact(
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use glam::DVec3;
+
+    use crate::tessellate::weld::*;
 
     fn square(x: f64) -> FaceMesh {
         let mut face = FaceMesh::default();

@@ -4,59 +4,21 @@
 
 use glam::{DVec2, DVec3};
 
-use super::build::{check, positive};
+use super::checks::{check, positive};
 use super::errors::SpecDefect;
 use super::loops::polygon_area;
 use super::spec::{FoldLineSpec, RegionSpec};
-use crate::tessellate::parameter_region::ParameterRegion;
-use crate::tessellate::surface::{FoldLineGeometry, Surface};
-use crate::tessellate::surface_domain::SurfaceDomain;
-
-/// A fold line's stiffness settings.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FoldStiffness {
-    /// Factor of the springs near the line.
-    pub factor: f64,
-    /// Width of the band (part units), if given; default twice the mesh size.
-    pub width: Option<f64>,
-}
-
-/// Where a stiffness region is.
-#[derive(Debug, Clone, PartialEq)]
-pub enum RegionShape {
-    /// A 3D box.
-    Box {
-        /// Lower corner.
-        min: DVec3,
-        /// Upper corner.
-        max: DVec3,
-    },
-    /// A polygon in a surface's parameter domain.
-    Parameter {
-        /// The surface.
-        surface: usize,
-        /// The polygon.
-        polygon: Vec<DVec2>,
-    },
-}
-
-/// A region of raised stiffness.
-#[derive(Debug, Clone, PartialEq)]
-pub struct StiffnessRegion {
-    /// The factor.
-    pub factor: f64,
-    /// Where.
-    pub shape: RegionShape,
-}
+use crate::cad::{
+    DEFAULT_FOLD_STIFFNESS, FoldLineGeometry, FoldStiffness, ParameterRegion, RegionShape,
+    StiffnessRegion, Surface, SurfaceDomain,
+};
 
 /// Builds a fold line's geometry and stiffness.
 pub fn build_fold_line(
     spec: &FoldLineSpec,
     surfaces: &[Surface],
 ) -> Result<(FoldLineGeometry, FoldStiffness), SpecDefect> {
-    let factor = spec
-        .factor
-        .unwrap_or(crate::flatten::stiffness::DEFAULT_FOLD_STIFFNESS);
+    let factor = spec.factor.unwrap_or(DEFAULT_FOLD_STIFFNESS);
     check(
         factor.is_finite() && factor > 0.0,
         "factor",

@@ -3,17 +3,11 @@
 
 use glam::DVec2;
 
+use super::checks::check;
 use super::errors::SpecDefect;
-
-fn check(condition: bool, field: &str, message: impl Into<String>) -> Result<(), SpecDefect> {
-    if condition {
-        Ok(())
-    } else {
-        Err(SpecDefect::new(field, message))
-    }
-}
-
 pub use crate::geometry::signed_area as polygon_area;
+use crate::geometry::tolerance::LOOP_TOLERANCE;
+use crate::geometry::{distance_to_segment, inside};
 
 /// Checks trim loops: simple, nested (holes inside the outer loop, apart from each other);
 /// returns the outer loop counter-clockwise and the holes.
@@ -84,9 +78,6 @@ pub fn check_loops(
     Ok((outer, holes))
 }
 
-/// Loops closer than this fraction of the outer loop's size touch.
-const LOOP_TOLERANCE: f64 = 1e-6;
-
 /// The larger side of the loop's bounding box.
 fn extent(points: &[DVec2]) -> f64 {
     let (low, high) = points
@@ -133,12 +124,9 @@ fn loops_cross(a: &[DVec2], b: &[DVec2]) -> bool {
     segments(a).any(|s| segments(b).any(|t| segments_cross(s, t)))
 }
 
-use crate::geometry::distance_to_segment;
-pub use crate::geometry::inside;
-
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::ingest::part::loops::*;
 
     #[test]
     fn a_self_intersecting_loop_is_found() {

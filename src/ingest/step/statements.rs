@@ -172,7 +172,7 @@ pub fn measure_value(body: &str, keyword: &str) -> Option<f64> {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::ingest::step::statements::*;
 
     #[test]
     fn instances_complex_instances_comments_and_strings_are_scanned() {

@@ -251,7 +251,7 @@ fn si_unit(body: &str) -> Option<(f64, String)> {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::ingest::step::units::*;
 
     fn units(text: &str, item: u64) -> Option<ContextUnits> {
         units_of(&Statements::parse(text), item).expect("readable units")

@@ -1,8 +1,8 @@
 //! A raw triangle soup as read from a file or produced by a tessellator, before validation.
 //!
 //! Nothing is assumed about a soup: it may be non-manifold, hold NaNs or degenerate triangles, or
-//! reference vertices that do not exist. [`crate::mesh::validate`] turns it into checked
-//! [`crate::mesh::FacetModel`]s, one per connected component, or lists every defect.
+//! reference vertices that do not exist. `crate::mesh::validate` turns it into checked
+//! facet models, one per connected component, or lists every defect.
 
 use glam::DVec3;
 

@@ -17,17 +17,15 @@
 
 use glam::{DVec2, DVec3};
 
-use super::ruled::rulings;
-use super::surface::{Frame, PatchSurface, Profile, RuledSurface, Section, Surface};
+use super::frame::Frame;
+use super::profile::Profile;
+use super::rulings::rulings;
+use super::surface::{PatchSurface, RuledSurface, Section, Surface};
+use crate::geometry::tolerance::{DOMAIN_EDGE_TOLERANCE, DOMAIN_POLE_RATIO};
 use crate::geometry::{distance_to_segment, inside};
 
-/// A domain point closer than this (degrees, or part units) to the domain's edge is on it.
-const EDGE_TOLERANCE: f64 = 1e-9;
 /// Samples along each fold segment when it is checked against a curved domain edge.
 const SEGMENT_SAMPLES: usize = 32;
-/// A point this close to the axis (fraction of the profile's length) is a pole.
-const POLE_RATIO: f64 = 1e-9;
-
 /// A surface's parameter domain (see the module documentation).
 #[derive(Debug, Clone)]
 pub enum SurfaceDomain {
@@ -147,7 +145,7 @@ impl SurfaceDomain {
             SurfaceDomain::Extrusion { profile, .. } => {
                 let length = profile.length();
                 profile
-                    .is_closed(EDGE_TOLERANCE * length)
+                    .is_closed(DOMAIN_EDGE_TOLERANCE * length)
                     .then_some((0.0, length))
             }
             SurfaceDomain::Patch(_) => None,
@@ -179,7 +177,7 @@ impl SurfaceDomain {
                 let local = local_point(frame, point);
                 let radius = local.truncate().length();
                 let v = profile.nearest_arc_length(DVec2::new(radius, local.z));
-                let pole = radius <= POLE_RATIO * profile.length();
+                let pole = radius <= DOMAIN_POLE_RATIO * profile.length();
                 let u = (!pole).then(|| local.y.atan2(local.x).to_degrees());
                 (u, v)
             }
@@ -245,7 +243,7 @@ impl SurfaceDomain {
     /// Why the domain point `point` is off the surface, if it is.
     pub fn outside(&self, point: DVec2) -> Option<String> {
         let range = |value: f64, low: f64, high: f64, name: &str| {
-            let tolerance = EDGE_TOLERANCE * (1.0 + low.abs().max(high.abs()));
+            let tolerance = DOMAIN_EDGE_TOLERANCE * (1.0 + low.abs().max(high.abs()));
             (!(value >= low - tolerance && value <= high + tolerance))
                 .then(|| format!("{name} = {value} is outside [{low}, {high}]"))
         };
@@ -272,7 +270,7 @@ impl SurfaceDomain {
             }),
             SurfaceDomain::Patch(patch) => {
                 let [low, high] = self.range();
-                let tolerance = EDGE_TOLERANCE * (high - low).length();
+                let tolerance = DOMAIN_EDGE_TOLERANCE * (high - low).length();
                 let on = |ring: &[DVec2]| {
                     (0..ring.len()).any(|k| {
                         distance_to_segment(point, ring[k], ring[(k + 1) % ring.len()]) <= tolerance
@@ -341,8 +339,8 @@ fn crosses_ring(from: DVec2, to: DVec2, ring: &[DVec2]) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-    use crate::tessellate::surface::RuledCircle;
+    use crate::cad::surface::RuledCircle;
+    use crate::cad::surface_domain::*;
 
     #[test]
     fn an_oblique_cone_ruling_has_one_angle() {

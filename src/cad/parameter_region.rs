@@ -2,14 +2,15 @@
 //!
 //! Input: a surface's [`SurfaceDomain`] (`docs/part-format.md`: angles in degrees, heights and
 //! profile lengths in part units, a patch's own parameters) and a polygon `[[u, v], ...]` in it.
-//! Output: a [`ParameterRegion`] that tells which vertices of a welded tessellation are in the
-//! region, and whether the region misses the domain altogether (a part-file error).
+//! Output: a [`ParameterRegion`] that tells whether a domain point is in the region (the
+//! tessellator finds the mesh vertices in it), and whether the region misses the domain
+//! altogether (a part-file error).
 //!
 //! Conventions, the same on every kind of surface:
 //! - a vertex is on the surface when that surface's mesher produced it (a vertex of an edge two
 //!   surfaces share is on both); its domain coordinates are the patch's own parameters, or those
 //!   of its position ([`SurfaceDomain::parameters`]) on the structured kinds;
-//! - the region is closed: a point within [`BOUNDARY_TOLERANCE`] of its boundary is inside;
+//! - the region is closed: a point within `BOUNDARY_TOLERANCE` of its boundary is inside;
 //! - a periodic `u` (an angle; the arc length along a closed extrusion profile) is matched
 //!   modulo its period: a point is inside when `(u + k · period, v)` is, for some whole `k`, so a
 //!   region across a full turn's seam may be written from −10 to 10 or from 350 to 370 degrees;
@@ -19,12 +20,8 @@
 use glam::DVec2;
 
 use super::surface_domain::SurfaceDomain;
-use super::weld::Welded;
+use crate::geometry::tolerance::BOUNDARY_TOLERANCE;
 use crate::geometry::{distance_to_segment, inside};
-
-/// A point this close to the region's boundary, as a fraction of the largest coordinate of the
-/// region (plus one), is inside it.
-pub const BOUNDARY_TOLERANCE: f64 = 1e-9;
 
 /// A polygon in a surface's parameter domain (see the module documentation).
 #[derive(Debug, Clone)]
@@ -76,14 +73,9 @@ impl ParameterRegion {
         })
     }
 
-    /// For each vertex of `welded`, whether it is on surface `surface` and in the region.
-    pub fn vertices_inside(&self, welded: &Welded, surface: u32) -> Vec<bool> {
-        (0..welded.soup.positions.len())
-            .map(|vertex| {
-                self.vertex_coordinates(welded, surface, vertex)
-                    .is_some_and(|(u, v)| self.contains(u, v))
-            })
-            .collect()
+    /// The domain the region is given in.
+    pub fn domain(&self) -> &SurfaceDomain {
+        &self.domain
     }
 
     /// Whether the domain point `(u, v)` is in the region (`u` is `None` on a pole).
@@ -92,21 +84,6 @@ impl ParameterRegion {
             Some(u) => self.shifts(u).any(|u| self.covers(DVec2::new(u, v))),
             None => self.reaches_pole(v),
         }
-    }
-
-    /// The domain coordinates of a welded vertex on surface `surface`; `None` when that surface
-    /// did not produce it.
-    fn vertex_coordinates(
-        &self,
-        welded: &Welded,
-        surface: u32,
-        vertex: usize,
-    ) -> Option<(Option<f64>, f64)> {
-        let parameters = welded.parameters_on(vertex, surface)?;
-        Some(match self.domain {
-            SurfaceDomain::Patch(_) => (Some(parameters.x), parameters.y),
-            _ => self.domain.parameters(welded.soup.positions[vertex]),
-        })
     }
 
     /// The names of the two domain coordinates, for messages.

@@ -1,0 +1,155 @@
+//! The defects a mesh check finds, each naming the element (vertex or triangle index, 0-based),
+//! and whether it was repaired.
+
+use std::fmt;
+
+/// One defect of an input mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Defect {
+    /// The mesh has no triangles at all.
+    NoTriangles,
+    /// A vertex has a NaN or infinite coordinate.
+    NonFiniteVertex {
+        /// Vertex index.
+        vertex: usize,
+    },
+    /// A triangle references a vertex that does not exist.
+    IndexOutOfRange {
+        /// Triangle index.
+        triangle: usize,
+        /// The offending vertex index.
+        index: u32,
+        /// Number of vertices in the mesh.
+        vertex_count: usize,
+    },
+    /// A triangle uses the same vertex twice (dropped, with a warning).
+    RepeatedVertex {
+        /// Triangle index.
+        triangle: usize,
+    },
+    /// A triangle with three distinct vertices but (nearly) no area.
+    ZeroArea {
+        /// Triangle index.
+        triangle: usize,
+        /// Its area in model units squared.
+        area: f64,
+    },
+    /// An edge shared by more than two triangles.
+    NonManifoldEdge {
+        /// The edge's vertices.
+        vertices: [u32; 2],
+        /// How many triangles share it.
+        faces: usize,
+    },
+    /// A vertex whose triangles form several fans touching only at the vertex (a bow-tie).
+    NonManifoldVertex {
+        /// Vertex index.
+        vertex: usize,
+        /// Number of separate fans.
+        fans: usize,
+    },
+    /// A Möbius-like surface whose triangles cannot all be oriented the same way.
+    NonOrientable {
+        /// An edge where the orientations conflict.
+        vertices: [u32; 2],
+    },
+    /// Triangles whose orientation disagreed with their neighbours (reoriented, with a warning).
+    Reoriented {
+        /// How many triangles were flipped.
+        count: usize,
+    },
+    /// Vertices no triangle uses (dropped, with a warning).
+    UnreferencedVertices {
+        /// How many.
+        count: usize,
+        /// The first one.
+        first: usize,
+    },
+}
+
+impl Defect {
+    /// True for defects that were repaired (a warning), false for those that stop the run.
+    pub fn is_repaired(&self) -> bool {
+        matches!(
+            self,
+            Defect::RepeatedVertex { .. }
+                | Defect::Reoriented { .. }
+                | Defect::UnreferencedVertices { .. }
+        )
+    }
+}
+
+impl fmt::Display for Defect {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Defect::NoTriangles => write!(f, "the mesh has no triangles"),
+            Defect::NonFiniteVertex { vertex } => {
+                write!(f, "vertex {vertex} has a NaN or infinite coordinate")
+            }
+            Defect::IndexOutOfRange {
+                triangle,
+                index,
+                vertex_count,
+            } => write!(
+                f,
+                "triangle {triangle} references vertex {index}, but there are only {vertex_count} vertices"
+            ),
+            Defect::RepeatedVertex { triangle } => {
+                write!(
+                    f,
+                    "triangle {triangle} uses the same vertex twice (dropped)"
+                )
+            }
+            Defect::ZeroArea { triangle, area } => write!(
+                f,
+                "triangle {triangle} has zero area ({area:.3e}): its vertices are collinear; \
+                 remove it or collapse its shortest edge"
+            ),
+            Defect::NonManifoldEdge {
+                vertices: [a, b],
+                faces,
+            } => write!(
+                f,
+                "edge {a}-{b} is shared by {faces} triangles (non-manifold; at most 2 allowed)"
+            ),
+            Defect::NonManifoldVertex { vertex, fans } => write!(
+                f,
+                "vertex {vertex} joins {fans} separate fans of triangles (non-manifold vertex)"
+            ),
+            Defect::NonOrientable { vertices: [a, b] } => write!(
+                f,
+                "the surface is not orientable (orientations conflict at edge {a}-{b})"
+            ),
+            Defect::Reoriented { count } => {
+                write!(
+                    f,
+                    "{count} triangles had the opposite orientation and were flipped"
+                )
+            }
+            Defect::UnreferencedVertices { count, first } => {
+                write!(
+                    f,
+                    "{count} vertices are used by no triangle (first: {first}); dropped"
+                )
+            }
+        }
+    }
+}
+
+/// The defects that stop a mesh from being used, all of them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshDefects(pub Vec<Defect>);
+
+impl fmt::Display for MeshDefects {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        const SHOWN: usize = 20;
+        write!(f, "{} defect(s)", self.0.len())?;
+        for defect in self.0.iter().take(SHOWN) {
+            write!(f, "\n  - {defect}")?;
+        }
+        if self.0.len() > SHOWN {
+            write!(f, "\n  - ... and {} more", self.0.len() - SHOWN)?;
+        }
+        Ok(())
+    }
+}
