@@ -15,6 +15,7 @@ pub mod geometry;
 pub mod ingest;
 pub mod mesh;
 pub mod nest;
+pub mod pattern;
 pub mod pipeline;
 pub mod progress;
 pub mod tessellate;

@@ -14,7 +14,8 @@ use flatcut::nest::verify::verify;
 use flatcut::nest::{self, NestItem, NestLayout, NestOptions, Rotations, Stock};
 use flatcut::progress::Progress;
 
-use super::Outcome;
+use super::outcome::Outcome;
+use super::parse::{parse_rotations, parse_sheet};
 
 /// Version of the `nest.json` layout; raised when a key changes meaning.
 const SCHEMA_VERSION: u32 = 1;
@@ -201,40 +202,4 @@ pub fn run(args: NestArgs, progress: &dyn Progress) -> anyhow::Result<Outcome> {
         layout.stop_reason,
     );
     Ok(Outcome::Success)
-}
-
-/// Parses `WxH` (mm).
-pub(super) fn parse_sheet(text: &str) -> Result<(f64, f64), String> {
-    let (width, height) = text
-        .split_once(['x', 'X'])
-        .ok_or("expected WIDTHxHEIGHT, for example 3000x1500")?;
-    let number = |part: &str| {
-        part.trim()
-            .parse::<f64>()
-            .map_err(|error| format!("'{part}': {error}"))
-    };
-    Ok((number(width)?, number(height)?))
-}
-
-/// Parses `0,90,180`, `step:15` or `free`.
-pub(super) fn parse_rotations(text: &str) -> Result<Rotations, String> {
-    if text.eq_ignore_ascii_case("free") {
-        return Ok(Rotations::Free);
-    }
-    if let Some(step) = text.strip_prefix("step:") {
-        return step
-            .trim()
-            .parse()
-            .map(Rotations::Step)
-            .map_err(|error| format!("'{step}': {error}"));
-    }
-    text.split(',')
-        .map(|angle| {
-            angle
-                .trim()
-                .parse::<f64>()
-                .map_err(|error| format!("'{angle}': {error}"))
-        })
-        .collect::<Result<Vec<_>, _>>()
-        .map(Rotations::Fixed)
 }

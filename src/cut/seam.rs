@@ -317,7 +317,7 @@ fn nearest_vertex(model: &FacetModel, point: DVec3) -> u32 {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::cut::seam::*;
     use crate::mesh::{TriangleSoup, validate};
 
     /// A band of `segments` quads around the z axis between two circles: `(radius, z)` inner and

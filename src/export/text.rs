@@ -132,7 +132,7 @@ fn blend(pixmap: &mut Pixmap, x: i64, y: i64, colour: [u8; 3], coverage: f32) {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::export::text::*;
 
     fn white(width: u32, height: u32) -> Pixmap {
         let mut pixmap = Pixmap::new(width, height).expect("pixmap size");

@@ -6,9 +6,9 @@ use std::path::{Path, PathBuf};
 use glam::DVec3;
 use serde::Serialize;
 
-use crate::cut::{Cut, CutConstraints, CutOptions, CutStop, Seam, UncutPattern};
+use crate::cut::CutConstraints;
 use crate::error::Error;
-use crate::flatten::{FlattenOptions, Flattened, Stiffness};
+use crate::flatten::Stiffness;
 use crate::ingest::part::{PartAttributes, PartInput, RegionShape};
 use crate::ingest::{Input, read_cut_sidecar, read_input};
 use crate::mesh::{FacetModel, TriangleSoup, validate};
@@ -17,18 +17,7 @@ use crate::tessellate::surface_domain::SurfaceDomain;
 use crate::tessellate::{TessellateOptions, Tessellation, tessellate};
 use crate::units::Units;
 
-/// Options of a run, echoed in the report.
-#[derive(Debug, Clone, PartialEq, Serialize, Default)]
-pub struct RunOptions {
-    /// Units of mesh files (part files and STEP files carry their own).
-    pub units: Units,
-    /// Flattening options.
-    pub flatten: FlattenOptions,
-    /// Cutting options (seams, crest-line cuts).
-    pub cut: CutOptions,
-    /// Tessellation of part and STEP files.
-    pub tessellate: TessellateOptions,
-}
+use super::config::RunOptions;
 
 /// Figures of the tessellation a part came from.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -66,23 +55,6 @@ pub struct PartJob {
     pub constraints: CutConstraints,
     /// Repairs made to the input, as messages.
     pub warnings: Vec<String>,
-}
-
-/// A flattened part.
-#[derive(Debug, Clone)]
-pub struct PartResult {
-    /// What was flattened: its model and stiffness are those after seams and cuts.
-    pub job: PartJob,
-    /// The pattern of the cut model and its figures.
-    pub flattened: Flattened,
-    /// Seams made to open the part.
-    pub seams: Vec<Seam>,
-    /// Crest-line cuts made.
-    pub cuts: Vec<Cut>,
-    /// Why cutting stopped.
-    pub cut_stop: CutStop,
-    /// The part before its first crest-line cut, when one was made.
-    pub uncut: Option<UncutPattern>,
 }
 
 /// Reads an input file (mesh, part file or STEP file) and splits it into parts, one per
