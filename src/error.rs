@@ -84,6 +84,34 @@ pub enum Error {
         /// Every defect found.
         violations: Vec<Violation>,
     },
+    /// Benchmark instances of different strip heights, with no stock given.
+    #[error(
+        "{}: strip_height differs from the first instance's: give --roll W or --sheet WxH",
+        path.display()
+    )]
+    StripHeightDiffers {
+        /// The instance whose strip height differs.
+        path: PathBuf,
+    },
+    /// The nesting time budget is not a number of seconds.
+    #[error("--time {seconds}: give a number of seconds, 0 or more")]
+    InvalidTime {
+        /// The rejected value.
+        seconds: f64,
+    },
+    /// Nothing says what to nest on.
+    #[error("give --sheet WxH or --roll W")]
+    NoStock,
+    /// The independent check found defects in a benchmark's layout.
+    #[error(
+        "the independent check rejected the layout ({} defects):\n  {}",
+        violations.len(),
+        violations.iter().map(ToString::to_string).collect::<Vec<_>>().join("\n  ")
+    )]
+    BenchmarkLayoutRejected {
+        /// Every defect found.
+        violations: Vec<Violation>,
+    },
     /// The output directory could not be created.
     #[error("{}: cannot create the output directory", path.display())]
     CreateDirectory {

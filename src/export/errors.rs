@@ -49,6 +49,17 @@ pub enum ExportError {
     /// The PNG encoder failed.
     #[error("could not encode the PNG preview: {0}; this is a bug in flatcut, please report it")]
     Png(String),
+    /// A directory could not be created.
+    #[error("{}: cannot create the directory", path.display())]
+    CreateDirectory {
+        /// The directory.
+        path: PathBuf,
+        /// The operating system's reason.
+        source: std::io::Error,
+    },
+    /// A JSON report could not be encoded.
+    #[error(transparent)]
+    Json(serde_json::Error),
     /// A file could not be written.
     #[error("{path}: cannot write: {source}")]
     Write {

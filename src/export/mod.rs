@@ -20,6 +20,7 @@ pub mod energy_png;
 mod errors;
 pub mod indexed_png;
 pub mod legend;
+pub mod nest_report;
 pub mod obj;
 pub mod part_files;
 pub mod raster;

@@ -4,6 +4,7 @@
 //! on their own: [`load_parts`] reads an input into parts (ingest, tessellate, validate,
 //! stiffness) and [`flatten_part`] flattens, cuts and makes the pattern of one.
 
+mod benchmark;
 mod config;
 mod flatten_part;
 mod load;
@@ -12,6 +13,7 @@ mod part_result;
 mod report;
 mod run;
 
+pub use benchmark::{BenchmarkConfig, BenchmarkOutput, nest_benchmark, write_benchmark};
 pub use config::{
     DEFAULT_RUN_GAP, DEFAULT_RUN_ROTATIONS, DEFAULT_RUN_TIME_LIMIT, NestingConfig, RunConfig,
     RunOptions,
