@@ -22,7 +22,7 @@ pub const CUTS_PER_CAP: f64 = DEFAULT_MAX_CUTS as f64;
 /// three times as long wins if it releases more than `√3 ≈ 1.7` times the energy.
 pub const LENGTH_EXPONENT: f64 = 0.5;
 /// Candidate cuts are flattened with the fast solver's convergence threshold raised to this (a
-/// fraction of the mean rest length; see [`FastOptions::step_tolerance`]): enough to rank them,
+/// fraction of the mean rest length; see [`crate::flatten::FastOptions::step_tolerance`]): enough to rank them,
 /// at a fraction of the cost. The chosen cut is then flattened to the full threshold.
 pub const TRIAL_STEP_TOLERANCE: f64 = 1e-4;
 /// Solver iterations of the screening round, in which every candidate cut is flattened briefly
@@ -43,7 +43,7 @@ pub const EXTENSIONS_PER_CUT: usize = 3;
 pub const WIDER_SEARCH: usize = 4;
 
 /// Options of [`super::cut_loop::cut_and_flatten`]. `Default` is the only source of defaults. The tolerance is the
-/// flattening's ([`FlattenOptions::tolerance`]).
+/// flattening's ([`crate::flatten::FlattenOptions::tolerance`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CutOptions {
     /// Largest number of crest-line cuts; `None` (the default) for [`super::cut_loop::default_cut_budget`] of the
