@@ -3,7 +3,8 @@
 //!
 //! The pipeline runs one way, each stage a module that takes values and returns values:
 //! `ingest` (files to triangle soups) → `mesh` (validated facet models) → `flatten` (the paper's
-//! energy model) → `cut` → `nest` → `export` (the only module that writes files).
+//! energy model) → `cut` → `pattern` (outlines, cut contours) → `nest` → `export` (the only module
+//! that writes files); `pipeline` owns the whole run.
 
 #![warn(missing_docs)]
 

@@ -18,7 +18,6 @@ use crate::cut::UncutPattern;
 use crate::flatten::Flattened;
 use crate::mesh::FacetModel;
 use crate::pattern::{Pattern, VertexEnergy, fold_polylines};
-use crate::units::Units;
 
 /// How a part's files are drawn.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -142,8 +141,7 @@ fn energy_map<'a>(
     cut_polylines: Vec<Vec<DVec2>>,
     cuts: usize,
 ) -> EnergyMap<'a> {
-    let units: Units = part.pattern.drawing.units;
-    let units = units.symbol();
+    let units = part.pattern.drawing.units.symbol();
     let accuracy = source.flattened.stats.accuracy;
     EnergyMap {
         name: part.pattern.drawing.name.clone(),

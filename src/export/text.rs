@@ -18,8 +18,6 @@ pub enum Align {
     Left,
     /// The anchor is the text's middle.
     Centre,
-    /// The anchor is the text's right end.
-    Right,
 }
 
 /// One line of text to draw.
@@ -81,7 +79,6 @@ impl Typeface {
         let mut x = match label.align {
             Align::Left => label.x,
             Align::Centre => label.x - 0.5 * width,
-            Align::Right => label.x - width,
         };
         let mut previous: Option<GlyphId> = None;
         for character in label.text.chars() {
