@@ -4,13 +4,13 @@
 //!
 //! [`cut_and_flatten`] is the one-shot entry point:
 //! 1. user seams ([`CutConstraints::seams`]) are laid on the mesh and cut;
-//! 2. automatic seams ([`seam`], [`cut_graph`]) open the surface to a disk: one per ring loop; on a
+//! 2. automatic seams ([`seam`], `cut_graph`) open the surface to a disk: one per ring loop; on a
 //!    closed surface a tree–cotree cut graph first if it has handles, then a Steiner tree through
 //!    the regions where its curvature concentrates, or, on a smooth one, around the bisector of
 //!    its two farthest points but a hinge; the crest-line cut budget defaults to 8 per π of the
 //!    curvature left ([`default_cut_budget`]);
 //! 3. the part is flattened; while it is over tolerance and cuts are left, every candidate line of
-//!    its energy map and of its tension map (stretched springs only: where a cut opens) ([`crest`])
+//!    its energy map and of its tension map (stretched springs only: where a cut opens) (`crest`)
 //!    is cut and briefly flattened, warm-started from the current pattern, and the most promising
 //!    are flattened on (`best_cut`, docs/cutting.md); among those that lower the error (`max(E_S, E_C)`, an
 //!    overlapping pattern counting as worse than any other) the shortest that meets the tolerance
@@ -21,10 +21,10 @@
 //! Cuts never run along or across a fold line (no vertex of a fold-line edge is crossed) nor
 //! through a no-cut region; a developable part within tolerance gets no cut.
 
-pub mod crest;
-pub mod cut_graph;
+mod crest;
+mod cut_graph;
 mod cut_loop;
-pub mod density;
+mod density;
 mod errors;
 mod opening;
 mod options;
@@ -35,6 +35,7 @@ pub mod split;
 mod state;
 mod trials;
 
+pub use crest::{DEFAULT_CANDIDATES, DEFAULT_DART_FLOOR};
 pub use cut_loop::{cut_and_flatten, default_cut_budget};
 pub use errors::CutError;
 pub use options::{

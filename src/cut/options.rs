@@ -50,10 +50,10 @@ pub struct CutOptions {
     /// opened part. `Some(0)` disables cutting (seams are still made).
     pub max_cuts: Option<usize>,
     /// Crest lines traced before each cut, from the highest energy maxima; default
-    /// [`DEFAULT_CANDIDATES`].
+    /// [`crate::cut::DEFAULT_CANDIDATES`].
     pub candidates: usize,
-    /// A dart stops where the energy falls below this multiple of the mean energy density (see [`super::density`]);
-    /// default [`DEFAULT_DART_FLOOR`].
+    /// A dart stops where the energy falls below this multiple of the mean energy density (see `density`);
+    /// default [`crate::cut::DEFAULT_DART_FLOOR`].
     pub dart_floor: f64,
 }
 
