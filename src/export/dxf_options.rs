@@ -1,10 +1,13 @@
 //! How DXF files are written: the version, and the chord tolerance and seam allowance of the
 //! contours drawn.
 
+use serde::Serialize;
+
 use crate::pattern::PatternOptions;
 
 /// DXF version written.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum DxfVersion {
     /// AutoCAD 2000 (AC1015): LWPOLYLINE, `$INSUNITS`. The default.
     #[default]

@@ -11,9 +11,12 @@ use serde::Serialize;
 use super::atomic::write_atomically;
 use super::errors::ExportError;
 
+use super::dxf_options::DxfVersion;
+use super::energy_png::EnergyPngOptions;
 use crate::cut::{Cut, CutFigures, CutOptions, CutStop, Seam, SeamKind};
 use crate::flatten::{FlattenOptions, Solver, StopReason};
-use crate::nest::{NestLayout, Stock};
+use crate::nest::{NestLayout, Rotations, Stock};
+use crate::pattern::PatternOptions;
 use crate::tessellate::TessellateOptions;
 use crate::units::Units;
 
@@ -46,6 +49,33 @@ pub struct ReportOptions {
     pub cut: CutOptions,
     /// Tessellation of part and STEP files.
     pub tessellate: TessellateOptions,
+    /// Chord tolerance of the cut contours (mm) and seam allowance (mm, `null` for none).
+    pub pattern: PatternOptions,
+    /// DXF version of the cut files: `r2000` or `r12`.
+    pub dxf_version: DxfVersion,
+    /// Size and colour scale of the energy pictures.
+    pub energy_png: EnergyPngOptions,
+    /// How the patterns were nested; `null` without stock.
+    pub nesting: Option<NestingReport>,
+}
+
+/// The nesting options of a run with stock.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct NestingReport {
+    /// The stock: sheets (width, height) or a roll (width), mm.
+    pub stock: Stock,
+    /// Gap between parts and to the stock edge, mm.
+    pub gap: f64,
+    /// Search budget, seconds.
+    pub time_limit_seconds: f64,
+    /// Seed of the search.
+    pub seed: u64,
+    /// Rotations allowed, degrees from each pattern's minimum-area bounding rectangle.
+    pub rotations: Rotations,
+    /// Whether small parts could go inside the holes of larger ones.
+    pub in_holes: bool,
+    /// Whether parts could be mirrored.
+    pub mirror: bool,
 }
 
 /// Figures of the tessellation a part came from.

@@ -1,7 +1,8 @@
-//! The report's values made from a run: the options recorded and one entry per part.
+//! The report's values made from a run: every option of the run, and one entry per part.
 
 use crate::export::report::{
-    CutReport, FoldLineReport, PartReport, ReportOptions, SeamReport, TessellationReport,
+    CutReport, FoldLineReport, NestingReport, PartReport, ReportOptions, SeamReport,
+    TessellationReport,
 };
 use crate::flatten::fold_lines::fold_line_lengths;
 
@@ -16,6 +17,21 @@ pub fn report_options(config: &RunConfig) -> ReportOptions {
         flatten: options.flatten.clone(),
         cut: options.cut.clone(),
         tessellate: options.tessellate,
+        pattern: config.pattern,
+        dxf_version: config.dxf_version,
+        energy_png: config.energy_png,
+        nesting: config.stock.map(|stock| {
+            let nesting = &config.nesting;
+            NestingReport {
+                stock,
+                gap: nesting.gap,
+                time_limit_seconds: nesting.time_limit.as_secs_f64(),
+                seed: nesting.seed,
+                rotations: nesting.rotations.clone(),
+                in_holes: nesting.in_holes,
+                mirror: nesting.mirror,
+            }
+        }),
     }
 }
 
