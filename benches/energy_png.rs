@@ -4,11 +4,9 @@
 //! second. `cargo bench --bench energy_png`.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use flatcut::export::energy_png::{
-    EnergyMap, EnergyPngOptions, NEGLIGIBLE_STRAIN, PatternFigures, negligible_vertex_energy,
-    render_energy_png,
-};
+use flatcut::export::energy_png::{EnergyMap, EnergyPngOptions, PatternFigures, render_energy_png};
 use flatcut::flatten::{FlattenOptions, PAPER_SPRING_CONSTANT, SpringSystem, Stiffness, flatten};
+use flatcut::pattern::{NEGLIGIBLE_STRAIN, negligible_vertex_energy};
 use flatcut::progress::NoProgress;
 
 mod meshes;

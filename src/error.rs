@@ -4,10 +4,12 @@ use std::path::PathBuf;
 
 use crate::cut::CutError;
 use crate::export::ExportError;
-use crate::export::energy_png::EnergyPngError;
 use crate::flatten::FlattenError;
 use crate::ingest::IngestError;
 use crate::mesh::MeshDefects;
+use crate::nest::NestError;
+use crate::nest::verify::Violation;
+use crate::pattern::PatternError;
 
 /// An error of a flatcut run.
 #[derive(Debug, thiserror::Error)]
@@ -59,32 +61,74 @@ pub enum Error {
         /// Why (in the message, not repeated as a source).
         reason: CutError,
     },
-    /// An output file could not be written.
-    #[error("{path}: cannot write: {source}")]
-    Write {
-        /// The output file.
+    /// Two parts have one name: the second's files would overwrite the first's.
+    #[error(
+        "{}: part '{name}' has the name of a part from {}: its output files would overwrite \
+         the other's; give one of them another name (`name = ...` in a part file, or rename the \
+         file)",
+        path.display(),
+        earlier.display()
+    )]
+    DuplicateName {
+        /// The input file of the second part.
+        path: PathBuf,
+        /// The name both parts have.
+        name: String,
+        /// The input file of the first part.
+        earlier: PathBuf,
+    },
+    /// A part's pattern could not be made, or the pattern options are invalid.
+    #[error(transparent)]
+    Pattern(#[from] PatternError),
+    /// The patterns could not be nested.
+    #[error(transparent)]
+    Nest(#[from] NestError),
+    /// The independent check found defects in the nested layout.
+    #[error(
+        "the independent check rejected the nested layout:\n  {}",
+        violations.iter().map(ToString::to_string).collect::<Vec<_>>().join("\n  ")
+    )]
+    LayoutRejected {
+        /// Every defect found.
+        violations: Vec<Violation>,
+    },
+    /// Benchmark instances of different strip heights, with no stock given.
+    #[error(
+        "{}: strip_height differs from the first instance's: give --roll W or --sheet WxH",
+        path.display()
+    )]
+    StripHeightDiffers {
+        /// The instance whose strip height differs.
+        path: PathBuf,
+    },
+    /// The nesting time budget is not a number of seconds.
+    #[error("--time {seconds}: give a number of seconds, 0 or more")]
+    InvalidTime {
+        /// The rejected value.
+        seconds: f64,
+    },
+    /// Nothing says what to nest on.
+    #[error("give --sheet WxH or --roll W")]
+    NoStock,
+    /// The independent check found defects in a benchmark's layout.
+    #[error(
+        "the independent check rejected the layout ({} defects):\n  {}",
+        violations.len(),
+        violations.iter().map(ToString::to_string).collect::<Vec<_>>().join("\n  ")
+    )]
+    BenchmarkLayoutRejected {
+        /// Every defect found.
+        violations: Vec<Violation>,
+    },
+    /// The output directory could not be created.
+    #[error("{}: cannot create the output directory", path.display())]
+    CreateDirectory {
+        /// The directory.
         path: PathBuf,
         /// The operating system's reason.
         source: std::io::Error,
     },
-    /// A part's cut file (or a sheet's) could not be drawn.
-    #[error("{path}: part '{part}': cannot write its DXF: {source}")]
-    Export {
-        /// The input file the part came from (the sheet's file for a sheet).
-        path: PathBuf,
-        /// The part's name.
-        part: String,
-        /// Why.
-        source: ExportError,
-    },
-    /// A part's energy map could not be drawn.
-    #[error("{path}: part '{part}': cannot draw its energy map: {source}")]
-    EnergyMap {
-        /// The input file the part came from.
-        path: PathBuf,
-        /// The part's name.
-        part: String,
-        /// Why.
-        source: EnergyPngError,
-    },
+    /// An output file could not be written or drawn.
+    #[error(transparent)]
+    Export(#[from] ExportError),
 }

@@ -4,7 +4,8 @@
 //! The pipeline runs one way, each stage a module that takes values and returns values:
 //! `ingest` (files to the `cad` model: surfaces, B-reps, triangle soups) → `tessellate` (CAD
 //! model to triangle soup) → `mesh` (validated facet models) → `flatten` (the paper's energy
-//! model) → `cut` → `nest` → `export` (the only module that writes files).
+//! model) → `cut` → `pattern` (outlines, cut contours) → `nest` → `export` (the only module that
+//! writes files); `pipeline` owns the whole run. `docs/architecture.md` draws the stages.
 
 #![warn(missing_docs)]
 
@@ -17,6 +18,7 @@ pub mod geometry;
 pub mod ingest;
 pub mod mesh;
 pub mod nest;
+pub mod pattern;
 pub mod pipeline;
 pub mod progress;
 pub mod tessellate;

@@ -1,5 +1,6 @@
 //! Progress reporting from long stages, decoupled from any terminal: the library reports through
-//! the [`Progress`] trait and the binary decides how (a bar on a terminal, nothing otherwise).
+//! the [`Progress`] trait (progress and warnings) and the binary decides how (a bar on a terminal,
+//! nothing otherwise; warnings on stderr).
 
 /// Receives progress from a long stage. Implementations must be cheap: stages call
 /// [`Progress::advance`] often.
@@ -10,6 +11,9 @@ pub trait Progress: Sync {
     fn advance(&self, done: u64);
     /// The current stage is over.
     fn finish(&self);
+    /// Something the user should know that does not stop the run (a repair made to an input, a
+    /// slow option), as one line without a prefix. Ignored by default.
+    fn warn(&self, _message: &str) {}
 }
 
 /// Progress that goes nowhere: for tests, scripts and library users who do not care.

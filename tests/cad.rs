@@ -6,7 +6,6 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec2;
 
-use flatcut::export::part_files::part_drawing;
 use flatcut::flatten::fold_lines::fold_line_lengths;
 use flatcut::pipeline::{PartJob, PartResult, RunOptions, flatten_part, load_parts};
 use flatcut::progress::NoProgress;
@@ -160,7 +159,7 @@ fn a_grain_direction_turns_the_pattern_and_is_drawn_along_it() {
     assert!((size.x - 200.0).abs() < 1e-6, "{size}");
     // The arc side is the development of the inscribed polygon: short by its chords' sag.
     assert!((size.y - 100.0 * PI).abs() < OUTLINE_TOLERANCE, "{size}");
-    let drawing = part_drawing(result);
+    let drawing = &result.pattern.drawing;
     let [tail, head] = drawing.grain.expect("a grain line");
     assert!(
         (head.y - tail.y).abs() < 1e-9 && head.x > tail.x,
@@ -178,7 +177,7 @@ fn a_part_without_grain_lies_along_its_smallest_bounding_rectangle() {
     let size = flat.iter().fold(DVec2::ZERO, |size, &p| size.max(p));
     let area = result.job.model.area();
     assert!(size.x * size.y < 1.02 * area, "{size} around {area}");
-    assert_eq!(part_drawing(result).material.as_deref(), Some("wool"));
+    assert_eq!(result.pattern.drawing.material.as_deref(), Some("wool"));
 }
 
 /// Area of the exact square-to-round: four plane triangles and four oblique quarter cones

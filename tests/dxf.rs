@@ -6,9 +6,11 @@
 //! when the `CI` environment variable is set and is skipped, with a message, otherwise.
 
 use flatcut::export::{
-    DxfOptions, DxfVersion, PartDrawing, PlacedPart, SheetDrawing, Units, layers, write_atomically,
-    write_part_dxf, write_sheet_dxf,
+    DxfOptions, DxfVersion, PlacedPart, SheetDrawing, layers, write_atomically, write_part_dxf,
+    write_sheet_dxf,
 };
+use flatcut::pattern::{PartDrawing, PatternOptions};
+use flatcut::units::Units;
 use glam::DVec2;
 use std::f64::consts::TAU;
 use std::io::Write;
@@ -155,7 +157,10 @@ fn every_dxf_passes_the_ezdxf_audit() {
         check(&part_file, version_name, &part_counts);
 
         let seam_options = DxfOptions {
-            seam_allowance: Some(15.0),
+            pattern: PatternOptions {
+                seam_allowance: Some(15.0),
+                ..options.pattern
+            },
             ..options
         };
         let seam_file = directory.path().join(format!("sleeve-{version_name}.dxf"));

@@ -1,4 +1,5 @@
-//! Progress on stderr: an indicatif bar when stderr is a terminal, nothing otherwise.
+//! Progress on stderr: an indicatif bar when stderr is a terminal, nothing otherwise; warnings on
+//! stderr always.
 
 use std::io::IsTerminal;
 use std::sync::Mutex;
@@ -64,6 +65,20 @@ impl Progress for TerminalProgress {
             .take()
         {
             bar.finish_and_clear();
+        }
+    }
+
+    /// Prints `flatcut: warning: MESSAGE` on stderr, above the bar if one is drawn.
+    fn warn(&self, message: &str) {
+        let line = format!("flatcut: warning: {message}");
+        match self
+            .bar
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner())
+            .as_ref()
+        {
+            Some(bar) => bar.suspend(|| eprintln!("{line}")),
+            None => eprintln!("{line}"),
         }
     }
 }

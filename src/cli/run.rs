@@ -7,23 +7,14 @@ use std::time::Duration;
 use anyhow::bail;
 use clap::Args;
 
-use flatcut::export::PartDrawing;
-use flatcut::export::part_files::part_drawing;
-use flatcut::export::report::sheet_reports;
-use flatcut::export::sheets::{sheet_drawings, write_sheet_files};
-use flatcut::flatten::grain::flat_grain;
-use flatcut::nest::parts::items_from_drawings;
-use flatcut::nest::verify::verify;
-use flatcut::nest::{self, NestOptions, Rotations, Stock};
-use flatcut::pipeline::PartResult;
+use flatcut::nest::{Rotations, Stock};
+use flatcut::pipeline::{NestingConfig, RunConfig};
 use flatcut::progress::Progress;
 
-use super::Outcome;
-use super::flatten::{FlattenArgs, Nesting};
-use super::nest::{parse_rotations, parse_sheet};
-
-/// Rotations tried for flattened parts unless `--rotations` says otherwise.
-const DEFAULT_PART_ROTATIONS: [f64; 4] = [0.0, 90.0, 180.0, 270.0];
+use super::flatten::FlattenArgs;
+use super::job::execute;
+use super::outcome::Outcome;
+use super::parse::{parse_rotations, parse_sheet};
 
 /// Arguments of `run`: those of `flatten`, and the stock to nest on.
 #[derive(Debug, Args)]
@@ -37,13 +28,13 @@ pub struct RunArgs {
     #[arg(long, value_name = "W")]
     roll: Option<f64>,
     /// Gap between parts and to the stock edge, mm.
-    #[arg(long, value_name = "MM", default_value_t = 2.0)]
+    #[arg(long, value_name = "MM", default_value_t = NestingConfig::default().gap)]
     gap: f64,
     /// Nesting search budget in seconds (a deterministic work budget, capped by the wall clock).
-    #[arg(long, value_name = "S", default_value_t = 10.0)]
+    #[arg(long, value_name = "S", default_value_t = NestingConfig::default().time_limit.as_secs_f64())]
     time: f64,
     /// Seed of the nesting search.
-    #[arg(long, value_name = "N", default_value_t = nest::DEFAULT_SEED)]
+    #[arg(long, value_name = "N", default_value_t = NestingConfig::default().seed)]
     seed: u64,
     /// Allowed rotations, measured from the pattern's minimum-area bounding rectangle: a list of
     /// degrees ("0,180"), a step ("step:15") or "free" (24 angles, every 15°); default
@@ -67,71 +58,42 @@ impl RunArgs {
             (None, None) => None,
         }
     }
+
+    /// The run's configuration, converted in one place: `flatten`'s, with the stock and how to
+    /// nest on it.
+    fn config(&self) -> anyhow::Result<RunConfig> {
+        let stock = self.stock();
+        if stock.is_some() && (!self.time.is_finite() || self.time < 0.0) {
+            bail!("--time {}: give a number of seconds, 0 or more", self.time);
+        }
+        let defaults = NestingConfig::default();
+        let nesting = NestingConfig {
+            gap: self.gap,
+            time_limit: if stock.is_some() {
+                Duration::from_secs_f64(self.time)
+            } else {
+                defaults.time_limit
+            },
+            seed: self.seed,
+            rotations: self.rotations.clone().unwrap_or(defaults.rotations),
+            in_holes: self.in_holes,
+            mirror: self.mirror,
+        };
+        Ok(RunConfig {
+            stock,
+            nesting,
+            ..self.flatten.config()?
+        })
+    }
 }
 
 /// Runs the whole pipeline.
 pub fn run(args: RunArgs, progress: &dyn Progress) -> anyhow::Result<Outcome> {
-    let Some(stock) = args.stock() else {
-        return super::flatten::run(args.flatten, None, progress);
-    };
-    if !args.time.is_finite() || args.time < 0.0 {
-        bail!("--time {}: give a number of seconds, 0 or more", args.time);
-    }
-    let options = NestOptions {
-        stock,
-        gap: args.gap,
-        time_limit: Duration::from_secs_f64(args.time),
-        seed: args.seed,
-        work_limit: None,
-        in_holes: args.in_holes,
-    };
-    let rotations = args
-        .rotations
-        .clone()
-        .unwrap_or(Rotations::Fixed(DEFAULT_PART_ROTATIONS.to_vec()));
-    let nesting = Nesting {
-        options,
-        rotations,
-        mirror: args.mirror,
-    };
-    super::flatten::run(args.flatten, Some(&nesting), progress)
-}
-
-/// Nests the flattened parts (their drawings, with the grain of each part file), checks the
-/// layout independently, writes the sheet files and returns the report's sheet entries.
-pub fn nest_and_write(
-    directory: &std::path::Path,
-    results: &[PartResult],
-    nesting: &Nesting,
-    dxf: &flatcut::export::DxfOptions,
-    progress: &dyn Progress,
-) -> anyhow::Result<Vec<flatcut::export::report::SheetReport>> {
-    let drawings: Vec<PartDrawing> = results.iter().map(part_drawing).collect();
-    let grains: Vec<Option<f64>> = results
-        .iter()
-        .map(|result| {
-            let grain = result.job.attributes.grain?;
-            let flat = flat_grain(&result.job.model, &result.flattened.positions, grain)?;
-            Some(flat.y.atan2(flat.x).to_degrees())
-        })
-        .collect();
-    let items = items_from_drawings(&drawings, &grains, dxf, &nesting.rotations, nesting.mirror)?;
-    let layout = nest::nest(&items, &nesting.options, progress)?;
-    let violations = verify(&items, &layout);
-    if !violations.is_empty() {
-        let list: Vec<String> = violations.iter().map(ToString::to_string).collect();
-        bail!(
-            "the independent check rejected the nested layout:\n  {}",
-            list.join("\n  ")
-        );
-    }
-    let files = write_sheet_files(directory, &sheet_drawings(&drawings, &layout), dxf)?;
-    let names: Vec<String> = items.iter().map(|item| item.name.clone()).collect();
-    eprintln!(
-        "flatcut: nested on {} sheet(s), utilisation {:.2} %, length used {:.1} mm",
-        layout.sheets.len(),
-        layout.utilisation * 100.0,
-        layout.used_length
-    );
-    Ok(sheet_reports(&layout, &names, &files))
+    let config = args.config()?;
+    execute(
+        &config,
+        args.flatten.output(),
+        args.flatten.json(),
+        progress,
+    )
 }

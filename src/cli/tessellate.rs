@@ -14,7 +14,7 @@ use flatcut::pipeline::tessellate_part;
 use flatcut::tessellate::{TessellateOptions, tessellate_brep};
 use flatcut::units::Units;
 
-use super::Outcome;
+use super::outcome::Outcome;
 
 /// Arguments of `tessellate`.
 #[derive(Debug, Args)]

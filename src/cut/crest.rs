@@ -508,7 +508,7 @@ impl Tracer<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::cut::crest::*;
     use crate::cut::paths::tests::grid;
 
     /// The first crest line of the 4 x 4 test grid with these vertex energies (also the tension

@@ -468,7 +468,7 @@ fn chains(model: &FacetModel, adjacency: &Adjacency, in_graph: &[bool]) -> Vec<V
 mod tests {
     use glam::DVec3;
 
-    use super::*;
+    use crate::cut::cut_graph::*;
     use crate::cut::split::split_along_edges;
     use crate::mesh::{TriangleSoup, validate};
 

@@ -122,7 +122,7 @@ fn smoothed(adjacency: &Adjacency, areas: &[f64], mut values: Vec<f64>, steps: u
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::cut::density::*;
     use crate::cut::paths::tests::grid;
 
     #[test]

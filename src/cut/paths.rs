@@ -185,7 +185,7 @@ pub fn path_edges(model: &FacetModel, path: &[u32]) -> Option<Vec<usize>> {
 pub(crate) mod tests {
     use glam::DVec3;
 
-    use super::*;
+    use crate::cut::paths::*;
     use crate::mesh::{TriangleSoup, validate};
 
     /// A 3 × 3 grid of unit squares, split into triangles.

@@ -12,7 +12,7 @@
 //!   turning `Σ (π − Σθ)` over its vertices is within [`HOLE_TURNING_TOLERANCE`] of `−2π`, the
 //!   turning of a hole in a flat sheet; the outer loop is the one that turns most.
 //! - A closed surface is first opened by the caller along its curvature cut graph or its
-//!   bisector ([`super::cut_graph`]); what follows is the fallback when neither gives a graph.
+//!   bisector (`cut_graph`); what follows is the fallback when neither gives a graph.
 //! - A closed surface without handles (genus 0): the shortest path between two far-apart
 //!   vertices (the vertex farthest from vertex 0, and the vertex farthest from that) opens it to a
 //!   disk with a slit (a path of one edge goes on by one more edge: a one-edge slit duplicates no
@@ -21,7 +21,7 @@
 //!   further such corner is then joined to the opening by its shortest path, so the seams form a
 //!   tree through the corners (a cut graph).
 //! - Handles (genus > 0) of a closed surface are cut first by the caller along the tree–cotree
-//!   cut graph ([`super::cut_graph`]); a surface with both handles and a boundary is refused with
+//!   cut graph (`cut_graph`); a surface with both handles and a boundary is refused with
 //!   [`CutError::HigherGenus`].
 //!
 //! User seams ([`lay_polyline`]): each 3D point snaps to its nearest vertex and consecutive
@@ -58,10 +58,10 @@ pub enum SeamKind {
     /// Part of the cut graph that opens the handles of a closed surface.
     Handle,
     /// Part of the tree through the curvature regions of a closed surface (its corners, rims
-    /// and filleted corners; see [`super::cut_graph::curvature_cut_graph`]).
+    /// and filleted corners; see `cut_graph::curvature_cut_graph`).
     Curvature,
     /// Part of the seam that halves a smooth closed surface along the bisector of its two
-    /// farthest points (see [`super::cut_graph::bisector_cut_graph`]).
+    /// farthest points (see `cut_graph::bisector_cut_graph`).
     Bisector,
 }
 
@@ -317,7 +317,7 @@ fn nearest_vertex(model: &FacetModel, point: DVec3) -> u32 {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::cut::seam::*;
     use crate::mesh::{TriangleSoup, validate};
 
     /// A band of `segments` quads around the z axis between two circles: `(radius, z)` inner and

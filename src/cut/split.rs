@@ -202,9 +202,9 @@ fn original_edges(
 
 #[cfg(test)]
 mod tests {
-    use super::*;
     use crate::cut::paths::path_edges;
     use crate::cut::paths::tests::grid;
+    use crate::cut::split::*;
 
     #[test]
     fn a_dart_from_the_boundary_duplicates_all_but_its_tip() {

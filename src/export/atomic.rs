@@ -56,7 +56,7 @@ fn sync_directory(directory: &Path) -> io::Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::export::atomic::*;
 
     #[test]
     fn writes_replaces_and_leaves_no_temporary_file() {

@@ -124,7 +124,7 @@ pub fn palette_colour(position: f64) -> [u8; 3] {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::export::colormap::*;
 
     #[test]
     fn ends_are_blue_and_red() {

@@ -2,19 +2,18 @@
 //! (`sheets/sheet-NNN.dxf`), as bytes.
 //!
 //! Every cut contour is one closed polyline (LWPOLYLINE in R2000, POLYLINE with VERTEX entities in
-//! R12) of straight segments and true arcs (bulges), fitted within the chord tolerance by
-//! [`super::contour`]; no SPLINE or ELLIPSE anywhere. Layers are listed in [`layers`]. Nominal
+//! R12) of straight segments and true arcs (bulges), fitted within the chord tolerance by the
+//! pattern stage ([`crate::pattern::part_contours`]); no SPLINE or ELLIPSE anywhere. Layers are listed in [`layers`]. Nominal
 //! geometry: the CAM adds kerf. `$INSUNITS` and `$MEASUREMENT` state the units in R2000; R12 has
 //! neither, so the report must state them. The output is deterministic: the creation and update
 //! dates and the drawing GUIDs are fixed, handles are assigned in drawing order.
 
-use super::bulge::{BulgeVertex, polyline_bounds};
-use super::contour::DEFAULT_CHORD_TOLERANCE;
-use super::drawing::{PartDrawing, SheetDrawing, Units};
+use super::drawing::SheetDrawing;
+use super::dxf_options::{DxfOptions, DxfVersion};
 use super::dxf_repair::repair;
 use super::errors::ExportError;
-use super::part_contours::{PartContours, part_contours};
-use crate::geometry::deep_interior_point;
+use crate::pattern::{BulgeVertex, PartContours, PartDrawing, part_contours, polyline_bounds};
+use crate::units::Units;
 use dxf::entities::{Entity, EntityType, Line, LwPolyline, Polyline, Text, Vertex};
 use dxf::enums::{AcadVersion, DrawingUnits, Units as DxfUnits};
 use dxf::tables::{Layer, LineType};
@@ -71,60 +70,11 @@ const FIXED_HEADER: &str = "0\nSECTION\n2\nHEADER\n\
 9\n$VERSIONGUID\n2\n{00000000-0000-0000-0000-000000000000}\n\
 0\nENDSEC\n0\nEOF\n";
 
-/// DXF version written.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum DxfVersion {
-    /// AutoCAD 2000 (AC1015): LWPOLYLINE, `$INSUNITS`. The default.
-    #[default]
-    R2000,
-    /// AutoCAD R12 (AC1009), for old controllers: POLYLINE with bulged VERTEX entities and no unit
-    /// header.
-    R12,
-}
-
-/// How DXF files are written.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct DxfOptions {
-    /// DXF version; default [`DxfVersion::R2000`].
-    pub version: DxfVersion,
-    /// Largest distance between the part's polyline and the written contour, in mm; default
-    /// [`DEFAULT_CHORD_TOLERANCE`] (0.01 mm).
-    pub chord_tolerance: f64,
-    /// Seam allowance in mm: the cut contours are offset outward by it and the nominal outline
-    /// goes to the sew layer. Default `None` (cut on the nominal outline).
-    pub seam_allowance: Option<f64>,
-}
-
-impl Default for DxfOptions {
-    fn default() -> Self {
-        Self {
-            version: DxfVersion::R2000,
-            chord_tolerance: DEFAULT_CHORD_TOLERANCE,
-            seam_allowance: None,
-        }
-    }
-}
-
-impl DxfOptions {
-    /// An error when a length is not positive and finite.
-    pub fn validate(&self) -> Result<(), ExportError> {
-        let positive = |value: f64| value.is_finite() && value > 0.0;
-        if !positive(self.chord_tolerance) {
-            return Err(ExportError::InvalidChordTolerance {
-                value: self.chord_tolerance,
-            });
-        }
-        match self.seam_allowance {
-            Some(value) if !positive(value) => Err(ExportError::InvalidSeamAllowance { value }),
-            _ => Ok(()),
-        }
-    }
-}
-
 /// The DXF of one part: its cut contours, fold and sew lines, grain line and label.
 ///
 /// ```
-/// use flatcut::export::{DxfOptions, PartDrawing, write_part_dxf};
+/// use flatcut::export::{DxfOptions, write_part_dxf};
+/// use flatcut::pattern::PartDrawing;
 /// use glam::DVec2;
 ///
 /// let part = PartDrawing {
@@ -138,7 +88,7 @@ impl DxfOptions {
 /// # Ok::<(), flatcut::export::ExportError>(())
 /// ```
 pub fn write_part_dxf(drawing: &PartDrawing, options: &DxfOptions) -> Result<Vec<u8>, ExportError> {
-    let contours = part_contours(drawing, options)?;
+    let contours = part_contours(drawing, &options.pattern)?;
     let mut document = new_document(options.version, drawing.units)?;
     add_part(&mut document, drawing, &contours, options.version);
     set_extents(&mut document, part_bounds(&contours));
@@ -159,7 +109,7 @@ pub fn write_sheet_dxf(sheet: &SheetDrawing, options: &DxfOptions) -> Result<Vec
     );
     let mut bounds = (DVec2::ZERO, DVec2::new(sheet.width, sheet.height));
     for placed in &sheet.parts {
-        let contours = part_contours(&placed.drawing, options)?;
+        let contours = part_contours(&placed.drawing, &options.pattern)?;
         add_part(&mut document, &placed.drawing, &contours, options.version);
         let (low, high) = part_bounds(&contours);
         bounds = (bounds.0.min(low), bounds.1.max(high));
@@ -327,8 +277,8 @@ fn add_polyline(
     add_entity(document, layer, entity);
 }
 
-/// The label (part name, quantity, material), centred on a point deep inside the part's material
-/// ([`deep_interior_point`]), or beside it, across the grain line, when the part has one.
+/// The label (part name, quantity, material), centred on the part's label anchor
+/// ([`PartDrawing::label_anchor`]), or beside it, across the grain line, when the part has one.
 fn add_label(document: &mut Drawing, drawing: &PartDrawing, outer: &[BulgeVertex]) {
     let Some((low, high)) = polyline_bounds(outer, true) else {
         return;
@@ -340,11 +290,7 @@ fn add_label(document: &mut Drawing, drawing: &PartDrawing, outer: &[BulgeVertex
         (size.min_element() * LABEL_HEIGHT_FRACTION).clamp(smallest / unit, largest / unit);
     let value = label_text(drawing);
     let width = value.chars().count() as f64 * height * LABEL_CHARACTER_WIDTH;
-    let deep = if drawing.outer.len() >= 3 {
-        deep_interior_point(&drawing.outer, &drawing.holes)
-    } else {
-        (low + high) * 0.5
-    };
+    let deep = drawing.label_anchor().unwrap_or((low + high) * 0.5);
     let beside_grain = drawing
         .grain_arrow()
         .map_or(DVec2::ZERO, |([tail, head], _)| {

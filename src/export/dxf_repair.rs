@@ -11,7 +11,7 @@
 //! Input and output: the whole file as bytes, lines ending in CR LF, each pair a right-aligned
 //! group code line and a value line. Values are copied byte for byte.
 
-use super::dxf::DxfVersion;
+use super::dxf_options::DxfVersion;
 
 /// One group code and its value, as written.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -152,7 +152,7 @@ fn polyline_layers(pairs: Vec<Pair>) -> Vec<Pair> {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::export::dxf_repair::*;
 
     fn file(pairs: &[(i32, &str)]) -> Vec<u8> {
         serialise(

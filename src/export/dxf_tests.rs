@@ -1,8 +1,11 @@
 //! Tests of the DXF writer: files read back with the dxf crate.
 
 use super::*;
-use crate::export::bulge::{BulgeArc, distance_to_line_segment, sample_closed};
 use crate::export::drawing::PlacedPart;
+use crate::pattern::{
+    BulgeArc, DEFAULT_CHORD_TOLERANCE, PatternError, PatternOptions, distance_to_line_segment,
+    sample_closed,
+};
 use std::f64::consts::TAU;
 
 /// An annular sector (a cone frustum's development), counter-clockwise, 400 points per arc.
@@ -313,7 +316,10 @@ fn seam_allowance_cuts_outside_and_keeps_the_sew_line() {
         ..Default::default()
     };
     let options = DxfOptions {
-        seam_allowance: Some(10.0),
+        pattern: PatternOptions {
+            seam_allowance: Some(10.0),
+            ..Default::default()
+        },
         ..Default::default()
     };
     let document = read_back(&write_part_dxf(&part, &options).expect("writes"));
@@ -373,12 +379,17 @@ fn bad_input_is_an_error_that_names_the_part() {
     let error = write_part_dxf(&no_grain, &DxfOptions::default()).expect_err("infinity refused");
     assert!(error.to_string().contains("grain line"));
     let options = DxfOptions {
-        chord_tolerance: 0.0,
+        pattern: PatternOptions {
+            chord_tolerance: 0.0,
+            ..Default::default()
+        },
         ..Default::default()
     };
     assert!(matches!(
         write_part_dxf(&cone_part(), &options),
-        Err(ExportError::InvalidChordTolerance { .. })
+        Err(ExportError::Pattern(
+            PatternError::InvalidChordTolerance { .. }
+        ))
     ));
     let sheet = SheetDrawing {
         width: -1.0,

@@ -8,8 +8,8 @@
 use glam::DVec2;
 use tiny_skia::Pixmap;
 
+use super::energy_map::{DEFAULT_WIDTH_PIXELS, EnergyMap};
 use super::energy_panel::{LineStyle, LineStyles, PanelFrame, draw_marker, stroke_polylines};
-use super::energy_png::{DEFAULT_WIDTH_PIXELS, EnergyMap};
 use super::legend::{LegendFrame, format_percent};
 use super::text::{Align, Label, Typeface};
 
@@ -296,7 +296,7 @@ fn round_length(length: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::export::energy_layout::*;
 
     #[test]
     fn scale_bar_lengths_are_round() {

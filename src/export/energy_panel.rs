@@ -12,7 +12,7 @@ use tiny_skia::{
 };
 
 use super::colormap::{ColorScale, palette_colour};
-use super::energy_png::EnergyMap;
+use super::energy_map::EnergyMap;
 use super::raster::fill_interpolated;
 use crate::flatten::isolines::Isoline;
 

@@ -10,19 +10,18 @@
 //! the same bytes.
 
 use glam::DVec2;
+use serde::Serialize;
 use tiny_skia::{Color, Pixmap};
 
 use super::colormap::{ColorScale, ScaleMapping};
 use super::energy_layout::Layout;
+pub use super::energy_map::{DEFAULT_WIDTH_PIXELS, EnergyMap, PatternFigures};
 use super::energy_panel::{LineStyles, draw_panel};
 use super::indexed_png::encode_indexed_png;
 use super::legend::{LegendText, draw_legend, format_percent, format_value};
 use super::text::Typeface;
-use crate::flatten::SpringSystem;
 use crate::flatten::isolines::{evenly_spaced_levels, isolines};
-
-/// Default image width in pixels.
-pub const DEFAULT_WIDTH_PIXELS: u32 = 1600;
+use crate::pattern::NEGLIGIBLE_STRAIN;
 
 /// Default number of isoline levels, evenly spaced over the colour scale.
 pub const DEFAULT_ISOLINE_COUNT: usize = 9;
@@ -30,79 +29,8 @@ pub const DEFAULT_ISOLINE_COUNT: usize = 9;
 /// Smallest and largest accepted image width, in pixels.
 pub const WIDTH_PIXEL_RANGE: (u32, u32) = (480, 8000);
 
-/// The accuracy figures printed with a map.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PatternFigures {
-    /// `E_S` (Eq. 4), a fraction.
-    pub area_error: f64,
-    /// `E_C` (Eq. 6), a fraction.
-    pub shape_error: f64,
-    /// Largest relative edge length change, a fraction.
-    pub max_strain: f64,
-    /// Number of cuts made.
-    pub cuts: usize,
-}
-
-/// One energy map: a flat pattern with its per-vertex energy and the lines to draw on it.
-#[derive(Debug, Clone, PartialEq)]
-pub struct EnergyMap<'a> {
-    /// The part's name, printed in the title.
-    pub name: String,
-    /// Units of the energy values for the legend, e.g. "mm², C = 0.5".
-    pub energy_units: String,
-    /// Symbol of the length units of `positions`, e.g. "mm", for the scale bar.
-    pub length_units: String,
-    /// Flat vertex positions, model units, y up.
-    pub positions: &'a [DVec2],
-    /// Triangles as vertex index triples.
-    pub triangles: &'a [[u32; 3]],
-    /// Per-vertex energy (Eq. 1), one per position, at least 0.
-    pub vertex_energies: &'a [f64],
-    /// Closed boundary loops as vertex indices: the outline.
-    pub boundary_loops: &'a [Vec<u32>],
-    /// Cuts, as flat polylines in model units.
-    pub cut_polylines: Vec<Vec<DVec2>>,
-    /// Fold lines, as flat polylines in model units.
-    pub fold_polylines: Vec<Vec<DVec2>>,
-    /// The figures printed with the map.
-    pub figures: PatternFigures,
-    /// The energy below which differences are round-off, not deformation (see
-    /// [`negligible_vertex_energy`]); the colour scale's top is never below it, so a pattern
-    /// without deformation (a developable surface) comes out all blue. 0 for none.
-    pub negligible_energy: f64,
-}
-
-/// The strain taken as negligible for the colour scale's floor: one part per million, far below
-/// any manufacturing tolerance and far above the round-off of an isometric flattening.
-pub const NEGLIGIBLE_STRAIN: f64 = 1.0e-6;
-
-/// The largest per-vertex energy (Eq. 1) the springs would hold if every one were strained by
-/// `strain`: `max_i Σ_j ½ C_ij (strain · d_ij)²`.
-pub fn negligible_vertex_energy(springs: &SpringSystem, strain: f64) -> f64 {
-    let vertices = springs
-        .edges
-        .iter()
-        .flatten()
-        .map(|&v| v as usize + 1)
-        .max()
-        .unwrap_or(0);
-    let mut energies = vec![0.0; vertices];
-    for ((&[a, b], &rest), &constant) in springs
-        .edges
-        .iter()
-        .zip(&springs.rest_lengths)
-        .zip(&springs.constants)
-    {
-        let stretch = strain * rest;
-        let energy = 0.5 * constant * stretch * stretch;
-        energies[a as usize] += energy;
-        energies[b as usize] += energy;
-    }
-    energies.into_iter().fold(0.0, f64::max)
-}
-
 /// Options of [`render_energy_png`]. `Default` is the only source of defaults.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct EnergyPngOptions {
     /// Image width in pixels, within [`WIDTH_PIXEL_RANGE`]; default [`DEFAULT_WIDTH_PIXELS`]. The
     /// height follows from the pattern's aspect ratio.
@@ -360,9 +288,9 @@ fn cuts_phrase(preposition: &str, cuts: usize) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
     use crate::export::colormap::palette_colour;
     use crate::export::energy_panel::PanelFrame;
+    use crate::export::energy_png::*;
 
     /// A square grid pattern of `cells × cells` cells over `[0, 100]²` with per-vertex energy
     /// `energy(position)`, outlined by its border.
@@ -592,18 +520,6 @@ mod tests {
             render_energy_png(&grid.map(), None, &narrow),
             Err(EnergyPngError::Width { .. })
         ));
-    }
-
-    #[test]
-    fn negligible_energy_is_that_of_a_uniform_strain() {
-        let springs = SpringSystem {
-            edges: vec![[0, 1], [1, 2]],
-            rest_lengths: vec![10.0, 20.0],
-            constants: vec![0.5, 0.5],
-        };
-        // Vertex 1 ends both springs: ½·0.5·(0.1)² + ½·0.5·(0.2)² = 0.0125.
-        let energy = negligible_vertex_energy(&springs, 0.01);
-        assert!((energy - 0.0125).abs() < 1e-15, "{energy}");
     }
 
     /// About 100,000 triangles: run with `cargo test --release -- --ignored --nocapture`.

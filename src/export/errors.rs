@@ -1,64 +1,16 @@
 //! Errors of the export stage. Every variant names the part or file and says what to change.
 
+use std::path::PathBuf;
+
+use super::energy_png::EnergyPngError;
+use crate::pattern::PatternError;
+
 /// Why an export could not be written.
 #[derive(Debug, thiserror::Error)]
 pub enum ExportError {
-    /// A coordinate is NaN or infinite.
-    #[error(
-        "part `{part}`: the {contour} has a non-finite coordinate (NaN or infinity); the flat pattern is broken upstream, re-run flattening"
-    )]
-    NonFiniteCoordinate {
-        /// Name of the part.
-        part: String,
-        /// Which contour ("outer contour", "hole 2", "fold line 1", ...).
-        contour: String,
-    },
-    /// A contour collapsed: a closed one has fewer than three distinct points or no area, an open
-    /// one fewer than two distinct points.
-    #[error(
-        "part `{part}`: the {contour} is degenerate (too few distinct points or no area); remove it or fix the pattern"
-    )]
-    DegenerateContour {
-        /// Name of the part.
-        part: String,
-        /// Which contour ("outer contour", "hole 2", "fold line 1", ...).
-        contour: String,
-    },
-    /// The chord tolerance is not a positive finite length.
-    #[error("chord tolerance {value} mm is not a positive length; pass e.g. --chord 0.01")]
-    InvalidChordTolerance {
-        /// The rejected value, in mm.
-        value: f64,
-    },
-    /// The seam allowance is not a positive finite length.
-    #[error("seam allowance {value} mm is not a positive length; pass e.g. --seam-allowance 10")]
-    InvalidSeamAllowance {
-        /// The rejected value, in mm.
-        value: f64,
-    },
-    /// The seam allowance fills a hole completely, so the hole would not be cut.
-    #[error(
-        "part `{part}`: a seam allowance of {allowance} mm closes hole {hole}; use a smaller --seam-allowance or remove the hole"
-    )]
-    SeamAllowanceClosesHole {
-        /// Name of the part.
-        part: String,
-        /// Index of the hole (from 1).
-        hole: usize,
-        /// The seam allowance, in mm.
-        allowance: f64,
-    },
-    /// Offsetting the outer contour did not give exactly one closed contour (the outline crosses
-    /// itself).
-    #[error(
-        "part `{part}`: offsetting the outline by the seam allowance gave {pieces} contours instead of one; the outline crosses itself, fix the pattern"
-    )]
-    SeamOffsetFailed {
-        /// Name of the part.
-        part: String,
-        /// How many contours the offset gave.
-        pieces: usize,
-    },
+    /// A part's contours could not be made (see the pattern stage).
+    #[error(transparent)]
+    Pattern(#[from] PatternError),
     /// The sheet has no positive finite size.
     #[error("sheet {index}: size {width} x {height} is not positive; check --sheet WxH")]
     InvalidSheetSize {
@@ -97,4 +49,43 @@ pub enum ExportError {
     /// The PNG encoder failed.
     #[error("could not encode the PNG preview: {0}; this is a bug in flatcut, please report it")]
     Png(String),
+    /// A directory could not be created.
+    #[error("{}: cannot create the directory", path.display())]
+    CreateDirectory {
+        /// The directory.
+        path: PathBuf,
+        /// The operating system's reason.
+        source: std::io::Error,
+    },
+    /// A JSON report could not be encoded.
+    #[error(transparent)]
+    Json(serde_json::Error),
+    /// A file could not be written.
+    #[error("{path}: cannot write: {source}")]
+    Write {
+        /// The output file.
+        path: PathBuf,
+        /// The operating system's reason.
+        source: std::io::Error,
+    },
+    /// A part's cut file (or a sheet's) could not be drawn.
+    #[error("{path}: part '{part}': cannot write its DXF: {source}")]
+    Drawing {
+        /// The input file the part came from (the sheet's file for a sheet).
+        path: PathBuf,
+        /// The part's name (the sheet's file stem for a sheet).
+        part: String,
+        /// Why.
+        source: Box<ExportError>,
+    },
+    /// A part's energy map could not be drawn.
+    #[error("{path}: part '{part}': cannot draw its energy map: {source}")]
+    EnergyMap {
+        /// The input file the part came from.
+        path: PathBuf,
+        /// The part's name.
+        part: String,
+        /// Why.
+        source: EnergyPngError,
+    },
 }

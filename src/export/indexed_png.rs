@@ -240,7 +240,7 @@ fn nearest_index(rgb: [u8; 3], palette: &[[u8; 3]]) -> u8 {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::export::indexed_png::*;
     use tiny_skia::Color;
 
     /// The RGB bytes of a PNG, through tiny-skia's decoder (palette expanded).

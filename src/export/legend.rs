@@ -228,7 +228,7 @@ fn superscript(number: i32) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::export::legend::*;
 
     #[test]
     fn values_have_three_significant_digits() {

@@ -38,7 +38,7 @@ fn push_faces(text: &mut String, triangles: &[[u32; 3]]) {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::export::obj::*;
 
     #[test]
     fn round_trips_through_the_obj_reader() {

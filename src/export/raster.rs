@@ -145,7 +145,7 @@ fn owns_edge(start: [i64; 2], end: [i64; 2]) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::export::raster::*;
 
     fn marker(value: f64) -> PremultipliedColorU8 {
         let level = (value.clamp(0.0, 1.0) * 200.0).round() as u8 + 1;

@@ -4,12 +4,21 @@
 //! Everything in it is deterministic for the same input and options except `seconds`, which
 //! `--no-timings` writes as 0 for byte-identical reports.
 
+use std::path::Path;
+
 use serde::Serialize;
 
-use crate::cut::{Cut, CutFigures, CutStop, Seam, SeamKind};
-use crate::flatten::fold_lines::fold_line_lengths;
-use crate::flatten::{Solver, StopReason};
-use crate::pipeline::{PartResult, RunOptions, TessellationFigures};
+use super::atomic::write_atomically;
+use super::errors::ExportError;
+
+use super::dxf_options::DxfVersion;
+use super::energy_png::EnergyPngOptions;
+use crate::cut::{Cut, CutFigures, CutOptions, CutStop, Seam, SeamKind};
+use crate::flatten::{FlattenOptions, Solver, StopReason};
+use crate::nest::{NestLayout, Rotations, Stock};
+use crate::pattern::PatternOptions;
+use crate::tessellate::TessellateOptions;
+use crate::units::Units;
 
 /// Version of the report's layout.
 pub const SCHEMA_VERSION: u32 = 1;
@@ -22,11 +31,62 @@ pub struct Report {
     /// The flatcut version that wrote it.
     pub flatcut_version: String,
     /// The options of the run.
-    pub options: RunOptions,
+    pub options: ReportOptions,
     /// One entry per part.
     pub parts: Vec<PartReport>,
     /// One entry per nested sheet or roll (empty without nesting).
     pub sheets: Vec<SheetReport>,
+}
+
+/// The options of a run, as the report records them.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ReportOptions {
+    /// Units of mesh files (part files and STEP files carry their own).
+    pub units: Units,
+    /// Flattening options.
+    pub flatten: FlattenOptions,
+    /// Cutting options (seams, crest-line cuts).
+    pub cut: CutOptions,
+    /// Tessellation of part and STEP files.
+    pub tessellate: TessellateOptions,
+    /// Chord tolerance of the cut contours (mm) and seam allowance (mm, `null` for none).
+    pub pattern: PatternOptions,
+    /// DXF version of the cut files: `r2000` or `r12`.
+    pub dxf_version: DxfVersion,
+    /// Size and colour scale of the energy pictures.
+    pub energy_png: EnergyPngOptions,
+    /// How the patterns were nested; `null` without stock.
+    pub nesting: Option<NestingReport>,
+}
+
+/// The nesting options of a run with stock.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct NestingReport {
+    /// The stock: sheets (width, height) or a roll (width), mm.
+    pub stock: Stock,
+    /// Gap between parts and to the stock edge, mm.
+    pub gap: f64,
+    /// Search budget, seconds.
+    pub time_limit_seconds: f64,
+    /// Seed of the search.
+    pub seed: u64,
+    /// Rotations allowed, degrees from each pattern's minimum-area bounding rectangle.
+    pub rotations: Rotations,
+    /// Whether small parts could go inside the holes of larger ones.
+    pub in_holes: bool,
+    /// Whether parts could be mirrored.
+    pub mirror: bool,
+}
+
+/// Figures of the tessellation a part came from.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TessellationReport {
+    /// Target edge length used (part units).
+    pub mesh_size: f64,
+    /// Chord tolerance used (part units).
+    pub chord: f64,
+    /// Smallest triangle angle of the whole part's mesh, degrees.
+    pub minimum_angle: f64,
 }
 
 /// Figures of one part.
@@ -85,7 +145,7 @@ pub struct PartReport {
     pub fold_lines: Vec<FoldLineReport>,
     /// Tessellation figures (mesh size, chord, smallest angle) for parts made from surfaces.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub tessellation: Option<TessellationFigures>,
+    pub tessellation: Option<TessellationReport>,
     /// Repairs made to the input.
     pub warnings: Vec<String>,
 }
@@ -140,7 +200,8 @@ pub struct CutReport {
 }
 
 impl CutReport {
-    fn new(cut: &Cut) -> Self {
+    /// The report of a cut.
+    pub fn new(cut: &Cut) -> Self {
         Self {
             length: cut.length,
             points: cut.points.iter().map(|p| p.to_array()).collect(),
@@ -162,7 +223,8 @@ pub struct SeamReport {
 }
 
 impl SeamReport {
-    fn new(seam: &Seam) -> Self {
+    /// The report of a seam.
+    pub fn new(seam: &Seam) -> Self {
         Self {
             kind: seam.kind,
             length: seam.length,
@@ -182,60 +244,9 @@ pub struct FoldLineReport {
     pub error: f64,
 }
 
-impl PartReport {
-    /// The report of a flattened part; `timings` false writes 0 seconds.
-    pub fn new(result: &PartResult, options: &RunOptions, timings: bool) -> Self {
-        let (job, stats) = (&result.job, &result.flattened.stats);
-        let accuracy = stats.accuracy;
-        Self {
-            name: job.name.clone(),
-            source: job.source.display().to_string(),
-            units: job.units.symbol(),
-            quantity: job.quantity,
-            triangles: job.model.triangle_count(),
-            vertices: job.model.vertex_count(),
-            area_error: accuracy.area_error,
-            shape_error: accuracy.shape_error,
-            max_strain: accuracy.max_strain,
-            flipped: accuracy.flipped,
-            overlap: accuracy.overlap,
-            iterations: stats.iterations,
-            stop_reason: stats.stop_reason,
-            tolerance: options.flatten.tolerance,
-            tolerance_met: accuracy.within(options.flatten.tolerance),
-            seconds: if timings { stats.seconds } else { 0.0 },
-            solver: options.flatten.solver,
-            energy: stats.energy,
-            initial_area_error: stats.initial_accuracy.area_error,
-            initial_shape_error: stats.initial_accuracy.shape_error,
-            cuts: result.cuts.iter().map(CutReport::new).collect(),
-            total_cut_length: result
-                .cuts
-                .iter()
-                .fold(0.0, |total, cut| total + cut.length),
-            cut_stop: result.cut_stop,
-            seams: result.seams.iter().map(SeamReport::new).collect(),
-            fold_lines: fold_line_lengths(
-                &job.model,
-                &result.flattened.positions,
-                job.fold_line_count,
-            )
-            .into_iter()
-            .map(|fold| FoldLineReport {
-                length_3d: fold.length_3d,
-                length_flat: fold.length_flat,
-                error: fold.error,
-            })
-            .collect(),
-            tessellation: job.tessellation,
-            warnings: job.warnings.clone(),
-        }
-    }
-}
-
 impl Report {
     /// A report with no sheets.
-    pub fn new(options: RunOptions, parts: Vec<PartReport>) -> Self {
+    pub fn new(options: ReportOptions, parts: Vec<PartReport>) -> Self {
         Self {
             schema_version: SCHEMA_VERSION,
             flatcut_version: env!("CARGO_PKG_VERSION").to_string(),
@@ -243,6 +254,13 @@ impl Report {
             parts,
             sheets: Vec::new(),
         }
+    }
+
+    /// Writes [`Report::to_json`] to `directory/report.json`, atomically.
+    pub fn write(&self, directory: &Path) -> Result<(), ExportError> {
+        let path = directory.join("report.json");
+        write_atomically(&path, self.to_json().as_bytes())
+            .map_err(|source| ExportError::Write { path, source })
     }
 
     /// Pretty JSON with a final newline.
@@ -257,11 +275,11 @@ impl Report {
 /// The report entries of a nested layout; `names[i]` is the name of nesting item `i` and
 /// `files[k]` the DXF of sheet `k`.
 pub fn sheet_reports(
-    layout: &crate::nest::NestLayout,
+    layout: &NestLayout,
     names: &[String],
     files: &[std::path::PathBuf],
 ) -> Vec<SheetReport> {
-    let on_roll = matches!(layout.stock, crate::nest::Stock::Roll { .. });
+    let on_roll = matches!(layout.stock, Stock::Roll { .. });
     layout
         .sheets
         .iter()

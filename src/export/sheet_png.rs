@@ -5,11 +5,11 @@
 //! contours that will be cut (fitted arcs, seam allowance). Output: PNG bytes, the longer side
 //! `pixels` wide, y pointing up as in the DXF.
 
-use super::bulge::{BulgeVertex, sample_closed, sample_open};
 use super::drawing::SheetDrawing;
-use super::dxf::{DxfOptions, check_sheet};
+use super::dxf::check_sheet;
+use super::dxf_options::DxfOptions;
 use super::errors::ExportError;
-use super::part_contours::part_contours;
+use crate::pattern::{BulgeVertex, part_contours, sample_closed, sample_open};
 use glam::DVec2;
 use tiny_skia::{Color, FillRule, Paint, Path, PathBuilder, Pixmap, Stroke, StrokeDash, Transform};
 
@@ -58,7 +58,7 @@ pub fn render_sheet_png(
         stroke(&mut pixmap, &outline, SHEET_LINE, None);
     }
     for placed in &sheet.parts {
-        let contours = part_contours(&placed.drawing, options)?;
+        let contours = part_contours(&placed.drawing, &options.pattern)?;
         let step = ARC_STEP_PIXELS / view.scale;
         let cut: Vec<Vec<DVec2>> = std::iter::once(&contours.outer)
             .chain(&contours.holes)
@@ -197,8 +197,9 @@ fn stroke(pixmap: &mut Pixmap, path: &Path, rgba: [u8; 4], dash: Option<StrokeDa
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-    use crate::export::drawing::{PartDrawing, PlacedPart};
+    use crate::export::drawing::PlacedPart;
+    use crate::export::sheet_png::*;
+    use crate::pattern::PartDrawing;
 
     /// A 1000 x 500 sheet with one 200 x 100 plate at (100, 100) that has a 20 x 20 hole.
     fn sheet() -> SheetDrawing {

@@ -5,12 +5,14 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec2;
 
-use super::drawing::{PartDrawing, PlacedPart, SheetDrawing};
-use super::dxf::{DxfOptions, write_sheet_dxf};
+use super::atomic::write_atomically;
+use super::drawing::{PlacedPart, SheetDrawing};
+use super::dxf::write_sheet_dxf;
+use super::dxf_options::DxfOptions;
+use super::errors::ExportError;
 use super::sheet_png::{DEFAULT_PREVIEW_PIXELS, render_sheet_png};
-use super::write_atomically;
-use crate::error::Error;
 use crate::nest::{NestLayout, Placement};
+use crate::pattern::PartDrawing;
 use crate::units::Units;
 
 /// The drawing of every sheet of a layout; `drawings[i]` is the part of nesting item `i`.
@@ -64,25 +66,25 @@ pub fn write_sheet_files(
     directory: &Path,
     sheets: &[SheetDrawing],
     options: &DxfOptions,
-) -> Result<Vec<PathBuf>, Error> {
+) -> Result<Vec<PathBuf>, ExportError> {
     let folder = directory.join("sheets");
-    std::fs::create_dir_all(&folder).map_err(|source| Error::Write {
+    std::fs::create_dir_all(&folder).map_err(|source| ExportError::Write {
         path: folder.clone(),
         source,
     })?;
     let mut files = Vec::with_capacity(sheets.len());
     for sheet in sheets {
         let stem = format!("sheet-{:03}", sheet.index);
-        let export_error = |source| Error::Export {
+        let export_error = |source| ExportError::Drawing {
             path: folder.join(format!("{stem}.dxf")),
             part: stem.clone(),
-            source,
+            source: Box::new(source),
         };
         let dxf = write_sheet_dxf(sheet, options).map_err(export_error)?;
         let png = render_sheet_png(sheet, options, DEFAULT_PREVIEW_PIXELS).map_err(export_error)?;
         for (extension, bytes) in [("dxf", &dxf), ("png", &png)] {
             let path = folder.join(format!("{stem}.{extension}"));
-            write_atomically(&path, bytes).map_err(|source| Error::Write { path, source })?;
+            write_atomically(&path, bytes).map_err(|source| ExportError::Write { path, source })?;
         }
         files.push(Path::new("sheets").join(format!("{stem}.dxf")));
     }

@@ -18,8 +18,6 @@ pub enum Align {
     Left,
     /// The anchor is the text's middle.
     Centre,
-    /// The anchor is the text's right end.
-    Right,
 }
 
 /// One line of text to draw.
@@ -81,7 +79,6 @@ impl Typeface {
         let mut x = match label.align {
             Align::Left => label.x,
             Align::Centre => label.x - 0.5 * width,
-            Align::Right => label.x - width,
         };
         let mut previous: Option<GlyphId> = None;
         for character in label.text.chars() {
@@ -132,7 +129,7 @@ fn blend(pixmap: &mut Pixmap, x: i64, y: i64, colour: [u8; 3], coverage: f32) {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::export::text::*;
 
     fn white(width: u32, height: u32) -> Pixmap {
         let mut pixmap = Pixmap::new(width, height).expect("pixmap size");

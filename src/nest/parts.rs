@@ -1,32 +1,30 @@
-//! Flattened parts as nesting items: each part's cut outline (with the seam allowance when one is
+//! Patterns as nesting items: each part's cut outline (with the seam allowance when one is
 //! given), in millimetres, in its quantity.
 
 use glam::DVec2;
 
 use super::{NestItem, Rotations};
-use crate::export::{DxfOptions, ExportError, PartDrawing, part_contours, sample_closed};
 use crate::geometry::long_side_of_smallest_rectangle;
+use crate::pattern::{Pattern, PatternError, PatternOptions, part_contours, sample_closed};
 
 /// Largest step when a fitted contour (lines and arcs) is sampled back into a polygon for the
 /// nester, in mm: arcs are followed within a fraction of the chord tolerance.
 pub const OUTLINE_SAMPLE_STEP: f64 = 1.0;
 
-/// One nesting item per part drawing, in mm: the contour that will be cut (offset by the seam
+/// One nesting item per pattern, in mm: the contour that will be cut (offset by the seam
 /// allowance when `options` has one), with `rotations` taken from the part's minimum-area
-/// bounding rectangle ([`aligned_rotations`]), mirroring as given, and the grain direction of the
-/// same index in `grains` (degrees in the drawing's frame, see `flatten::grain::flat_grain`), which
-/// overrides the rotations.
-pub fn items_from_drawings(
-    drawings: &[PartDrawing],
-    grains: &[Option<f64>],
-    options: &DxfOptions,
+/// bounding rectangle ([`aligned_rotations`]), mirroring as given, and the pattern's grain
+/// direction ([`Pattern::grain_degrees`]), which overrides the rotations.
+pub fn items_from_patterns<'a>(
+    patterns: impl IntoIterator<Item = &'a Pattern>,
+    options: &PatternOptions,
     rotations: &Rotations,
     mirror_allowed: bool,
-) -> Result<Vec<NestItem>, ExportError> {
-    drawings
-        .iter()
-        .zip(grains.iter().chain(std::iter::repeat(&None)))
-        .map(|(drawing, &grain_degrees)| {
+) -> Result<Vec<NestItem>, PatternError> {
+    patterns
+        .into_iter()
+        .map(|pattern| {
+            let drawing = &pattern.drawing;
             let scale = drawing.units.millimetres();
             let contours = part_contours(drawing, options)?;
             let to_millimetres = |ring: Vec<DVec2>| ring.into_iter().map(|p| p * scale).collect();
@@ -43,7 +41,7 @@ pub fn items_from_drawings(
                 quantity: drawing.quantity,
                 rotations: aligned_rotations(rotations, &outer),
                 mirror_allowed,
-                grain_degrees,
+                grain_degrees: pattern.grain_degrees,
             })
         })
         .collect()
@@ -73,7 +71,7 @@ pub fn minimum_area_rectangle_degrees(ring: &[DVec2]) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::nest::parts::*;
 
     #[test]
     fn a_tilted_rectangle_is_tried_square_to_the_stock() {

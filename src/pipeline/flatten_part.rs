@@ -1,15 +1,18 @@
 //! Flattening one loaded part: seams, crest-line cuts and re-flattening until it is within
-//! tolerance, then the pattern turned to its grain.
+//! tolerance, the pattern turned to its grain, and the part's pattern made from it.
 
 use crate::cut::cut_and_flatten;
 use crate::error::Error;
 use crate::flatten::orient::orient;
+use crate::pattern::{FlatShape, PatternSource, part_pattern};
 use crate::progress::Progress;
 
-use super::load::{PartJob, PartResult, RunOptions};
+use super::config::RunOptions;
+use super::load::PartJob;
+use super::part_result::PartResult;
 
 /// Flattens one part, with seams and crest-line cuts until it is within tolerance or the cut
-/// budget is spent.
+/// budget is spent, and makes its pattern.
 pub fn flatten_part(
     mut job: PartJob,
     options: &RunOptions,
@@ -36,6 +39,25 @@ pub fn flatten_part(
     }
     // The part's time is the whole of it: seams, every cut tried and every flattening.
     result.flattened.stats.seconds = started.elapsed().as_secs_f64();
+    let pattern = part_pattern(&PatternSource {
+        name: &job.name,
+        units: job.units,
+        quantity: job.quantity,
+        material: job.attributes.material.as_deref(),
+        grain,
+        flat: FlatShape {
+            model: &result.model,
+            stiffness: &result.stiffness,
+            positions: &result.flattened.positions,
+        },
+        uncut: result.uncut.as_ref().map(|uncut| FlatShape {
+            model: &uncut.model,
+            stiffness: &uncut.stiffness,
+            positions: &uncut.flattened.positions,
+        }),
+        cut_edges: &result.cut_edges,
+        spring_constant: options.flatten.spring_constant,
+    });
     job.model = result.model;
     job.stiffness = result.stiffness;
     Ok(PartResult {
@@ -45,5 +67,8 @@ pub fn flatten_part(
         cuts: result.cuts,
         cut_stop: result.stop,
         uncut: result.uncut,
+        original_vertex: result.original_vertex,
+        cut_edges: result.cut_edges,
+        pattern,
     })
 }

@@ -3,14 +3,12 @@
 
 use std::path::{Path, PathBuf};
 
-use serde::Serialize;
-
 use crate::cad::{
     ParameterRegion, PartAttributes, PartModel, RegionShape, SurfaceDomain, TriangleSoup,
 };
-use crate::cut::{Cut, CutConstraints, CutOptions, CutStop, NoCutRegion, Seam, UncutPattern};
+use crate::cut::{CutConstraints, NoCutRegion};
 use crate::error::Error;
-use crate::flatten::{FlattenOptions, Flattened, Stiffness};
+use crate::flatten::Stiffness;
 use crate::ingest::{CutSidecar, Input, read_cut_sidecar, read_input};
 use crate::mesh::{FacetModel, validate};
 pub use crate::tessellate::TessellationFigures;
@@ -20,18 +18,7 @@ use crate::tessellate::{
 };
 use crate::units::Units;
 
-/// Options of a run, echoed in the report.
-#[derive(Debug, Clone, PartialEq, Serialize, Default)]
-pub struct RunOptions {
-    /// Units of mesh files (part files and STEP files carry their own).
-    pub units: Units,
-    /// Flattening options.
-    pub flatten: FlattenOptions,
-    /// Cutting options (seams, crest-line cuts).
-    pub cut: CutOptions,
-    /// Tessellation of part and STEP files.
-    pub tessellate: TessellateOptions,
-}
+use super::config::RunOptions;
 
 /// One part ready to flatten: a connected facet model with its stiffness map.
 #[derive(Debug, Clone)]
@@ -58,23 +45,6 @@ pub struct PartJob {
     pub constraints: CutConstraints,
     /// Repairs made to the input, as messages.
     pub warnings: Vec<String>,
-}
-
-/// A flattened part.
-#[derive(Debug, Clone)]
-pub struct PartResult {
-    /// What was flattened: its model and stiffness are those after seams and cuts.
-    pub job: PartJob,
-    /// The pattern of the cut model and its figures.
-    pub flattened: Flattened,
-    /// Seams made to open the part.
-    pub seams: Vec<Seam>,
-    /// Crest-line cuts made.
-    pub cuts: Vec<Cut>,
-    /// Why cutting stopped.
-    pub cut_stop: CutStop,
-    /// The part before its first crest-line cut, when one was made.
-    pub uncut: Option<UncutPattern>,
 }
 
 /// Reads an input file (mesh, part file or STEP file) and splits it into parts, one per

@@ -1,11 +1,26 @@
-//! The pipeline: values in, values out. [`load_parts`] reads an input into parts (ingest,
-//! tessellate, validate, stiffness), [`flatten_part`] flattens and cuts one; the binary writes the
-//! files through [`crate::export`].
+//! The pipeline owns the whole run: [`run`] takes a [`RunConfig`] from the inputs to the parts,
+//! their patterns and the nested layout (checked independently), and [`write_outputs`] writes the
+//! output folder through [`crate::export`]. The stages one part goes through are also callable
+//! on their own: [`load_parts`] reads an input into parts (ingest, tessellate, validate,
+//! stiffness) and [`flatten_part`] flattens, cuts and makes the pattern of one.
 
+mod benchmark;
+mod config;
 mod flatten_part;
 mod load;
+mod outputs;
+mod part_result;
+mod report;
+mod run;
 
-pub use flatten_part::flatten_part;
-pub use load::{
-    PartJob, PartResult, RunOptions, TessellationFigures, load_parts, tessellate_part,
+pub use benchmark::{BenchmarkConfig, BenchmarkOutput, nest_benchmark, write_benchmark};
+pub use config::{
+    DEFAULT_RUN_GAP, DEFAULT_RUN_ROTATIONS, DEFAULT_RUN_TIME_LIMIT, NestingConfig, RunConfig,
+    RunOptions,
 };
+pub use flatten_part::flatten_part;
+pub use load::{PartJob, TessellationFigures, load_parts, tessellate_part};
+pub use outputs::write_outputs;
+pub use part_result::PartResult;
+pub use report::{part_report, report_options};
+pub use run::{NestedLayout, PAPER_SOLVER_ADVISED_TRIANGLES, RunOutput, run};

@@ -193,7 +193,7 @@ pub fn sample_open(vertices: &[BulgeVertex], max_step: f64) -> Vec<DVec2> {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::pattern::bulge::*;
 
     #[test]
     fn half_circle_has_bulge_one_and_centre_on_chord() {

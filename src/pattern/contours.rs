@@ -2,15 +2,16 @@
 //! tolerance and the seam allowance are applied, so the DXF files and the previews show the same
 //! geometry and the nester can ask for the outline that will actually be cut.
 //!
-//! Input: a [`PartDrawing`] and [`DxfOptions`] (lengths in mm, converted to the drawing's units).
+//! Input: a [`PartDrawing`] and [`PatternOptions`] (lengths in mm, converted to the drawing's
+//! units).
 //! Output: [`PartContours`], outer contours counter-clockwise and holes clockwise.
 
 use super::bulge::BulgeVertex;
 use super::contour::{fit_closed, fit_open, signed_area};
 use super::drawing::PartDrawing;
-use super::dxf::DxfOptions;
-use super::errors::ExportError;
-use super::seam::offset_away_from_material;
+use super::errors::PatternError;
+use super::options::PatternOptions;
+use super::seam_allowance::offset_away_from_material;
 use glam::DVec2;
 
 /// The fitted contours of one part, in its drawing units.
@@ -31,8 +32,8 @@ pub struct PartContours {
 /// allowance, if any.
 pub fn part_contours(
     drawing: &PartDrawing,
-    options: &DxfOptions,
-) -> Result<PartContours, ExportError> {
+    options: &PatternOptions,
+) -> Result<PartContours, PatternError> {
     options.validate()?;
     if let Some(grain) = drawing.grain {
         check_finite(drawing, &grain, "grain line")?;
@@ -99,9 +100,9 @@ fn fit_ring(
     contour: &str,
     tolerance: f64,
     winding: Winding,
-) -> Result<Vec<BulgeVertex>, ExportError> {
+) -> Result<Vec<BulgeVertex>, PatternError> {
     check_finite(drawing, ring, contour)?;
-    let degenerate = || ExportError::DegenerateContour {
+    let degenerate = || PatternError::DegenerateContour {
         part: drawing.name.clone(),
         contour: contour.to_owned(),
     };
@@ -122,20 +123,24 @@ fn fit_line(
     line: &[DVec2],
     contour: &str,
     tolerance: f64,
-) -> Result<Vec<BulgeVertex>, ExportError> {
+) -> Result<Vec<BulgeVertex>, PatternError> {
     check_finite(drawing, line, contour)?;
-    fit_open(line, tolerance).ok_or_else(|| ExportError::DegenerateContour {
+    fit_open(line, tolerance).ok_or_else(|| PatternError::DegenerateContour {
         part: drawing.name.clone(),
         contour: contour.to_owned(),
     })
 }
 
 /// An error naming the contour when a coordinate is NaN or infinite.
-fn check_finite(drawing: &PartDrawing, points: &[DVec2], contour: &str) -> Result<(), ExportError> {
+fn check_finite(
+    drawing: &PartDrawing,
+    points: &[DVec2],
+    contour: &str,
+) -> Result<(), PatternError> {
     if points.iter().all(|point| point.is_finite()) {
         return Ok(());
     }
-    Err(ExportError::NonFiniteCoordinate {
+    Err(PatternError::NonFiniteCoordinate {
         part: drawing.name.clone(),
         contour: contour.to_owned(),
     })
@@ -163,11 +168,11 @@ fn with_seam_allowance(
     nominal: PartContours,
     allowance: f64,
     tolerance: f64,
-) -> Result<PartContours, ExportError> {
+) -> Result<PartContours, PatternError> {
     let distance = allowance / drawing.units.millimetres();
     let mut outer_offsets = offset_away_from_material(&nominal.outer, distance, tolerance);
     if outer_offsets.len() != 1 {
-        return Err(ExportError::SeamOffsetFailed {
+        return Err(PatternError::SeamOffsetFailed {
             part: drawing.name.clone(),
             pieces: outer_offsets.len(),
         });
@@ -177,7 +182,7 @@ fn with_seam_allowance(
     for (index, hole) in nominal.holes.iter().enumerate() {
         let offsets = offset_away_from_material(hole, distance, tolerance);
         if offsets.is_empty() {
-            return Err(ExportError::SeamAllowanceClosesHole {
+            return Err(PatternError::SeamAllowanceClosesHole {
                 part: drawing.name.clone(),
                 hole: index + 1,
                 allowance,
@@ -198,7 +203,7 @@ fn with_seam_allowance(
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::pattern::contours::*;
 
     #[test]
     fn reversing_keeps_each_arc_on_its_segment() {
@@ -252,14 +257,14 @@ mod tests {
             outer: disc,
             ..Default::default()
         };
-        let options = DxfOptions {
+        let options = PatternOptions {
             seam_allowance: Some(12.0),
             ..Default::default()
         };
         let contours = part_contours(&drawing, &options).expect("valid part");
         assert_eq!(contours.sew_lines.len(), 1);
         assert_eq!(contours.outer.len(), 2, "{:?}", contours.outer);
-        for point in crate::export::bulge::sample_closed(&contours.outer, 0.5) {
+        for point in crate::pattern::bulge::sample_closed(&contours.outer, 0.5) {
             assert!((point.length() - 62.0).abs() < 1e-6, "{point}");
         }
     }
@@ -279,15 +284,17 @@ mod tests {
             outer: ellipse,
             ..Default::default()
         };
-        let options = DxfOptions {
+        let options = PatternOptions {
             seam_allowance: Some(10.0),
             ..Default::default()
         };
         let outer = part_contours(&drawing, &options).expect("valid part").outer;
-        let minimum = options.chord_tolerance * crate::export::MIN_SEGMENT_LENGTH_IN_TOLERANCES;
+        let minimum =
+            options.chord_tolerance * crate::pattern::contour::MIN_SEGMENT_LENGTH_IN_TOLERANCES;
         for (index, vertex) in outer.iter().enumerate() {
             let next = outer[(index + 1) % outer.len()];
-            let length = crate::export::segment_length(vertex.point, next.point, vertex.bulge);
+            let length =
+                crate::pattern::bulge::segment_length(vertex.point, next.point, vertex.bulge);
             assert!(length >= minimum, "segment {index} is {length} mm long");
         }
     }
@@ -310,13 +317,13 @@ mod tests {
             holes: vec![hole],
             ..Default::default()
         };
-        let options = DxfOptions {
+        let options = PatternOptions {
             seam_allowance: Some(10.0),
             ..Default::default()
         };
         let error = part_contours(&drawing, &options).expect_err("the hole closes");
         assert!(
-            matches!(error, ExportError::SeamAllowanceClosesHole { hole: 1, .. }),
+            matches!(error, PatternError::SeamAllowanceClosesHole { hole: 1, .. }),
             "{error}"
         );
     }
@@ -340,7 +347,7 @@ mod tests {
             holes: vec![hole],
             ..Default::default()
         };
-        let contours = part_contours(&drawing, &DxfOptions::default()).expect("valid part");
+        let contours = part_contours(&drawing, &PatternOptions::default()).expect("valid part");
         let area = |vertices: &[BulgeVertex]| {
             signed_area(
                 &vertices

@@ -57,7 +57,7 @@ struct Span {
 /// area. The result keeps the ring's orientation.
 ///
 /// ```
-/// use flatcut::export::{DEFAULT_CHORD_TOLERANCE, fit_closed};
+/// use flatcut::pattern::{DEFAULT_CHORD_TOLERANCE, fit_closed};
 /// use glam::DVec2;
 ///
 /// // A hole of radius 5 mm sampled with 720 points comes out as two true arcs.
@@ -376,8 +376,8 @@ fn close_across_opening(points: &[DVec2], spans: Vec<Span>, tolerance: f64) -> V
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-    use crate::export::bulge::{BulgeArc, distance_to_segment, sample_closed};
+    use crate::pattern::bulge::{BulgeArc, distance_to_segment, sample_closed};
+    use crate::pattern::contour::*;
     use proptest::prelude::*;
     use std::f64::consts::{FRAC_PI_2, TAU};
 
@@ -437,12 +437,12 @@ mod tests {
                 let to_circles = (point.length() - inner)
                     .abs()
                     .min((point.length() - outer).abs());
-                let to_start = crate::export::bulge::distance_to_line_segment(
+                let to_start = crate::pattern::bulge::distance_to_line_segment(
                     point,
                     DVec2::X * inner,
                     DVec2::X * outer,
                 );
-                let to_end = crate::export::bulge::distance_to_line_segment(
+                let to_end = crate::pattern::bulge::distance_to_line_segment(
                     point,
                     edge * inner,
                     edge * outer,
@@ -472,7 +472,7 @@ mod tests {
         assert!(
             fitted
                 .iter()
-                .all(|v| v.bulge.abs() < crate::export::STRAIGHT_BULGE),
+                .all(|v| v.bulge.abs() < crate::pattern::bulge::STRAIGHT_BULGE),
             "{fitted:?}"
         );
         assert_eq!(fitted.len(), 8);

@@ -34,7 +34,7 @@ pub fn fold_polylines(model: &FacetModel, positions: &[DVec2]) -> Vec<Vec<DVec2>
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::pattern::fold_polylines::*;
 
     #[test]
     fn fold_edges_of_a_model_become_flat_polylines() {

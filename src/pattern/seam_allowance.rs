@@ -66,9 +66,9 @@ fn to_bulge_vertex(vertex: PlineVertex<f64>) -> BulgeVertex {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-    use crate::export::bulge::sample_closed;
-    use crate::export::contour::signed_area;
+    use crate::pattern::bulge::sample_closed;
+    use crate::pattern::contour::signed_area;
+    use crate::pattern::seam_allowance::*;
 
     #[test]
     fn square_grows_by_the_allowance_with_round_corners() {

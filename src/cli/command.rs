@@ -1,0 +1,46 @@
+//! The command line: the subcommands and their dispatch.
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+use super::flatten::{self, FlattenArgs};
+use super::nest::{self, NestArgs};
+use super::outcome::{Outcome, exit_code};
+use super::progress_bar::TerminalProgress;
+use super::run::{self, RunArgs};
+use super::tessellate::{self, TessellateArgs};
+
+/// flatcut: flat cut patterns from 3D surfaces (spring-mass energy model, Wang et al. 2002).
+#[derive(Debug, Parser)]
+#[command(name = "flatcut", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// The whole pipeline: flatten every part and write its files and the report.
+    Run(RunArgs),
+    /// Flatten parts and write their patterns, no nesting.
+    Flatten(FlattenArgs),
+    /// Nest parts or a benchmark instance (ESICUP JSON) on sheets or a roll; writes OUT/nest.json.
+    Nest(NestArgs),
+    /// Write the facet model of a part file or STEP file as OBJ.
+    Tessellate(TessellateArgs),
+}
+
+/// Parses the command line, runs the command and returns its exit code. Usage errors exit with 2
+/// through clap.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let progress = TerminalProgress::new();
+    let result: anyhow::Result<Outcome> = match cli.command {
+        Command::Run(args) => run::run(args, &progress),
+        Command::Flatten(args) => flatten::run(args, &progress),
+        Command::Nest(args) => nest::run(args, &progress),
+        Command::Tessellate(args) => tessellate::run(args),
+    };
+    exit_code(result)
+}

@@ -1,0 +1,55 @@
+//! Running a configured job through the library and printing what it did: the nesting figures,
+//! one line per part and, with `--json`, the report.
+
+use std::path::Path;
+
+use flatcut::pipeline::{RunConfig, run, write_outputs};
+use flatcut::progress::Progress;
+
+use super::outcome::Outcome;
+
+/// Runs `config` (warnings go through `progress`), writes the output folder into `output`, prints
+/// the figures on stderr and, when `json`, the report on stdout.
+pub fn execute(
+    config: &RunConfig,
+    output: &Path,
+    json: bool,
+    progress: &dyn Progress,
+) -> anyhow::Result<Outcome> {
+    let result = run(config, progress)?;
+    let report = write_outputs(&result, config, output)?;
+    if let Some(nested) = &result.nesting {
+        let layout = &nested.layout;
+        eprintln!(
+            "flatcut: nested on {} sheet(s), utilisation {:.2} %, length used {:.1} mm",
+            layout.sheets.len(),
+            layout.utilisation * 100.0,
+            layout.used_length
+        );
+    }
+    for part in &report.parts {
+        eprintln!(
+            "flatcut: {}: E_S {:.4} %, E_C {:.4} %, {} flipped, {} seam(s), {} cut(s) of total length {:.4}, {}",
+            part.name,
+            part.area_error * 100.0,
+            part.shape_error * 100.0,
+            part.flipped,
+            part.seams.len(),
+            part.cuts.len(),
+            part.total_cut_length,
+            if part.tolerance_met {
+                "within tolerance"
+            } else {
+                "OVER TOLERANCE"
+            }
+        );
+    }
+    if json {
+        print!("{}", report.to_json());
+    }
+    Ok(if report.parts.iter().all(|part| part.tolerance_met) {
+        Outcome::Success
+    } else {
+        Outcome::OverTolerance
+    })
+}

@@ -1,0 +1,179 @@
+//! The cut loop: open the part, flatten it, and cut it along crest lines until it is within
+//! tolerance or the cut budget is spent; see the module documentation of [`crate::cut`].
+
+use std::collections::BTreeSet;
+
+use super::errors::CutError;
+use super::opening::{lay_user_seams, open_and_flatten};
+use super::options::{
+    CAP_CURVATURE, CUT_LOOP_ENERGY_TOLERANCE, CUTS_PER_CAP, CutConstraints, CutOptions,
+    DEFAULT_MAX_CUTS, EXTENSIONS_PER_CUT,
+};
+use super::result::{Cut, CutFigures, CutResult, CutStop, UncutPattern};
+use super::seam;
+use super::state::{CutState, polyline};
+use super::trials::{Starts, best_cut_widening};
+use crate::flatten::{FastOptions, FlattenOptions, Stiffness, flatten_from};
+use crate::mesh::FacetModel;
+use crate::progress::Progress;
+
+/// The flatten options of the cut loop: the caller's, converged to at least
+/// [`CUT_LOOP_ENERGY_TOLERANCE`].
+fn converged_options(options: &FlattenOptions) -> FlattenOptions {
+    let energy_tolerance = options.fast.energy_tolerance.min(CUT_LOOP_ENERGY_TOLERANCE);
+    FlattenOptions {
+        fast: FastOptions {
+            energy_tolerance,
+            ..options.fast
+        },
+        ..options.clone()
+    }
+}
+
+/// Opens the part with seams, flattens it and cuts it along crest lines until it is within
+/// tolerance; see the module documentation.
+pub fn cut_and_flatten(
+    model: &FacetModel,
+    stiffness: &Stiffness,
+    constraints: &CutConstraints,
+    flatten_options: &FlattenOptions,
+    options: &CutOptions,
+    progress: &dyn Progress,
+) -> Result<CutResult, CutError> {
+    let mut state = CutState {
+        model: model.clone(),
+        stiffness: stiffness.clone(),
+        original_vertex: (0..model.vertex_count() as u32).collect(),
+    };
+    let mut user_seams = Vec::new();
+    lay_user_seams(&mut state, constraints, &mut user_seams)?;
+    let (mut state, seams, mut flattened) =
+        open_and_flatten(&state, constraints, user_seams, flatten_options, progress)?;
+    let max_cuts = options
+        .max_cuts
+        .unwrap_or_else(|| default_cut_budget(&state.model));
+    let loop_options = converged_options(flatten_options);
+    if !flattened.stats.accuracy.within(flatten_options.tolerance) && max_cuts > 0 {
+        let start = flattened.positions.clone();
+        flattened = flatten_from(&state.model, &state.stiffness, &start, &loop_options)?;
+    }
+    let flatten_options = &loop_options;
+    let mut cuts: Vec<Cut> = Vec::new();
+    let mut tips: Vec<u32> = Vec::new();
+    let mut uncut = None;
+    let step_budget = max_cuts * (1 + EXTENSIONS_PER_CUT);
+    let mut reporting = false;
+    let mut steps = 0;
+    let stop = loop {
+        if flattened.stats.accuracy.within(flatten_options.tolerance) {
+            break CutStop::ToleranceMet;
+        }
+        let new_cut_allowed = cuts.len() < max_cuts;
+        if steps >= step_budget || (!new_cut_allowed && tips.is_empty()) {
+            break CutStop::CutBudget;
+        }
+        let blocked = state.blocked(&constraints.no_cut_regions);
+        let starts = Starts {
+            tips: &tips,
+            new_cut_allowed,
+            blocked: &blocked,
+        };
+        if !reporting {
+            progress.start("cut", step_budget as u64);
+            reporting = true;
+        }
+        let Some(improvement) =
+            best_cut_widening(&state, &flattened, flatten_options, options, &starts)?
+        else {
+            break if new_cut_allowed {
+                CutStop::NoBetterCut
+            } else {
+                CutStop::CutBudget
+            };
+        };
+        steps += 1;
+        progress.advance(steps as u64);
+        let line = &improvement.line;
+        let points = polyline(&state.model, &line.vertices);
+        let vertices: Vec<u32> = line
+            .vertices
+            .iter()
+            .map(|&v| state.original_vertex[v as usize])
+            .collect();
+        let tip = line.vertices[line.vertices.len() - 1];
+        let after = CutFigures::of(&improvement.flattened);
+        match tips.iter().position(|&known| known == line.vertices[0]) {
+            Some(extended) => {
+                let cut = &mut cuts[extended];
+                cut.points.extend_from_slice(&points[1..]);
+                cut.vertices.extend_from_slice(&vertices[1..]);
+                cut.length += line.length;
+                cut.after = after;
+                tips[extended] = tip;
+            }
+            None => {
+                if cuts.is_empty() {
+                    uncut = Some(UncutPattern {
+                        model: state.model.clone(),
+                        stiffness: state.stiffness.clone(),
+                        flattened: flattened.clone(),
+                    });
+                }
+                cuts.push(Cut {
+                    points,
+                    vertices,
+                    length: line.length,
+                    before: CutFigures::of(&flattened),
+                    after,
+                });
+                tips.push(tip);
+            }
+        }
+        state = improvement.state;
+        flattened = improvement.flattened;
+    };
+    if reporting {
+        progress.finish();
+    }
+    let cut_edges = cut_sides(&state, &cuts);
+    Ok(CutResult {
+        cut_edges,
+        model: state.model,
+        stiffness: state.stiffness,
+        original_vertex: state.original_vertex,
+        flattened,
+        seams,
+        cuts,
+        stop,
+        uncut,
+    })
+}
+
+/// The number of crest-line cuts a part may get when the user sets none: [`CUTS_PER_CAP`] per
+/// [`CAP_CURVATURE`] of the total absolute Gaussian curvature `∫|K| dA = Σ |2π − Σθ|` over the
+/// interior vertices of the opened part (the curvature its seams did not release), and at least
+/// [`DEFAULT_MAX_CUTS`]. A closed UV sphere halved along its bisector holds about `3.5π` (28
+/// cuts); a box opened to its net holds none (8).
+pub fn default_cut_budget(model: &FacetModel) -> usize {
+    let curvature: f64 = seam::angle_deficits(model).iter().map(|d| d.abs()).sum();
+    let scaled = (CUTS_PER_CAP * curvature / CAP_CURVATURE).ceil();
+    DEFAULT_MAX_CUTS.max(scaled as usize)
+}
+
+/// The edges of the cut model that are sides of a cut: boundary edges both of whose ends copy a
+/// vertex some cut runs through.
+fn cut_sides(state: &CutState, cuts: &[Cut]) -> Vec<usize> {
+    let on_cut: BTreeSet<u32> = cuts
+        .iter()
+        .flat_map(|cut| cut.vertices.iter().copied())
+        .collect();
+    let at_cut = |v: u32| on_cut.contains(&state.original_vertex[v as usize]);
+    let model = &state.model;
+    model
+        .edges()
+        .iter()
+        .enumerate()
+        .filter(|&(e, &[a, b])| model.is_boundary_edge(e) && at_cut(a) && at_cut(b))
+        .map(|(e, _)| e)
+        .collect()
+}

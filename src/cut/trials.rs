@@ -1,0 +1,379 @@
+//! Choosing the next cut: the candidate crest lines of the current pattern, each cut and
+//! flattened briefly (screening), the most promising flattened on (trials), and the one of
+//! largest gain kept; with the rules that say which pattern is better.
+
+use glam::DVec2;
+use rayon::prelude::*;
+
+use super::crest::{CrestLine, CrestSettings, crest_lines};
+use super::density::{self, planning_map};
+use super::errors::CutError;
+use super::options::{
+    CutOptions, FULL_TRIALS, LENGTH_EXPONENT, SCREEN_ITERATIONS, TRIAL_BUDGET,
+    TRIAL_STEP_TOLERANCE, WIDER_SEARCH,
+};
+use super::paths::Adjacency;
+use super::state::CutState;
+use crate::flatten::{
+    Accuracy, FastOptions, FlattenOptions, Flattened, SpringSystem, StopReason, flatten,
+    flatten_from,
+};
+use crate::progress::NoProgress;
+
+/// A cut that lowered the error.
+pub(super) struct Improvement {
+    pub(super) state: CutState,
+    pub(super) flattened: Flattened,
+    pub(super) line: CrestLine,
+}
+
+/// Where the next cut step may go: it may start at the inner end of an existing cut (an
+/// extension), elsewhere only while new cuts are allowed, and never pass a blocked vertex.
+pub(super) struct Starts<'a> {
+    pub(super) tips: &'a [u32],
+    pub(super) new_cut_allowed: bool,
+    pub(super) blocked: &'a [bool],
+}
+
+/// A candidate cut, made and flattened.
+struct Trial {
+    improvement: Improvement,
+    /// Its gain: [`f64::MAX`]` / L` when it meets the tolerance, else `ΔE / L^LENGTH_EXPONENT`.
+    gain: f64,
+}
+
+/// [`best_cut`], and when it finds no cut, [`best_cut`] again with lines from
+/// [`WIDER_SEARCH`] times as many maxima.
+pub(super) fn best_cut_widening(
+    state: &CutState,
+    flattened: &Flattened,
+    flatten_options: &FlattenOptions,
+    options: &CutOptions,
+    starts: &Starts<'_>,
+) -> Result<Option<Improvement>, CutError> {
+    if let Some(improvement) = best_cut(state, flattened, flatten_options, options, starts)? {
+        return Ok(Some(improvement));
+    }
+    let wider = CutOptions {
+        candidates: options.candidates * WIDER_SEARCH,
+        ..options.clone()
+    };
+    best_cut(state, flattened, flatten_options, &wider, starts)
+}
+
+/// Picks the next cut in two rounds. Screening: every crest line of the current pattern is cut and
+/// flattened for [`SCREEN_ITERATIONS`] solver iterations, warm-started from the current pattern
+/// (the lines in parallel; the results keep the lines' order). Trial: the screened cuts that
+/// lower the error, those without overlap first and then by gain, are flattened on to the trial
+/// threshold [`TRIAL_STEP_TOLERANCE`] until [`FULL_TRIALS`] still lower the error, or
+/// [`TRIAL_BUDGET`] were tried and at least one does; among those the one of largest gain
+/// (the shortest within tolerance, else the largest `ΔE / L^LENGTH_EXPONENT`) is flattened to
+/// the full threshold and returned.
+fn best_cut(
+    state: &CutState,
+    flattened: &Flattened,
+    flatten_options: &FlattenOptions,
+    options: &CutOptions,
+    starts: &Starts<'_>,
+) -> Result<Option<Improvement>, CutError> {
+    let lines = candidate_lines(state, flattened, flatten_options, options, starts);
+    let screen_options = with_fast(flatten_options, |fast| FastOptions {
+        max_iterations: fast.max_iterations.min(SCREEN_ITERATIONS),
+        step_tolerance: fast.step_tolerance.max(TRIAL_STEP_TOLERANCE),
+        ..fast
+    });
+    let screened: Vec<Option<Trial>> = lines
+        .into_par_iter()
+        .map(|line| screen(state, flattened, line, &screen_options))
+        .collect::<Result<_, _>>()?;
+    let mut screened: Vec<Trial> = screened.into_iter().flatten().collect();
+    let overlaps = |trial: &Trial| trial.improvement.flattened.stats.accuracy.overlap;
+    screened.sort_by(|a, b| {
+        overlaps(a)
+            .cmp(&overlaps(b))
+            .then(b.gain.total_cmp(&a.gain))
+    });
+    let trial_options = with_fast(flatten_options, |fast| FastOptions {
+        step_tolerance: fast.step_tolerance.max(TRIAL_STEP_TOLERANCE),
+        ..fast
+    });
+    let mut best: Option<Trial> = None;
+    let mut accepted = 0;
+    for (tried, trial) in screened.into_iter().enumerate() {
+        if accepted == FULL_TRIALS || (tried >= TRIAL_BUDGET && accepted > 0) {
+            break;
+        }
+        let Some(trial) = flatten_on(trial, flattened, &trial_options)? else {
+            continue;
+        };
+        accepted += 1;
+        if best.as_ref().is_none_or(|known| trial.gain > known.gain) {
+            best = Some(trial);
+        }
+    }
+    let Some(Trial {
+        mut improvement, ..
+    }) = best
+    else {
+        return Ok(None);
+    };
+    let refined = flatten_from(
+        &improvement.state.model,
+        &improvement.state.stiffness,
+        &improvement.flattened.positions,
+        flatten_options,
+    )?;
+    if is_better(
+        &refined.stats.accuracy,
+        &improvement.flattened.stats.accuracy,
+    ) || refined.stats.accuracy.within(flatten_options.tolerance)
+    {
+        improvement.flattened = refined;
+    }
+    Ok(Some(improvement))
+}
+
+/// The crest lines of the current pattern a cut step may take: those of the energy map (Eq. 1)
+/// and those of the tension map (stretched springs only, where a cut opens; on a saddle the
+/// energy peaks where the pattern is compressed and a cut there would overlap), both as planning
+/// maps ([`density`]: energy per unit area smoothed over a length tied to the part's size, so
+/// the lines do not depend on the mesh); without repeats, an extension of an earlier cut or a
+/// new cut only while new cuts are allowed.
+fn candidate_lines(
+    state: &CutState,
+    flattened: &Flattened,
+    flatten_options: &FlattenOptions,
+    options: &CutOptions,
+    starts: &Starts<'_>,
+) -> Vec<CrestLine> {
+    let springs = SpringSystem::new(
+        &state.model,
+        state.stiffness.factors(),
+        flatten_options.spring_constant,
+    );
+    let adjacency = Adjacency::new(&state.model);
+    let areas = density::vertex_areas(&state.model);
+    let map_of = |energies: Vec<f64>| planning_map(&state.model, &adjacency, &areas, &energies);
+    let energy = map_of(springs.vertex_energies(&flattened.positions));
+    let tension = map_of(springs.tension_energies(&flattened.positions));
+    let settings = CrestSettings {
+        blocked: starts.blocked,
+        candidates: options.candidates,
+        dart_floor: options.dart_floor,
+        tension: &tension,
+        tips: starts.tips,
+        extensions_only: !starts.new_cut_allowed,
+    };
+    let mut lines: Vec<CrestLine> = Vec::new();
+    for map in [&energy, &tension] {
+        for line in crest_lines(&state.model, &adjacency, map, &settings) {
+            let allowed = starts.new_cut_allowed || starts.tips.contains(&line.vertices[0]);
+            if allowed && !lines.iter().any(|known| known.vertices == line.vertices) {
+                lines.push(line);
+            }
+        }
+    }
+    lines
+}
+
+/// The flatten options with the fast solver's options changed by `change`.
+fn with_fast(
+    options: &FlattenOptions,
+    change: impl FnOnce(FastOptions) -> FastOptions,
+) -> FlattenOptions {
+    FlattenOptions {
+        fast: change(options.fast),
+        ..options.clone()
+    }
+}
+
+/// Cuts along `line` and flattens with `screen_options`; `None` if the line cannot be cut (it
+/// would cut a piece off, open nothing, or run along the boundary or a fold line) or the cut
+/// does not lower the error.
+fn screen(
+    state: &CutState,
+    flattened: &Flattened,
+    line: CrestLine,
+    screen_options: &FlattenOptions,
+) -> Result<Option<Trial>, CutError> {
+    let (next, copied_vertex) = match state.cut_along(&line.vertices) {
+        Ok(cut) => cut,
+        Err(
+            CutError::Disconnects
+            | CutError::OpensNothing
+            | CutError::BoundaryEdge { .. }
+            | CutError::FoldLine { .. },
+        ) => return Ok(None),
+        Err(other) => return Err(other),
+    };
+    let candidate = reflatten(&next, &copied_vertex, flattened, screen_options)?;
+    let improvement = Improvement {
+        state: next,
+        flattened: candidate,
+        line,
+    };
+    Ok(judge(
+        improvement,
+        flattened,
+        screen_options.tolerance,
+        Overlap::Ignored,
+    ))
+}
+
+/// Flattens a screened cut on from its screened pattern with `trial_options`; `None` if it no
+/// longer lowers the error.
+fn flatten_on(
+    trial: Trial,
+    before: &Flattened,
+    trial_options: &FlattenOptions,
+) -> Result<Option<Trial>, CutError> {
+    let Improvement {
+        state,
+        flattened,
+        line,
+    } = trial.improvement;
+    let further = flatten_from(
+        &state.model,
+        &state.stiffness,
+        &flattened.positions,
+        trial_options,
+    )?;
+    let flattened = if is_better(&flattened.stats.accuracy, &further.stats.accuracy) {
+        flattened
+    } else {
+        further
+    };
+    let improvement = Improvement {
+        state,
+        flattened,
+        line,
+    };
+    Ok(judge(
+        improvement,
+        before,
+        trial_options.tolerance,
+        Overlap::Refused,
+    ))
+}
+
+/// Whether [`judge`] refuses an overlapping pattern. Screening ignores overlap: after a few
+/// iterations the freshly cut sides have barely separated and touch (which counts as overlap) on
+/// fine meshes; the trial round refuses it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Overlap {
+    Ignored,
+    Refused,
+}
+
+/// The trial of a cut model and its pattern, or `None` if it does not lower the error of the
+/// pattern `before`.
+fn judge(
+    improvement: Improvement,
+    before: &Flattened,
+    tolerance: f64,
+    overlap: Overlap,
+) -> Option<Trial> {
+    let after = &improvement.flattened.stats;
+    let lower = match overlap {
+        Overlap::Refused => pays(&after.accuracy, &before.stats.accuracy, tolerance),
+        Overlap::Ignored => error(&after.accuracy) < error(&before.stats.accuracy),
+    };
+    if !lower {
+        return None;
+    }
+    let length = improvement.line.length;
+    let gain = if after.accuracy.within(tolerance) {
+        // Within tolerance: nothing beats it but a shorter cut that is too.
+        f64::MAX / length
+    } else {
+        (before.stats.energy - after.energy) / length.powf(LENGTH_EXPONENT)
+    };
+    Some(Trial { improvement, gain })
+}
+
+/// The pattern of a cut model, warm-started from the pattern before the cut (each copy starts
+/// where its original was). When the warm start cannot move (the solver's orientation guard
+/// blocks it), a cold flattening is tried too and the better pattern kept.
+fn reflatten(
+    next: &CutState,
+    copied_vertex: &[u32],
+    before: &Flattened,
+    flatten_options: &FlattenOptions,
+) -> Result<Flattened, CutError> {
+    let start: Vec<DVec2> = copied_vertex
+        .iter()
+        .map(|&v| before.positions[v as usize])
+        .collect();
+    let warm = flatten_from(&next.model, &next.stiffness, &start, flatten_options)?;
+    if warm.stats.stop_reason != StopReason::OrientationBlocked {
+        return Ok(warm);
+    }
+    let cold = flatten(&next.model, &next.stiffness, flatten_options, &NoProgress)?;
+    Ok(if is_better(&cold.stats.accuracy, &warm.stats.accuracy) {
+        cold
+    } else {
+        warm
+    })
+}
+
+/// The larger of `E_S` and `E_C`.
+fn error(a: &Accuracy) -> f64 {
+    a.area_error.max(a.shape_error)
+}
+
+/// True if a cut that takes the pattern from `before` to `after` is worth making: `after` is the
+/// better pattern ([`is_better`]), except that a cut leaving an overlapping pattern overlapping
+/// with as many flipped triangles does not pay once `E_S` and `E_C` are within `tolerance`: the
+/// overlap alone keeps the part out, and such a cut only adds length (the FreeCAD box's pocket
+/// wall lies over its top face however it is cut: 8 cuts, 665 mm and 100 s spent in vain).
+fn pays(after: &Accuracy, before: &Accuracy, tolerance: f64) -> bool {
+    let overlap_kept = after.overlap && before.overlap && after.flipped == before.flipped;
+    if overlap_kept && error(before) <= tolerance {
+        return false;
+    }
+    is_better(after, before)
+}
+
+/// True if `candidate` is a better pattern than `current`: it does not overlap while `current`
+/// does; or both overlap and it has fewer flipped triangles (on an opened torus the cuts then
+/// go where they unflip the pattern: 0 flipped instead of 3 after eight cuts); or its larger
+/// error is lower.
+pub(super) fn is_better(candidate: &Accuracy, current: &Accuracy) -> bool {
+    match (candidate.overlap, current.overlap) {
+        (false, true) => true,
+        (true, false) => false,
+        (true, true) if candidate.flipped != current.flipped => candidate.flipped < current.flipped,
+        _ => error(candidate) < error(current),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::cut::trials::*;
+
+    fn accuracy(error: f64, flipped: usize, overlap: bool) -> Accuracy {
+        Accuracy {
+            area_error: error,
+            shape_error: error / 2.0,
+            max_strain: 0.0,
+            flipped,
+            overlap,
+        }
+    }
+
+    #[test]
+    fn a_cut_that_leaves_an_overlap_within_tolerance_does_not_pay() {
+        let before = accuracy(0.001, 0, true);
+        assert!(!pays(&accuracy(0.0005, 0, true), &before, 0.01));
+        assert!(pays(&accuracy(0.0005, 0, false), &before, 0.01));
+        assert!(pays(&accuracy(0.02, 0, false), &before, 0.01));
+    }
+
+    #[test]
+    fn over_tolerance_a_lower_error_pays_even_while_overlapping() {
+        let before = accuracy(0.05, 3, true);
+        assert!(pays(&accuracy(0.04, 3, true), &before, 0.01));
+        assert!(pays(&accuracy(0.06, 1, true), &before, 0.01));
+        assert!(!pays(&accuracy(0.06, 3, true), &before, 0.01));
+    }
+}

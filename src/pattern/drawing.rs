@@ -1,0 +1,64 @@
+//! A part's flat pattern as drawn: its outline, holes and fold lines as polylines in drawing
+//! units, with its name, quantity and material, its grain line and where its label goes. Plain
+//! values, made by [`super::part_pattern`] from a flattened part.
+
+use glam::DVec2;
+
+use crate::geometry::deep_interior_point;
+use crate::units::Units;
+
+/// One part's flat pattern, at 1:1 in `units`: nominal geometry (the CAM adds kerf).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct PartDrawing {
+    /// Part name: labels the part and names its file.
+    pub name: String,
+    /// Unit of every coordinate.
+    pub units: Units,
+    /// How many to cut.
+    pub quantity: u32,
+    /// Material, printed on the label when given.
+    pub material: Option<String>,
+    /// The outer contour: a closed ring (the first point may or may not be repeated at the end),
+    /// typically a dense polyline from a mesh boundary.
+    pub outer: Vec<DVec2>,
+    /// Inner cut-outs, each a closed ring like `outer`.
+    pub holes: Vec<Vec<DVec2>>,
+    /// Fold or bend lines: open polylines, drawn but not cut.
+    pub fold_lines: Vec<Vec<DVec2>>,
+    /// Grain line, from tail to head, when the part has a grain direction.
+    pub grain: Option<[DVec2; 2]>,
+}
+
+/// Grain arrowhead length as a fraction of the grain line, capped at [`ARROW_MAX_LENGTH_MM`].
+const ARROW_FRACTION: f64 = 0.1;
+
+/// Longest grain arrowhead, in mm.
+const ARROW_MAX_LENGTH_MM: f64 = 10.0;
+
+/// Angle between the grain line and each side of its arrowhead, in radians (25°).
+const ARROW_HALF_ANGLE: f64 = 25.0 * std::f64::consts::PI / 180.0;
+
+impl PartDrawing {
+    /// Where the label is centred: a point deep inside the part's material
+    /// ([`deep_interior_point`]), or `None` when the outer contour has fewer than three points.
+    pub fn label_anchor(&self) -> Option<DVec2> {
+        (self.outer.len() >= 3).then(|| deep_interior_point(&self.outer, &self.holes))
+    }
+
+    /// The grain line (tail, head) and its arrowhead (barb, head, barb) as drawn, or `None` when
+    /// the part has no grain line or one of zero or non-finite length.
+    pub fn grain_arrow(&self) -> Option<([DVec2; 2], [DVec2; 3])> {
+        let [tail, head] = self.grain?;
+        let length = tail.distance(head);
+        if !length.is_finite() || length <= 0.0 {
+            return None;
+        }
+        let maximum = ARROW_MAX_LENGTH_MM / self.units.millimetres();
+        let back = (tail - head) / length * (length * ARROW_FRACTION).min(maximum);
+        let barb = |angle: f64| head + DVec2::from_angle(angle).rotate(back);
+        Some((
+            [tail, head],
+            [barb(ARROW_HALF_ANGLE), head, barb(-ARROW_HALF_ANGLE)],
+        ))
+    }
+}

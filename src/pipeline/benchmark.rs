@@ -1,0 +1,144 @@
+//! Nesting benchmark instances (ESICUP JSON, as in jagua-rs and sparrow) from the library: their
+//! items nested together on sheets or a roll and checked independently, for `flatcut nest`.
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use crate::error::Error;
+use crate::export::nest_report::{NestReport, NestReportOptions};
+use crate::nest::instance::read_instance;
+use crate::nest::verify::verify;
+use crate::nest::{
+    DEFAULT_GAP, DEFAULT_SEED, DEFAULT_TIME_LIMIT, NestItem, NestLayout, NestOptions, Rotations,
+    Stock, nest,
+};
+use crate::progress::Progress;
+
+/// A benchmark nesting job. `Default` is the only source of defaults (the nester's).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BenchmarkConfig {
+    /// ESICUP instance files; their items are nested together.
+    pub inputs: Vec<PathBuf>,
+    /// The stock; `None` (the default) for a roll as wide as the instances' strip height.
+    pub stock: Option<Stock>,
+    /// Gap between parts and to the stock edge, mm; default [`DEFAULT_GAP`].
+    pub gap: f64,
+    /// Search budget in seconds, capped by the wall clock; default [`DEFAULT_TIME_LIMIT`].
+    pub time_seconds: f64,
+    /// Work budget in collision queries instead of the time budget × the nominal rate.
+    pub work_limit: Option<u64>,
+    /// Seed of the search; default [`DEFAULT_SEED`].
+    pub seed: u64,
+    /// Rotations for every item, overriding the instances'; `None` keeps theirs.
+    pub rotations: Option<Rotations>,
+    /// Whether small items may go inside the holes of larger ones.
+    pub in_holes: bool,
+    /// Whether items may be mirrored.
+    pub mirror: bool,
+}
+
+impl Default for BenchmarkConfig {
+    fn default() -> Self {
+        Self {
+            inputs: Vec::new(),
+            stock: None,
+            gap: DEFAULT_GAP,
+            time_seconds: DEFAULT_TIME_LIMIT.as_secs_f64(),
+            work_limit: None,
+            seed: DEFAULT_SEED,
+            rotations: None,
+            in_holes: false,
+            mirror: false,
+        }
+    }
+}
+
+/// A nested benchmark.
+#[derive(Debug, Clone)]
+pub struct BenchmarkOutput {
+    /// The instances' names, in input order.
+    pub names: Vec<String>,
+    /// Every instance's items, as nested.
+    pub items: Vec<NestItem>,
+    /// The nester's options used.
+    pub options: NestOptions,
+    /// The layout, checked independently.
+    pub layout: NestLayout,
+}
+
+/// Reads the instances, nests their items together and checks the layout independently.
+pub fn nest_benchmark(
+    config: &BenchmarkConfig,
+    progress: &dyn Progress,
+) -> Result<BenchmarkOutput, Error> {
+    let mut items: Vec<NestItem> = Vec::new();
+    let mut names = Vec::new();
+    let mut strip_height: Option<f64> = None;
+    for path in &config.inputs {
+        let instance = read_instance(path)?;
+        let differs = strip_height.is_some_and(|height| {
+            (height - instance.strip_height).abs() > f64::EPSILON * height.abs()
+        });
+        if differs && config.stock.is_none() {
+            return Err(Error::StripHeightDiffers { path: path.clone() });
+        }
+        strip_height.get_or_insert(instance.strip_height);
+        names.push(instance.name);
+        items.extend(instance.items);
+    }
+    for item in &mut items {
+        if let Some(rotations) = &config.rotations {
+            item.rotations = rotations.clone();
+        }
+        item.mirror_allowed = config.mirror;
+    }
+    let stock = match (config.stock, strip_height) {
+        (Some(stock), _) => stock,
+        (None, Some(width)) => Stock::Roll { width },
+        (None, None) => return Err(Error::NoStock),
+    };
+    let seconds = config.time_seconds;
+    if !seconds.is_finite() || seconds < 0.0 {
+        return Err(Error::InvalidTime { seconds });
+    }
+    let options = NestOptions {
+        stock,
+        gap: config.gap,
+        time_limit: Duration::from_secs_f64(seconds),
+        seed: config.seed,
+        work_limit: config.work_limit,
+        in_holes: config.in_holes,
+    };
+    let layout = nest(&items, &options, progress)?;
+    let violations = verify(&items, &layout);
+    if !violations.is_empty() {
+        return Err(Error::BenchmarkLayoutRejected { violations });
+    }
+    Ok(BenchmarkOutput {
+        names,
+        items,
+        options,
+        layout,
+    })
+}
+
+/// Writes `nest.json` for a nested benchmark into `directory` (created if missing) and returns
+/// its text.
+pub fn write_benchmark(
+    output: &BenchmarkOutput,
+    config: &BenchmarkConfig,
+    directory: &Path,
+) -> Result<String, Error> {
+    let options = NestReportOptions {
+        stock: output.options.stock,
+        gap: output.options.gap,
+        time_limit_seconds: config.time_seconds,
+        seed: output.options.seed,
+        work_limit: output.options.work_limit,
+        rotations: config.rotations.as_ref(),
+        mirror: config.mirror,
+        in_holes: config.in_holes,
+    };
+    let report = NestReport::new(&output.names, options, &output.items, &output.layout);
+    Ok(report.write(directory)?)
+}

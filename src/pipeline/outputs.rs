@@ -1,0 +1,71 @@
+//! Writing a run's output folder: every part's files (`<part>.mesh.obj`, `.pattern.obj`, `.dxf`,
+//! `.energy.png`), the nested sheets (`sheets/sheet-NNN.dxf` and `.png`) and `report.json`.
+
+use std::path::Path;
+
+use crate::error::Error;
+use crate::export::DxfOptions;
+use crate::export::part_files::{PartFileOptions, PartFiles, write_part_files};
+use crate::export::report::{Report, sheet_reports};
+use crate::export::sheets::{sheet_drawings, write_sheet_files};
+use crate::pattern::PartDrawing;
+
+use super::config::RunConfig;
+use super::report::{part_report, report_options};
+use super::run::RunOutput;
+
+/// Writes the output folder of a run into `directory` (created if missing) and returns the
+/// report written to `report.json`.
+pub fn write_outputs(
+    output: &RunOutput,
+    config: &RunConfig,
+    directory: &Path,
+) -> Result<Report, Error> {
+    std::fs::create_dir_all(directory).map_err(|source| Error::CreateDirectory {
+        path: directory.to_path_buf(),
+        source,
+    })?;
+    let dxf = DxfOptions {
+        version: config.dxf_version,
+        pattern: config.pattern,
+    };
+    let file_options = PartFileOptions {
+        dxf,
+        energy: config.energy_png,
+    };
+    for part in &output.parts {
+        let files = PartFiles {
+            source: &part.job.source,
+            model: &part.job.model,
+            flattened: &part.flattened,
+            uncut: part.uncut.as_ref(),
+            pattern: &part.pattern,
+            cuts: part.cuts.len(),
+            spring_constant: config.options.flatten.spring_constant,
+        };
+        write_part_files(directory, &files, &file_options)?;
+    }
+    let sheets = match &output.nesting {
+        Some(nested) => {
+            let drawings: Vec<PartDrawing> = output
+                .parts
+                .iter()
+                .map(|part| part.pattern.drawing.clone())
+                .collect();
+            let sheets = sheet_drawings(&drawings, &nested.layout);
+            let files = write_sheet_files(directory, &sheets, &dxf)?;
+            let names: Vec<String> = nested.items.iter().map(|item| item.name.clone()).collect();
+            sheet_reports(&nested.layout, &names, &files)
+        }
+        None => Vec::new(),
+    };
+    let parts = output
+        .parts
+        .iter()
+        .map(|part| part_report(part, config))
+        .collect();
+    let mut report = Report::new(report_options(config), parts);
+    report.sheets = sheets;
+    report.write(directory)?;
+    Ok(report)
+}

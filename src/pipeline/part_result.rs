@@ -1,0 +1,32 @@
+//! A flattened part: its job, the cut model's pattern and figures, its seams and cuts with the
+//! way back to the input's vertices, and its pattern (outline, fold and cut lines, grain,
+//! energies).
+
+use crate::cut::{Cut, CutStop, Seam, UncutPattern};
+use crate::flatten::Flattened;
+use crate::pattern::Pattern;
+
+use super::load::PartJob;
+
+/// A flattened part.
+#[derive(Debug, Clone)]
+pub struct PartResult {
+    /// What was flattened: its model and stiffness are those after seams and cuts.
+    pub job: PartJob,
+    /// The pattern of the cut model and its figures.
+    pub flattened: Flattened,
+    /// Seams made to open the part.
+    pub seams: Vec<Seam>,
+    /// Crest-line cuts made.
+    pub cuts: Vec<Cut>,
+    /// Why cutting stopped.
+    pub cut_stop: CutStop,
+    /// The part before its first crest-line cut, when one was made.
+    pub uncut: Option<UncutPattern>,
+    /// For each vertex of the cut model, the vertex of the loaded model it copies.
+    pub original_vertex: Vec<u32>,
+    /// Edges of the cut model that are sides of a crest-line cut.
+    pub cut_edges: Vec<usize>,
+    /// The part's pattern: what is cut, drawn and nested.
+    pub pattern: Pattern,
+}

@@ -1,0 +1,102 @@
+//! The whole run in the library: every input loaded and checked before anything is flattened,
+//! every part flattened, cut and made a pattern, and the patterns nested on the stock (when there
+//! is one) and checked independently. Nothing is written here (see [`super::outputs`]).
+
+use crate::error::Error;
+use crate::flatten::Solver;
+use crate::nest::parts::items_from_patterns;
+use crate::nest::verify::verify;
+use crate::nest::{NestItem, NestLayout, nest};
+use crate::progress::Progress;
+
+use super::config::RunConfig;
+use super::flatten_part::flatten_part;
+use super::load::{PartJob, load_parts};
+use super::part_result::PartResult;
+
+/// Above this many triangles the paper's solver is reported to be slow (its phase one is
+/// quadratic: about 10 s at 5,000 triangles on a 2-core machine).
+pub const PAPER_SOLVER_ADVISED_TRIANGLES: usize = 5_000;
+
+/// What a run made.
+#[derive(Debug, Clone)]
+pub struct RunOutput {
+    /// Every part, flattened, cut and made a pattern, in input order.
+    pub parts: Vec<PartResult>,
+    /// The nested layout, when the run had stock.
+    pub nesting: Option<NestedLayout>,
+}
+
+/// The patterns nested on the stock, checked independently.
+#[derive(Debug, Clone)]
+pub struct NestedLayout {
+    /// The nesting items, one per part (item `i` is part `i`), in mm.
+    pub items: Vec<NestItem>,
+    /// Where every copy of every item went.
+    pub layout: NestLayout,
+}
+
+/// Runs the whole pipeline: loads every input (refusing two parts of one name), reports their
+/// repairs as warnings through `progress`, flattens and cuts every part into its pattern, and
+/// nests the patterns when `config` has stock, rejecting a layout the independent check
+/// ([`verify`]) finds a defect in.
+pub fn run(config: &RunConfig, progress: &dyn Progress) -> Result<RunOutput, Error> {
+    config.pattern.validate()?;
+    let mut jobs = Vec::new();
+    for input in &config.inputs {
+        jobs.extend(load_parts(input, &config.options)?);
+    }
+    check_distinct_names(&jobs)?;
+    for job in &jobs {
+        for warning in &job.warnings {
+            progress.warn(&format!("{}: {warning}", job.source.display()));
+        }
+        let triangles = job.model.triangle_count();
+        if config.options.flatten.solver == Solver::Paper
+            && triangles > PAPER_SOLVER_ADVISED_TRIANGLES
+        {
+            progress.warn(&format!(
+                "{}: {triangles} triangles: the paper's solver is quadratic and will be slow; \
+                 the default solver minimises the same energy",
+                job.name
+            ));
+        }
+    }
+    let parts = jobs
+        .into_iter()
+        .map(|job| flatten_part(job, &config.options, progress))
+        .collect::<Result<Vec<PartResult>, _>>()?;
+    let nesting = match config.stock {
+        Some(stock) => {
+            let nesting = &config.nesting;
+            let items = items_from_patterns(
+                parts.iter().map(|part| &part.pattern),
+                &config.pattern,
+                &nesting.rotations,
+                nesting.mirror,
+            )?;
+            let layout = nest(&items, &nesting.nest_options(stock), progress)?;
+            let violations = verify(&items, &layout);
+            if !violations.is_empty() {
+                return Err(Error::LayoutRejected { violations });
+            }
+            Some(NestedLayout { items, layout })
+        }
+        None => None,
+    };
+    Ok(RunOutput { parts, nesting })
+}
+
+/// Refuses two parts of the same name: the second's files would overwrite the first's.
+fn check_distinct_names(jobs: &[PartJob]) -> Result<(), Error> {
+    for (index, job) in jobs.iter().enumerate() {
+        if let Some(earlier) = jobs[..index].iter().find(|other| other.name == job.name) {
+            return Err(Error::DuplicateName {
+                path: job.source.clone(),
+                name: job.name.clone(),
+                earlier: earlier.source.clone(),
+            });
+        }
+    }
+    Ok(())
+}
