@@ -1,5 +1,6 @@
 //! flatcut's integration tests: one binary, run against the real `flatcut` executable.
 
+mod architecture;
 mod bad_inputs;
 mod energy_png;
 mod flatten;
