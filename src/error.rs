@@ -25,6 +25,14 @@ pub enum Error {
         /// Every defect found.
         defects: MeshDefects,
     },
+    /// The facet model `flatcut tessellate` made of an input has defects.
+    #[error("{path}: the facet model cannot be used: {defects}")]
+    FacetModel {
+        /// The input file.
+        path: PathBuf,
+        /// Every defect found.
+        defects: MeshDefects,
+    },
     /// A part's surfaces could not be tessellated.
     #[error("{path}: cannot tessellate: {defect}")]
     Tessellate {

@@ -3,15 +3,10 @@
 
 use std::path::PathBuf;
 
-use anyhow::Context;
 use clap::Args;
 
-use flatcut::export::obj::mesh_obj;
-use flatcut::export::write_atomically;
-use flatcut::ingest::{Input, read_input};
-use flatcut::mesh::TriangleSoup;
-use flatcut::pipeline::tessellate_part;
-use flatcut::tessellate::{TessellateOptions, tessellate_brep};
+use flatcut::pipeline::{FacetSource, facet_model, write_facet_model};
+use flatcut::tessellate::TessellateOptions;
 use flatcut::units::Units;
 
 use super::outcome::Outcome;
@@ -65,50 +60,18 @@ impl MeshSizeArgs {
 /// Runs `tessellate`.
 pub fn run(args: TessellateArgs) -> anyhow::Result<Outcome> {
     let options = args.sizes.options()?;
-    let input = read_input(&args.input, args.units)?;
-    let (soup, summary): (TriangleSoup, String) = match &input {
-        Input::Part(part) => {
-            let tessellation = tessellate_part(&args.input, part, &options)?;
-            let figures = tessellation.figures;
-            let summary = format!(
-                "mesh size {:.4} {}, chord {:.4} {}, smallest angle {:.2}°",
-                figures.mesh_size,
-                part.units.symbol(),
-                figures.chord,
-                part.units.symbol(),
-                figures.minimum_angle
-            );
-            (tessellation.soup().clone(), summary)
-        }
-        Input::Step(brep) => {
-            let tessellation = tessellate_brep(brep, &options)
-                .map_err(|defect| anyhow::anyhow!("{}: {defect}", args.input.display()))?;
-            let figures = tessellation.figures;
-            let summary = format!(
-                "STEP faces in mm, mesh size {:.4} mm, chord {:.4} mm, smallest angle {:.2}°",
-                figures.mesh_size, figures.chord, figures.minimum_angle
-            );
-            (tessellation.soup().clone(), summary)
-        }
-        Input::Mesh(mesh) => (mesh.soup.clone(), "mesh file".to_string()),
-    };
-    let validated = flatcut::mesh::validate(&soup).map_err(|defects| {
-        anyhow::anyhow!(
-            "{}: the facet model cannot be used: {defects}",
-            args.input.display()
-        )
-    })?;
-    for warning in &validated.warnings {
+    let model = facet_model(&args.input, args.units, &options)?;
+    for warning in &model.warnings {
         eprintln!("flatcut: warning: {}: {warning}", args.input.display());
     }
+    let summary = summary(&model.source);
     let header = format!(
         "flatcut {} facet model of {}\n{summary}",
         env!("CARGO_PKG_VERSION"),
         args.input.display()
     );
-    let text = mesh_obj(&header, &soup.positions, &soup.triangles);
-    write_atomically(&args.output, text.as_bytes())
-        .with_context(|| format!("{}: cannot write", args.output.display()))?;
+    write_facet_model(&model, &header, &args.output)?;
+    let soup = &model.soup;
     eprintln!(
         "flatcut: {}: {} triangles, {} vertices, {} fold edges; {summary}",
         args.input.display(),
@@ -117,4 +80,23 @@ pub fn run(args: TessellateArgs) -> anyhow::Result<Outcome> {
         soup.fold_edges.len()
     );
     Ok(Outcome::Success)
+}
+
+/// The line that says where the facet model came from and how it was meshed.
+fn summary(source: &FacetSource) -> String {
+    match source {
+        FacetSource::Part { units, figures } => format!(
+            "mesh size {:.4} {}, chord {:.4} {}, smallest angle {:.2}°",
+            figures.mesh_size,
+            units.symbol(),
+            figures.chord,
+            units.symbol(),
+            figures.minimum_angle
+        ),
+        FacetSource::Step { figures } => format!(
+            "STEP faces in mm, mesh size {:.4} mm, chord {:.4} mm, smallest angle {:.2}°",
+            figures.mesh_size, figures.chord, figures.minimum_angle
+        ),
+        FacetSource::Mesh => "mesh file".to_string(),
+    }
 }

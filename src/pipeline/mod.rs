@@ -6,6 +6,7 @@
 
 mod benchmark;
 mod config;
+mod facet_model;
 mod flatten_part;
 mod load;
 mod outputs;
@@ -18,6 +19,7 @@ pub use config::{
     DEFAULT_RUN_GAP, DEFAULT_RUN_ROTATIONS, DEFAULT_RUN_TIME_LIMIT, NestingConfig, RunConfig,
     RunOptions,
 };
+pub use facet_model::{FacetModelOutput, FacetSource, facet_model, write_facet_model};
 pub use flatten_part::flatten_part;
 pub use load::{PartJob, TessellationFigures, load_parts, tessellate_part};
 pub use outputs::write_outputs;
