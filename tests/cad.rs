@@ -313,6 +313,42 @@ fn load_step_text(text: &str) -> Vec<flatcut::pipeline::PartJob> {
     load_parts(&path, &RunOptions::default()).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// Loads STEP bytes written to a temporary file named `name`.
+fn load_step_bytes(name: &str, bytes: &[u8]) -> Vec<flatcut::pipeline::PartJob> {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let path = directory.path().join(name);
+    std::fs::write(&path, bytes).expect("writes");
+    load_parts(&path, &RunOptions::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn step_files_in_iso_8859_1_or_utf_8_and_opening_with_a_comment_read_as_the_plain_file() {
+    let plain = std::fs::read_to_string(sample("cone_frustum_freecad.step")).expect("sample");
+    let reference = load_step_text(&plain);
+    let named = |name: &str| {
+        plain
+            .replacen("'Open CASCADE STEP translator 7.6 1'", name, 1)
+            .replacen("'FreeCAD Model'", "'Modèle ☃'", 1)
+    };
+    assert_ne!(named("'x'"), plain, "the sample's names are where the test expects");
+    let mut latin = b"/* written by hand, with a comment before the keyword */\r\n".to_vec();
+    latin.extend(named("'Pi\0ce'").bytes());
+    let marker = latin.iter().position(|&b| b == 0).expect("marker");
+    latin[marker] = 0xE8; // è in ISO 8859-1
+    assert!(std::str::from_utf8(&latin).is_err(), "not UTF-8: raw ISO 8859-1 bytes");
+    for (name, bytes) in [
+        ("latin.step", latin),
+        ("utf8.dat", named("'Pièce développée'").into_bytes()),
+    ] {
+        let jobs = load_step_bytes(name, &bytes);
+        assert_eq!(jobs.len(), reference.len(), "{name}");
+        for (job, expected) in jobs.iter().zip(&reference) {
+            assert_eq!(job.model.positions(), expected.model.positions(), "{name}");
+            assert_eq!(job.model.triangles(), expected.model.triangles(), "{name}");
+        }
+    }
+}
+
 #[test]
 fn cone_angles_in_degrees_and_the_units_of_the_solids_own_context_are_honoured() {
     let inch = std::fs::read_to_string(sample("cone_frustum_half.step")).expect("sample");

@@ -6,7 +6,7 @@ use std::path::Path;
 use super::errors::IngestError;
 use super::obj::{looks_like_obj, parse_obj};
 use super::part::{looks_like_part, read_part_text};
-use super::step::read_step;
+use super::step::{looks_like_step, read_step};
 use super::stl::{looks_like_stl, parse_stl};
 use crate::cad::{Brep, PartModel, TriangleSoup};
 use crate::units::Units;
@@ -36,7 +36,7 @@ impl InputKind {
             Some("stl") => Ok(Self::Stl),
             Some("toml") => Ok(Self::Part),
             Some("step" | "stp") => Ok(Self::Step),
-            _ if bytes.starts_with(b"ISO-10303-21") => Ok(Self::Step),
+            _ if looks_like_step(bytes) => Ok(Self::Step),
             _ if looks_like_part(bytes) => Ok(Self::Part),
             _ if looks_like_stl(bytes) => Ok(Self::Stl),
             _ if looks_like_obj(bytes) => Ok(Self::Obj),

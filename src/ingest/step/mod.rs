@@ -3,7 +3,8 @@
 //! on their exact surfaces, its edges on their curves and the STEP entity of each face, in
 //! millimetres; [`crate::tessellate`] meshes it.
 //!
-//! Input: the file's bytes. The units of the context each shell's representation is in are
+//! Input: the file's bytes, in any encoding exporters use (`text.rs`: UTF-8, or ISO 8859-1 raw
+//! bytes in names; comments anywhere). The units of the context each shell's representation is in are
 //! applied (`units.rs`: a length unit `SI_UNIT` with its prefix or a `CONVERSION_BASED_UNIT`
 //! such as the inch, and degrees for cone angles): truck-stepio applies neither. Each shell is
 //! converted and scaled to millimetres under `catch_unwind`, so a file that makes truck panic
@@ -17,6 +18,8 @@ mod entities;
 mod reader;
 mod rewrite;
 mod statements;
+mod text;
 mod units;
 
 pub use reader::read_step;
+pub use text::looks_like_step;

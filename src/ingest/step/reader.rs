@@ -10,6 +10,7 @@ use super::convert::{convert_shells, loose_surfaces};
 use super::entities::unsupported_entities;
 use super::rewrite::{prefer_3d_curves, rewritten_for_truck};
 use super::statements::Statements;
+use super::text::exchange_text;
 use super::units::file_units;
 use crate::cad::Brep;
 use crate::ingest::errors::IngestError;
@@ -21,8 +22,7 @@ pub fn read_step(path: &Path, bytes: &[u8]) -> Result<Brep, IngestError> {
         path: path.to_path_buf(),
         message,
     };
-    let text =
-        std::str::from_utf8(bytes).map_err(|e| error(format!("not a text STEP file: {e}")))?;
+    let text = &exchange_text(bytes);
     let statements = Statements::parse(text);
     let default_units = file_units(&statements).map_err(error)?;
     let mut brep = Brep {
