@@ -330,12 +330,19 @@ fn step_files_in_iso_8859_1_or_utf_8_and_opening_with_a_comment_read_as_the_plai
             .replacen("'Open CASCADE STEP translator 7.6 1'", name, 1)
             .replacen("'FreeCAD Model'", "'Modèle ☃'", 1)
     };
-    assert_ne!(named("'x'"), plain, "the sample's names are where the test expects");
+    assert_ne!(
+        named("'x'"),
+        plain,
+        "the sample's names are where the test expects"
+    );
     let mut latin = b"/* written by hand, with a comment before the keyword */\r\n".to_vec();
     latin.extend(named("'Pi\0ce'").bytes());
     let marker = latin.iter().position(|&b| b == 0).expect("marker");
     latin[marker] = 0xE8; // è in ISO 8859-1
-    assert!(std::str::from_utf8(&latin).is_err(), "not UTF-8: raw ISO 8859-1 bytes");
+    assert!(
+        std::str::from_utf8(&latin).is_err(),
+        "not UTF-8: raw ISO 8859-1 bytes"
+    );
     for (name, bytes) in [
         ("latin.step", latin),
         ("utf8.dat", named("'Pièce développée'").into_bytes()),
@@ -551,10 +558,13 @@ const STEP_MINIMUM_ANGLE: f64 = 20.0;
 
 /// STEP samples FreeCAD 0.20 (Open CASCADE) wrote, with the areas Open CASCADE integrates for
 /// them (printed by `samples/step-sources/freecad_samples.py`), mm².
-const FREECAD_SAMPLES: [(&str, f64); 3] = [
+const FREECAD_SAMPLES: [(&str, f64); 4] = [
     ("cone_frustum_freecad.step", 44456.588728),
     ("bspline_loft_freecad.step", 32767.552169),
     ("box_fillet_pocket_inch.step", 34952.113572),
+    // 2 × 156 + 160 × 60 for the L, 784 + 56√2 − 112 for the gusset: its triangular faces came
+    // out with zero-area slivers along their sides before they were flipped or peeled off.
+    ("gusset_bracket_freecad.step", 10663.195959),
 ];
 
 #[test]

@@ -29,6 +29,10 @@ Run from the repository root, headless:
 - spheroid_freecad.step: a prolate spheroid (semi-axes 40 mm along the axis, 25 mm across): a half
   ellipse revolved a full turn, one face on a SURFACE_OF_REVOLUTION of the whole ELLIPSE bounded
   by a VERTEX_LOOP only, AP214, millimetres.
+- gusset_bracket_freecad.step: an L bracket (60 mm long, legs 40 mm, 2 mm thick) with a
+  triangular gusset (legs 28 mm, 2 mm thick) in its corner: a MANIFOLD_SOLID_BREP of planes only,
+  with two triangular faces and long thin side faces, AP214, millimetres. Area 10663.196 mm^2
+  (2 x 156 + 160 x 60 for the L, + 784 + 56 sqrt 2 - 112 for the gusset).
 - vase_revolved_freecad.step: a solid of revolution whose side is a B-spline profile revolved
   a full turn (SURFACE_OF_REVOLUTION) between two plane disks, AP214, millimetres.
 
@@ -140,6 +144,15 @@ def spheroid():
     return Part.Shell(half.revolve(vector(0, 0, 0), vector(0, 0, 1), 360).Faces)
 
 
+def gusset_bracket():
+    vector = FreeCAD.Vector
+    base = Part.makeBox(60.0, 40.0, 2.0)
+    wall = Part.makeBox(60.0, 2.0, 40.0)
+    outline = Part.makePolygon([vector(29, 2, 2), vector(29, 30, 2), vector(29, 2, 30), vector(29, 2, 2)])
+    gusset = Part.Face(outline).extrude(vector(2, 0, 0))
+    return base.fuse(wall).fuse(gusset).removeSplitter()
+
+
 def main():
     if UNIT == "mm":
         export(cone_frustum_side(), "cone_frustum_freecad.step")
@@ -150,6 +163,7 @@ def main():
         export(vase_revolved(), "vase_revolved_freecad.step")
         export(sphere_full(), "sphere_freecad.step")
         export(spheroid(), "spheroid_freecad.step")
+        export(gusset_bracket(), "gusset_bracket_freecad.step")
         environment = dict(os.environ, FLATCUT_SAMPLE_UNIT="in")
         subprocess.run([shutil.which("freecadcmd"), SCRIPT], env=environment, check=True)
     else:

@@ -37,6 +37,7 @@ use truck_meshalgo::prelude::*;
 use truck_stepio::r#in::alias::Surface as StepSurface;
 use truck_topology::compress::CompressedFace;
 
+use super::collinear::{is_degenerate, remove_degenerate_triangles};
 use super::edge_sampling::{
     edge_apexes, graded_at_vertices, sample_curve, sample_edge, sample_toward_apex, to_dvec,
 };
@@ -44,7 +45,7 @@ use super::face_domain::{BoundaryLoop, FaceSurface, face_domain};
 use super::patch::mesh_patch;
 use super::pole_to_pole::PoleToPole;
 use crate::cad::{PatchGeometry, PatchSurface, StepShell, TriangleSoup};
-use crate::geometry::tolerance::{DEGENERATE_AREA_RATIO, LOOP_GAP_RATIO, SNAP_RATIO};
+use crate::geometry::tolerance::{LOOP_GAP_RATIO, SNAP_RATIO};
 use crate::geometry::weld::PointWelder;
 
 /// Probe samples per edge when the shells' size is measured.
@@ -239,17 +240,7 @@ struct MeshedFace {
 fn degenerate_triangles(face: &MeshedFace) -> usize {
     face.triangles
         .iter()
-        .filter(|t| {
-            let [a, b, c] = t.map(|v| face.positions[v as usize]);
-            if a == b || b == c || c == a {
-                return false;
-            }
-            let longest = (b - a)
-                .length_squared()
-                .max((c - b).length_squared())
-                .max((a - c).length_squared());
-            0.5 * (b - a).cross(c - a).length() <= DEGENERATE_AREA_RATIO * longest
-        })
+        .filter(|t| is_degenerate(t.map(|v| face.positions[v as usize])))
         .count()
 }
 
@@ -400,6 +391,7 @@ fn mesh_face(
             triangle.swap(1, 2);
         }
     }
+    remove_degenerate_triangles(&positions, &mut triangles);
     Ok(MeshedFace {
         positions,
         triangles,

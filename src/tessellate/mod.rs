@@ -13,6 +13,7 @@
 //! [`DEFAULT_DIVISIONS`] edges along the diagonal, a chord of [`DEFAULT_CHORD_RATIO`] of it.
 
 mod brep;
+mod collinear;
 mod crossings;
 mod curvature;
 mod domain_map;
