@@ -40,6 +40,7 @@ mod objective;
 mod placement;
 mod problem;
 mod random;
+mod separator;
 mod solution;
 mod validation;
 
