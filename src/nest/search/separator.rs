@@ -316,3 +316,91 @@ impl<'p, 'a> Separator<'p, 'a> {
         self.engine.insert(index as u32, best.0, best.1);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::nest::item::NestItem;
+    use crate::nest::layout::StopReason;
+    use crate::nest::options::NestOptions;
+    use crate::nest::rotations::Rotations;
+    use crate::nest::stock::Stock;
+    use crate::nest::verify::verify;
+
+    fn square(side: f64, quantity: u32) -> NestItem {
+        NestItem {
+            name: format!("square {side}"),
+            outer: vec![
+                DVec2::new(0.0, 0.0),
+                DVec2::new(side, 0.0),
+                DVec2::new(side, side),
+                DVec2::new(0.0, side),
+            ],
+            holes: Vec::new(),
+            quantity,
+            rotations: Rotations::Fixed(vec![0.0]),
+            mirror_allowed: false,
+            grain_degrees: None,
+        }
+    }
+
+    /// Four 10 mm squares piled onto each other on a 21 mm roll 40 mm long: the separator must
+    /// spread them into a layout the independent check accepts.
+    #[test]
+    fn the_separator_resolves_piled_squares_into_a_verified_layout() {
+        let items = vec![square(10.0, 4)];
+        let options = NestOptions {
+            stock: Stock::Roll { width: 21.0 },
+            ..NestOptions::default()
+        };
+        let problem = Problem::new(&items, &options).expect("valid problem");
+        let parts: Vec<Part> = (0..4)
+            .map(|copy| Part {
+                copy,
+                shape: problem.item_shapes[0][0],
+                translation: DVec2::new(1.0 + copy as f64, 1.0 + copy as f64),
+            })
+            .collect();
+        let weights = vec![1.0; parts.len() * (parts.len() + 1)];
+        let mut separator = Separator::new(&problem, parts, weights, 40.0);
+        assert!(!separator.collisions().is_empty());
+        assert!(separator.separate(&mut SplitMix64(0), u64::MAX));
+        assert!(separator.collisions().is_empty());
+        let length = (separator.parts.iter())
+            .map(|part| part.translation.x + problem.orientations[part.shape].max.x)
+            .fold(0.0, f64::max);
+        let solution = problem.solution_of(&separator.parts, length);
+        let layout = problem.layout(&solution, &problem.fill_holes(), 0, 0, StopReason::WorkBudget);
+        let violations = verify(&items, &layout);
+        assert!(violations.is_empty(), "{violations:?}");
+        assert!(layout.used_length <= 40.0 + 1e-9);
+    }
+
+    /// Compression of a loose layout (four 10 mm squares in one row on a roll wide enough for two
+    /// rows) finds a shorter verified layout.
+    #[test]
+    fn compression_shortens_a_loose_layout() {
+        let items = vec![square(10.0, 4)];
+        let options = NestOptions {
+            stock: Stock::Roll { width: 20.5 },
+            ..NestOptions::default()
+        };
+        let problem = Problem::new(&items, &options).expect("valid problem");
+        let parts: Vec<Part> = (0..4)
+            .map(|copy| Part {
+                copy,
+                shape: problem.item_shapes[0][0],
+                translation: DVec2::new(0.1 + 12.0 * copy as f64, 0.1),
+            })
+            .collect();
+        let start = problem.solution_of(&parts, 46.2);
+        let (compressed, work) =
+            problem.compress(&start, 2_000_000, &mut SplitMix64(1), |_| false);
+        assert!(work > 0);
+        let compressed = compressed.expect("a shorter layout");
+        assert!(problem.cost(&compressed).length < 40.0);
+        let layout = problem.layout(&compressed, &problem.fill_holes(), 0, 0, StopReason::WorkBudget);
+        let violations = verify(&items, &layout);
+        assert!(violations.is_empty(), "{violations:?}");
+    }
+}
