@@ -33,7 +33,7 @@ pub const WEIGHT_GROWTH: f64 = 1.3;
 /// Work counted per overlap query, in collision queries: an overlap query collects every
 /// collision and measures each (and a move re-registers the part in the quadtree), about this many
 /// times the cost of a yes/no query on this machine (measured on shirts).
-pub const OVERLAP_QUERY_WORK: u64 = 6;
+pub const OVERLAP_QUERY_WORK: u64 = 4;
 
 /// A part of the separator's layout.
 #[derive(Debug, Clone, Copy)]
