@@ -507,7 +507,10 @@ mod tests {
             // Overlap width of the two squares, each inflated by `inflation` on every side.
             let width = 10.0 - offset + 2.0 * inflation;
             let depth = engine.depth_into(0, at, 7);
-            assert!((depth - width).abs() < 1e-3, "offset {offset}: {depth} vs {width}");
+            assert!(
+                (depth - width).abs() < 1e-3,
+                "offset {offset}: {depth} vs {width}"
+            );
             let overlaps = engine.overlaps(0, at, None);
             assert_eq!(overlaps.len(), 1);
             assert_eq!(overlaps[0].0, Obstacle::Part(7));
@@ -521,7 +524,10 @@ mod tests {
         let shallow = engine.overlap(0, DVec2::new(28.0, 20.0), f64::INFINITY, |_| 1.0);
         let deep = engine.overlap(0, DVec2::new(24.0, 20.0), f64::INFINITY, |_| 1.0);
         assert!(deep > shallow && shallow > 0.0);
-        assert_eq!(engine.overlap(0, DVec2::new(50.0, 50.0), f64::INFINITY, |_| 1.0), 0.0);
+        assert_eq!(
+            engine.overlap(0, DVec2::new(50.0, 50.0), f64::INFINITY, |_| 1.0),
+            0.0
+        );
         // Weights scale it; the bound stops it early (the partial sum exceeds the bound).
         let doubled = engine.overlap(0, DVec2::new(24.0, 20.0), f64::INFINITY, |_| 2.0);
         assert!((doubled - 2.0 * deep).abs() < 1e-9 * deep.max(1.0));
@@ -538,6 +544,9 @@ mod tests {
         assert_eq!(overlaps[0].0, Obstacle::Edge);
         // 3 mm out (plus twice the inflation), over the square's 10 mm height.
         assert!((overlaps[0].1 - 30.0).abs() < 0.1, "{}", overlaps[0].1);
-        assert_eq!(engine.overlap(0, DVec2::new(40.0, 40.0), f64::INFINITY, |_| 1.0), 0.0);
+        assert_eq!(
+            engine.overlap(0, DVec2::new(40.0, 40.0), f64::INFINITY, |_| 1.0),
+            0.0
+        );
     }
 }

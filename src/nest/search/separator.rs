@@ -266,7 +266,8 @@ impl<'p, 'a> Separator<'p, 'a> {
         let range = |shape: ShapeId| {
             let orientation = &problem.orientations[shape];
             let low = DVec2::splat(inset) - orientation.min;
-            let high = DVec2::new(self.length, problem.height) - DVec2::splat(inset) - orientation.max;
+            let high =
+                DVec2::new(self.length, problem.height) - DVec2::splat(inset) - orientation.max;
             (low, high.max(low))
         };
         let current_size =
@@ -370,7 +371,13 @@ mod tests {
             .map(|part| part.translation.x + problem.orientations[part.shape].max.x)
             .fold(0.0, f64::max);
         let solution = problem.solution_of(&separator.parts, length);
-        let layout = problem.layout(&solution, &problem.fill_holes(), 0, 0, StopReason::WorkBudget);
+        let layout = problem.layout(
+            &solution,
+            &problem.fill_holes(),
+            0,
+            0,
+            StopReason::WorkBudget,
+        );
         let violations = verify(&items, &layout);
         assert!(violations.is_empty(), "{violations:?}");
         assert!(layout.used_length <= 40.0 + 1e-9);
@@ -394,12 +401,17 @@ mod tests {
             })
             .collect();
         let start = problem.solution_of(&parts, 46.2);
-        let (compressed, work) =
-            problem.compress(&start, 2_000_000, &mut SplitMix64(1), |_| false);
+        let (compressed, work) = problem.compress(&start, 2_000_000, &mut SplitMix64(1), |_| false);
         assert!(work > 0);
         let compressed = compressed.expect("a shorter layout");
         assert!(problem.cost(&compressed).length < 40.0);
-        let layout = problem.layout(&compressed, &problem.fill_holes(), 0, 0, StopReason::WorkBudget);
+        let layout = problem.layout(
+            &compressed,
+            &problem.fill_holes(),
+            0,
+            0,
+            StopReason::WorkBudget,
+        );
         let violations = verify(&items, &layout);
         assert!(violations.is_empty(), "{violations:?}");
     }
