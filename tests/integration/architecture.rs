@@ -53,10 +53,7 @@ fn source_files(root: &Path) -> BTreeMap<ModulePath, PathBuf> {
 }
 
 fn module_path(root: &Path, file: &Path) -> ModulePath {
-    let relative = file
-        .strip_prefix(root)
-        .expect("inside src")
-        .with_extension("");
+    let relative = file.strip_prefix(root).expect("inside src").with_extension("");
     let mut parts: ModulePath = relative
         .components()
         .map(|c| c.as_os_str().to_string_lossy().into_owned())
@@ -197,11 +194,7 @@ fn without_renames(tree: &str) -> String {
     while let Some(token) = tokens.next() {
         if token == "as" {
             let renamed = tokens.next().unwrap_or_default();
-            kept.extend(
-                renamed
-                    .chars()
-                    .skip_while(|c| c.is_alphanumeric() || *c == '_'),
-            );
+            kept.extend(renamed.chars().skip_while(|c| c.is_alphanumeric() || *c == '_'));
         } else {
             kept.push_str(token);
         }
@@ -227,9 +220,7 @@ fn expand_tree(prefix: &[String], tree: &str, paths: &mut Vec<Vec<String>>) {
 }
 
 fn segments(path: &str) -> impl Iterator<Item = String> + '_ {
-    path.split("::")
-        .filter(|s| !s.is_empty())
-        .map(str::to_owned)
+    path.split("::").filter(|s| !s.is_empty()).map(str::to_owned)
 }
 
 fn split_top_level(tree: &str) -> Vec<&str> {
