@@ -23,7 +23,7 @@ pub const COMPRESSION_STEP: f64 = 0.005;
 pub const MIN_COMPRESSION_STEP: f64 = 0.0005;
 /// Separation rounds (every colliding part moved once) without a lower total overlap after which
 /// the separation gives up.
-pub const SEPARATION_PATIENCE: u32 = 12;
+pub const SEPARATION_PATIENCE: u32 = 25;
 /// Random positions tried anywhere in the strip per move, in a random allowed orientation.
 pub const GLOBAL_SAMPLES: usize = 24;
 /// Random positions tried near the part's position per move (its orientation or another).
