@@ -13,14 +13,15 @@
 use std::sync::Arc;
 
 use glam::DVec2;
-use jagua_rs::collision_detection::hazards::filter::NoFilter;
-use jagua_rs::collision_detection::hazards::{Hazard, HazardEntity};
+use jagua_rs::collision_detection::hazards::collector::{BasicHazardCollector, HazardCollector};
+use jagua_rs::collision_detection::hazards::filter::{HazardFilter, NoFilter};
+use jagua_rs::collision_detection::hazards::{HazKey, Hazard, HazardEntity};
 use jagua_rs::collision_detection::{CDEConfig, CDEngine};
 use jagua_rs::geometry::Transformation;
 use jagua_rs::geometry::fail_fast::SPSurrogateConfig;
 use jagua_rs::geometry::geo_enums::GeoPosition;
 use jagua_rs::geometry::geo_traits::TransformableFrom;
-use jagua_rs::geometry::primitives::{Point, Rect, SPolygon};
+use jagua_rs::geometry::primitives::{Circle, Point, Rect, SPolygon};
 use jagua_rs::geometry::shape_modification::{ShapeModifyMode, offset_shape, simplify_shape};
 
 /// Extra inflation of every shape, relative to the stock's largest dimension: covers the f32
@@ -147,6 +148,8 @@ pub struct JaguaEngine {
     /// One scratch copy per shape, reused for every translated query (no allocation per query).
     scratch: Vec<SPolygon>,
     queries: u64,
+    /// Bounding box of the container's inside (after the inset), for the edge overlap.
+    inside: (DVec2, DVec2),
 }
 
 /// Depth of the quadtree (jagua-rs recommends 3–10).
@@ -201,17 +204,23 @@ impl JaguaEngine {
             cd_threshold: COLLISION_THRESHOLD,
             item_surrogate_config: SPSurrogateConfig::none(),
         };
+        let scratch = library.shapes.clone();
+        let inside_box = outline.bbox();
+        let inside = (
+            DVec2::new(f64::from(inside_box.x_min), f64::from(inside_box.y_min)),
+            DVec2::new(f64::from(inside_box.x_max), f64::from(inside_box.y_max)),
+        );
         let engine = CDEngine::new(
             bounds,
             vec![Hazard::new(Entity::Exterior, Arc::new(outline))],
             config,
         );
-        let scratch = library.shapes.clone();
         Ok(Self {
             library,
             engine,
             scratch,
             queries: 0,
+            inside,
         })
     }
 
@@ -252,5 +261,292 @@ impl CollisionEngine for JaguaEngine {
 
     fn queries(&self) -> u64 {
         self.queries
+    }
+}
+
+/// Poles (inscribed circles, largest first) of each shape that the overlap measure uses.
+pub const OVERLAP_POLES: usize = 16;
+/// Overlap charged for a collision that the poles do not see (jagua-rs finds the outlines
+/// intersecting, but no two poles overlap, or a part crosses a curved container edge), as a
+/// fraction of the square of the smaller largest pole's radius: small, but never zero, so that a
+/// layout whose total overlap is zero is one without any collision.
+pub const UNSEEN_OVERLAP_FRACTION: f64 = 1e-3;
+
+/// Weight of the bounding boxes' common area in the overlap of two parts (see `part_overlap`).
+pub const BOX_OVERLAP_FRACTION: f64 = 0.1;
+
+/// What a part overlaps: the container's edge or another part (by key).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Obstacle {
+    /// The container's edge (the outside of the stock).
+    Edge,
+    /// The part inserted under this key.
+    Part(u32),
+}
+
+/// Penetration depth of two sets of poles: the largest `r_a + r_b − |c_a − c_b|` over pairs, or
+/// 0 if no two poles overlap. Each pole lies inside its shape, so separating the shapes needs a
+/// translation at least this long: a lower bound of the shapes' penetration depth, exact when the
+/// deepest contact is between two inscribed circles (two squares offset along a side). The search
+/// uses the smoother [`pole_overlap`]; the depth is its analytic check.
+#[cfg(test)]
+fn pole_depth(a: &[Circle], b: &[Circle]) -> f64 {
+    let mut depth: f64 = 0.0;
+    for pole_a in a {
+        for pole_b in b {
+            let distance = f64::from(pole_a.center.0 - pole_b.center.0)
+                .hypot(f64::from(pole_a.center.1 - pole_b.center.1));
+            depth = depth.max(f64::from(pole_a.radius) + f64::from(pole_b.radius) - distance);
+        }
+    }
+    depth
+}
+
+/// Overlap quantity of two sets of poles: over every overlapping pair, its penetration times the
+/// smaller radius (mm², an area-like quantity that grows smoothly as the shapes move deeper into
+/// each other and weighs contacts between large poles more than between small ones).
+fn pole_overlap(a: &[Circle], b: &[Circle]) -> f64 {
+    let mut total = 0.0;
+    for pole_a in a {
+        for pole_b in b {
+            let reach = f64::from(pole_a.radius + pole_b.radius);
+            let dx = f64::from(pole_a.center.0 - pole_b.center.0);
+            let dy = f64::from(pole_a.center.1 - pole_b.center.1);
+            if dx.abs() >= reach || dy.abs() >= reach {
+                continue;
+            }
+            let penetration = reach - dx.hypot(dy);
+            if penetration > 0.0 {
+                total += penetration * f64::from(pole_a.radius.min(pole_b.radius));
+            }
+        }
+    }
+    total
+}
+
+/// The poles the measure uses (the largest [`OVERLAP_POLES`]).
+fn measured_poles(shape: &SPolygon) -> &[Circle] {
+    let poles = &shape.surrogate().poles;
+    &poles[..poles.len().min(OVERLAP_POLES)]
+}
+
+/// Overlap of two placed shapes that jagua-rs finds colliding: [`pole_overlap`] plus
+/// [`BOX_OVERLAP_FRACTION`] × the area common to their bounding boxes (which still shrinks as
+/// two shapes that only graze each other, outside their poles, move apart), never below the
+/// [`UNSEEN_OVERLAP_FRACTION`] floor.
+fn part_overlap(a: &SPolygon, b: &SPolygon) -> f64 {
+    let (poles_a, poles_b) = (measured_poles(a), measured_poles(b));
+    let floor = unseen_floor(poles_a, poles_b);
+    let (box_a, box_b) = (a.bbox(), b.bbox());
+    let common_x = f64::from(box_a.x_max.min(box_b.x_max) - box_a.x_min.max(box_b.x_min));
+    let common_y = f64::from(box_a.y_max.min(box_b.y_max) - box_a.y_min.max(box_b.y_min));
+    let boxes = BOX_OVERLAP_FRACTION * common_x.max(0.0) * common_y.max(0.0);
+    (pole_overlap(poles_a, poles_b) + boxes).max(floor)
+}
+
+fn unseen_floor(a: &[Circle], b: &[Circle]) -> f64 {
+    let radius = |poles: &[Circle]| poles.first().map_or(0.0, |pole| f64::from(pole.radius));
+    UNSEEN_OVERLAP_FRACTION * radius(a).min(radius(b)).powi(2)
+}
+
+/// Overlap of a placed shape with the container's edge, which jagua-rs finds crossed: how far its
+/// bounding box sticks out of the container's inside on each side, times the box's extent along
+/// that side (mm²), never below the [`UNSEEN_OVERLAP_FRACTION`] floor.
+fn edge_overlap(shape: &SPolygon, inside: (DVec2, DVec2)) -> f64 {
+    let bbox = shape.bbox();
+    let (min, max) = (
+        DVec2::new(f64::from(bbox.x_min), f64::from(bbox.y_min)),
+        DVec2::new(f64::from(bbox.x_max), f64::from(bbox.y_max)),
+    );
+    let size = max - min;
+    let out_x = (inside.0.x - min.x).max(0.0) + (max.x - inside.1.x).max(0.0);
+    let out_y = (inside.0.y - min.y).max(0.0) + (max.y - inside.1.y).max(0.0);
+    let poles = measured_poles(shape);
+    (out_x * size.y + out_y * size.x).max(unseen_floor(poles, poles))
+}
+
+/// A hazard filter that ignores one part, if any.
+struct Ignore(Option<u32>);
+
+impl HazardFilter<Entity> for Ignore {
+    fn is_irrelevant(&self, _key: HazKey, entity: &Entity) -> bool {
+        matches!((self.0, entity), (Some(ignored), Entity::Part(key)) if ignored == *key)
+    }
+}
+
+impl JaguaEngine {
+    /// Weighted overlap of `shape` translated by `translation` with the container's edge and the
+    /// inserted parts: the sum over every obstacle it collides with of `weight(obstacle)` times
+    /// the obstacle's overlap (mm²; see [`JaguaEngine::overlaps`]). Stops as soon as the sum
+    /// exceeds `bound` and returns the partial sum (then above `bound`). 0 exactly when
+    /// [`CollisionEngine::fits`] would say yes. Counts one query.
+    pub fn overlap(
+        &mut self,
+        shape: ShapeId,
+        translation: DVec2,
+        bound: f64,
+        weight: impl Fn(Obstacle) -> f64,
+    ) -> f64 {
+        self.queries += 1;
+        let transform =
+            Transformation::from_translation((translation.x as f32, translation.y as f32));
+        let placed: &SPolygon =
+            self.scratch[shape].transform_from(&self.library.shapes[shape], &transform);
+        let engine = &self.engine;
+        let inside = self.inside;
+        let mut collector = BasicHazardCollector::<Entity>::new();
+        let mut total = 0.0;
+        let _ = engine.collect_poly_collisions_until(placed, &NoFilter, &mut collector, |entity| {
+            total += match entity {
+                Entity::Exterior => weight(Obstacle::Edge) * edge_overlap(placed, inside),
+                Entity::Part(key) => {
+                    weight(Obstacle::Part(key)) * Self::overlap_with(engine, placed, key)
+                }
+            };
+            total > bound
+        });
+        total
+    }
+
+    /// Every obstacle that `shape` translated by `translation` collides with and its unweighted
+    /// overlap (mm²), in the order of the obstacle (edge first, then by key), ignoring the part
+    /// inserted under `ignore` (the part itself, measured in place). Counts one query.
+    pub fn overlaps(
+        &mut self,
+        shape: ShapeId,
+        translation: DVec2,
+        ignore: Option<u32>,
+    ) -> Vec<(Obstacle, f64)> {
+        self.queries += 1;
+        let transform =
+            Transformation::from_translation((translation.x as f32, translation.y as f32));
+        let placed: &SPolygon =
+            self.scratch[shape].transform_from(&self.library.shapes[shape], &transform);
+        let mut collector = BasicHazardCollector::<Entity>::new();
+        self.engine
+            .collect_poly_collisions(placed, &Ignore(ignore), &mut collector);
+        let mut found: Vec<(Obstacle, f64)> = collector
+            .entities()
+            .map(|entity| match *entity {
+                Entity::Exterior => (Obstacle::Edge, edge_overlap(placed, self.inside)),
+                Entity::Part(key) => (
+                    Obstacle::Part(key),
+                    Self::overlap_with(&self.engine, placed, key),
+                ),
+            })
+            .collect();
+        found.sort_by_key(|&(obstacle, _)| match obstacle {
+            Obstacle::Edge => None,
+            Obstacle::Part(key) => Some(key),
+        });
+        found
+    }
+
+    /// Penetration depth (mm) of `shape` translated by `translation` into the part inserted under
+    /// `key`, estimated from their poles (a lower bound; see [`pole_depth`]); 0 without that part.
+    #[cfg(test)]
+    pub fn depth_into(&mut self, shape: ShapeId, translation: DVec2, key: u32) -> f64 {
+        let transform =
+            Transformation::from_translation((translation.x as f32, translation.y as f32));
+        let placed: &SPolygon =
+            self.scratch[shape].transform_from(&self.library.shapes[shape], &transform);
+        let Some(other) = self
+            .engine
+            .haz_key(&Entity::Part(key))
+            .and_then(|hazard_key| self.engine.hazard(hazard_key))
+        else {
+            return 0.0;
+        };
+        pole_depth(measured_poles(placed), measured_poles(&other.shape))
+    }
+
+    fn overlap_with(engine: &CDEngine<Entity>, placed: &SPolygon, key: u32) -> f64 {
+        engine
+            .haz_key(&Entity::Part(key))
+            .and_then(|hazard_key| engine.hazard(hazard_key))
+            .map_or(0.0, |other| part_overlap(placed, &other.shape))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn circle(x: f32, y: f32, radius: f32) -> Circle {
+        Circle::try_new(Point(x, y), radius).unwrap()
+    }
+
+    fn square(side: f64) -> Vec<DVec2> {
+        vec![
+            DVec2::new(0.0, 0.0),
+            DVec2::new(side, 0.0),
+            DVec2::new(side, side),
+            DVec2::new(0.0, side),
+        ]
+    }
+
+    #[test]
+    fn two_circles_overlap_by_their_penetration_times_the_smaller_radius() {
+        let (a, b) = ([circle(0.0, 0.0, 5.0)], [circle(4.0, 0.0, 3.0)]);
+        assert!((pole_depth(&a, &b) - 4.0).abs() < 1e-6);
+        assert!((pole_overlap(&a, &b) - 12.0).abs() < 1e-5);
+        let apart = [circle(9.0, 0.0, 3.0)];
+        assert_eq!(pole_depth(&a, &apart), 0.0);
+        assert_eq!(pole_overlap(&a, &apart), 0.0);
+    }
+
+    #[test]
+    fn two_squares_offset_along_a_side_penetrate_by_the_overlap_width() {
+        let library = Arc::new(ShapeLibrary::new(&[square(10.0)], 0.0, 100.0).unwrap());
+        let inflation = library.inflation();
+        let mut engine =
+            JaguaEngine::new(Arc::clone(&library), DVec2::ZERO, DVec2::new(100.0, 100.0)).unwrap();
+        engine.insert(7, 0, DVec2::new(20.0, 20.0));
+        for offset in [1.0, 4.0, 9.0] {
+            let at = DVec2::new(20.0 + offset, 20.0);
+            // Overlap width of the two squares, each inflated by `inflation` on every side.
+            let width = 10.0 - offset + 2.0 * inflation;
+            let depth = engine.depth_into(0, at, 7);
+            assert!(
+                (depth - width).abs() < 1e-3,
+                "offset {offset}: {depth} vs {width}"
+            );
+            let overlaps = engine.overlaps(0, at, None);
+            assert_eq!(overlaps.len(), 1);
+            assert_eq!(overlaps[0].0, Obstacle::Part(7));
+            // Poles: at least the inscribed circles' penetration times their radius; boxes: the
+            // common area, width × height, weighted.
+            let boxes = BOX_OVERLAP_FRACTION * width * (10.0 + 2.0 * inflation);
+            assert!(overlaps[0].1 >= width * (5.0 + inflation) + boxes - 1e-3);
+            assert!(!engine.fits(0, at));
+        }
+        // Deeper overlap, larger measure; clear, zero.
+        let shallow = engine.overlap(0, DVec2::new(28.0, 20.0), f64::INFINITY, |_| 1.0);
+        let deep = engine.overlap(0, DVec2::new(24.0, 20.0), f64::INFINITY, |_| 1.0);
+        assert!(deep > shallow && shallow > 0.0);
+        assert_eq!(
+            engine.overlap(0, DVec2::new(50.0, 50.0), f64::INFINITY, |_| 1.0),
+            0.0
+        );
+        // Weights scale it; the bound stops it early (the partial sum exceeds the bound).
+        let doubled = engine.overlap(0, DVec2::new(24.0, 20.0), f64::INFINITY, |_| 2.0);
+        assert!((doubled - 2.0 * deep).abs() < 1e-9 * deep.max(1.0));
+        assert!(engine.overlap(0, DVec2::new(24.0, 20.0), 1.0, |_| 1.0) > 1.0);
+    }
+
+    #[test]
+    fn a_square_past_the_edge_overlaps_by_the_part_outside() {
+        let library = Arc::new(ShapeLibrary::new(&[square(10.0)], 0.0, 100.0).unwrap());
+        let mut engine =
+            JaguaEngine::new(Arc::clone(&library), DVec2::ZERO, DVec2::new(100.0, 100.0)).unwrap();
+        let overlaps = engine.overlaps(0, DVec2::new(93.0, 40.0), None);
+        assert_eq!(overlaps.len(), 1);
+        assert_eq!(overlaps[0].0, Obstacle::Edge);
+        // 3 mm out (plus twice the inflation), over the square's 10 mm height.
+        assert!((overlaps[0].1 - 30.0).abs() < 0.1, "{}", overlaps[0].1);
+        assert_eq!(
+            engine.overlap(0, DVec2::new(40.0, 40.0), f64::INFINITY, |_| 1.0),
+            0.0
+        );
     }
 }

@@ -11,7 +11,8 @@
 //!
 //! Collisions are detected by jagua-rs 1.1.0 behind our own trait (`CollisionEngine` in
 //! `collision.rs`); the search (`search/`) is ours: a bottom-left constructive placement followed
-//! by a seeded local search over the placement order. Every result can be checked by [`verify::verify`], an
+//! by a seeded local search over the placement order and, on a roll, a compression that lets
+//! parts overlap and separates them by minimising a weighted overlap measure. Every result can be checked by [`verify::verify`], an
 //! independent exact f64 check that shares no code with the collision engine.
 //!
 //! Parts with holes are placed by their outer ring: nothing is placed inside a hole.

@@ -30,6 +30,9 @@ pub const MIN_SHRINK_FRACTION: f64 = 0.0025;
 /// Rounds without a strict decrease of the area left out after which the shrinking search goes
 /// back to the best complete layout and cuts it by half the previous fraction.
 pub const STALL_ROUNDS: u32 = 40;
+/// On a roll, the share of the work budget given to the sequence search; the rest goes to the
+/// compression through overlap (`separator.rs`), which starts from its best layout.
+pub const SEQUENCE_SEARCH_SHARE: f64 = 0.15;
 /// How many times the roll length of the construction may double before the search gives up.
 const MAX_ROLL_DOUBLINGS: u32 = 8;
 /// Roll length of the first attempt, as a multiple of (net area / roll width) plus the largest part.
@@ -47,6 +50,12 @@ impl Problem<'_> {
             .unwrap_or((self.options.time_limit.as_secs_f64() * NOMINAL_QUERIES_PER_SECOND) as u64);
         progress.start("nest", budget);
         let shrinking = self.sheet_width.is_none();
+        let total_budget = budget;
+        let budget = if shrinking {
+            (budget as f64 * SEQUENCE_SEARCH_SHARE) as u64
+        } else {
+            budget
+        };
         let mut random = SplitMix64(self.options.seed);
         let mut pass = Pass {
             roll_length: self.initial_roll_length(),
@@ -134,8 +143,35 @@ impl Problem<'_> {
                 }
             }
         };
+        let mut stop_reason = stop_reason;
         if shrinking {
             self.pull_in_rightmost(&mut best, &mut work, &mut random);
+            if stop_reason == StopReason::WorkBudget || stop_reason == StopReason::Complete {
+                let start_work = work;
+                let (compressed, spent) = self.compress(
+                    &best,
+                    total_budget.saturating_sub(work),
+                    &mut random,
+                    |spent| {
+                        progress.advance((start_work + spent).min(total_budget));
+                        started.elapsed() >= self.options.time_limit
+                    },
+                );
+                work += spent;
+                if started.elapsed() >= self.options.time_limit {
+                    stop_reason = StopReason::TimeLimit;
+                } else {
+                    stop_reason = StopReason::WorkBudget;
+                }
+                if let Some(mut compressed) = compressed {
+                    self.pull_in_rightmost(&mut compressed, &mut work, &mut random);
+                    let layout = self.layout(&compressed, &guests, work, evaluations, stop_reason);
+                    if crate::nest::verify::verify(self.items, &layout).is_empty() {
+                        progress.finish();
+                        return Ok(layout);
+                    }
+                }
+            }
         }
         progress.finish();
         Ok(self.layout(&best, &guests, work, evaluations, stop_reason))
