@@ -3,12 +3,13 @@
 
 use std::path::Path;
 
-use flatcut::pipeline::{RunConfig, run, write_outputs};
+use flatcut::pipeline::{RunConfig, run_into};
 use flatcut::progress::Progress;
 
 use super::outcome::Outcome;
 
-/// Runs `config` (warnings go through `progress`), writes the output folder into `output`, prints
+/// Runs `config` into the output folder `output` (warnings go through `progress`; SIGINT and
+/// SIGTERM leave the folder with the previous run), prints
 /// the figures on stderr and, when `json`, the report on stdout.
 pub fn execute(
     config: &RunConfig,
@@ -16,8 +17,7 @@ pub fn execute(
     json: bool,
     progress: &dyn Progress,
 ) -> anyhow::Result<Outcome> {
-    let result = run(config, progress)?;
-    let report = write_outputs(&result, config, output)?;
+    let (result, report) = run_into(config, output, progress, &super::interrupt::watch)?;
     if let Some(nested) = &result.nesting {
         let layout = &nested.layout;
         eprintln!(

@@ -5,6 +5,7 @@
 
 mod command;
 mod flatten;
+mod interrupt;
 mod job;
 mod nest;
 mod outcome;
