@@ -6,6 +6,7 @@ use std::path::Path;
 use flatcut::pipeline::{RunConfig, run_into};
 use flatcut::progress::Progress;
 
+use super::console::{say, stdout_text};
 use super::outcome::Outcome;
 
 /// Runs `config` into the output folder `output` (warnings go through `progress`; SIGINT and
@@ -20,7 +21,7 @@ pub fn execute(
     let (result, report) = run_into(config, output, progress, &super::interrupt::watch)?;
     if let Some(nested) = &result.nesting {
         let layout = &nested.layout;
-        eprintln!(
+        say!(
             "flatcut: nested on {} sheet(s), utilisation {:.2} %, length used {:.1} mm",
             layout.sheets.len(),
             layout.utilisation * 100.0,
@@ -28,7 +29,7 @@ pub fn execute(
         );
     }
     for part in &report.parts {
-        eprintln!(
+        say!(
             "flatcut: {}: E_S {:.4} %, E_C {:.4} %, {} flipped, {} seam(s), {} cut(s) of total length {:.4}, {}",
             part.name,
             part.area_error * 100.0,
@@ -45,7 +46,7 @@ pub fn execute(
         );
     }
     if json {
-        print!("{}", report.to_json());
+        stdout_text(&report.to_json());
     }
     Ok(if report.parts.iter().all(|part| part.tolerance_met) {
         Outcome::Success

@@ -4,6 +4,7 @@
 //! exit code.
 
 mod command;
+mod console;
 mod flatten;
 mod interrupt;
 mod job;

@@ -1,6 +1,7 @@
 //! How a command ended, as an exit code: 0 success, 1 bad input or failure, 3 over tolerance
 //! (2, bad usage, is clap's). Errors are printed with their causes.
 
+use super::console::say;
 use std::process::ExitCode;
 
 /// Exit code when every part finished within tolerance.
@@ -25,7 +26,7 @@ pub fn exit_code(result: anyhow::Result<Outcome>) -> ExitCode {
         Ok(Outcome::Success) => ExitCode::from(EXIT_SUCCESS),
         Ok(Outcome::OverTolerance) => ExitCode::from(EXIT_OVER_TOLERANCE),
         Err(error) => {
-            eprintln!("flatcut: error: {}", error_message(&error));
+            say!("flatcut: error: {}", error_message(&error));
             ExitCode::from(EXIT_FAILURE)
         }
     }

@@ -145,9 +145,7 @@ impl RunConfig {
             return invalid(
                 "--tolerance",
                 tolerance.to_string(),
-                format!(
-                    "give a fraction above 0 and at most {MAXIMUM_TOLERANCE} (0.01 is 1 %)"
-                ),
+                format!("give a fraction above 0 and at most {MAXIMUM_TOLERANCE} (0.01 is 1 %)"),
             );
         }
         self.pattern.validate()?;
@@ -171,11 +169,7 @@ impl RunConfig {
                 }
             }
             Some(Stock::Roll { width }) if !size(width) => {
-                return invalid(
-                    "--roll",
-                    figure(width),
-                    size_reason("roll width", width),
-                );
+                return invalid("--roll", figure(width), size_reason("roll width", width));
             }
             _ => {}
         }

@@ -17,8 +17,8 @@ mod run;
 
 pub use benchmark::{BenchmarkConfig, BenchmarkOutput, nest_benchmark, write_benchmark};
 pub use config::{
-    DEFAULT_RUN_GAP, DEFAULT_RUN_ROTATIONS, DEFAULT_RUN_TIME_LIMIT, MAXIMUM_TOLERANCE, NestingConfig,
-    RunConfig, RunOptions,
+    DEFAULT_RUN_GAP, DEFAULT_RUN_ROTATIONS, DEFAULT_RUN_TIME_LIMIT, MAXIMUM_TOLERANCE,
+    NestingConfig, RunConfig, RunOptions,
 };
 pub use facet_model::{FacetModelOutput, FacetSource, facet_model, write_facet_model};
 pub use flatten_part::flatten_part;

@@ -121,7 +121,10 @@ impl OutputFolder {
         fs::create_dir_all(directory).map_err(|source| cannot_write(directory, source))?;
         let entries = fs::read_dir(directory).map_err(|source| cannot_write(directory, source))?;
         for entry in entries.flatten() {
-            let staging = entry.file_name().to_string_lossy().starts_with(STAGING_PREFIX);
+            let staging = entry
+                .file_name()
+                .to_string_lossy()
+                .starts_with(STAGING_PREFIX);
             if staging && entry.file_type().is_ok_and(|kind| kind.is_dir()) {
                 let _ = fs::remove_dir_all(entry.path());
             }
@@ -206,7 +209,8 @@ impl OutputFolder {
         .unwrap_or_default();
         manifest.push('\n');
         let path = self.directory.join(MANIFEST_FILE);
-        write_atomically(&path, manifest.as_bytes()).map_err(|source| write_error(&path, source))?;
+        write_atomically(&path, manifest.as_bytes())
+            .map_err(|source| write_error(&path, source))?;
         Ok(written)
     }
 }
@@ -265,9 +269,10 @@ fn is_run_file(path: &Path) -> bool {
     let components: Vec<_> = path.components().collect();
     let in_place = match components.as_slice() {
         [std::path::Component::Normal(_)] => true,
-        [std::path::Component::Normal(folder), std::path::Component::Normal(_)] => {
-            *folder == "sheets"
-        }
+        [
+            std::path::Component::Normal(folder),
+            std::path::Component::Normal(_),
+        ] => *folder == "sheets",
         _ => false,
     };
     let name = path
@@ -312,7 +317,15 @@ mod tests {
         let root = directory.path();
         fs::write(root.join("notes.txt"), "mine").expect("written");
         let first = OutputFolder::prepare(root).expect("prepared");
-        stage(&first, &["a.dxf", "report.json", "sheets/sheet-001.dxf", "sheets/sheet-002.dxf"]);
+        stage(
+            &first,
+            &[
+                "a.dxf",
+                "report.json",
+                "sheets/sheet-001.dxf",
+                "sheets/sheet-002.dxf",
+            ],
+        );
         first.commit().expect("committed");
         assert!(root.join("sheets/sheet-002.dxf").exists());
         let second = OutputFolder::prepare(root).expect("prepared");
@@ -322,10 +335,16 @@ mod tests {
         let mut names: Vec<PathBuf> = Vec::new();
         list_files(root, Path::new(""), &mut names).expect("listed");
         names.sort();
-        let expected: Vec<PathBuf> = [MANIFEST_FILE, "b.dxf", "notes.txt", "report.json", "sheets/sheet-001.dxf"]
-            .iter()
-            .map(PathBuf::from)
-            .collect();
+        let expected: Vec<PathBuf> = [
+            MANIFEST_FILE,
+            "b.dxf",
+            "notes.txt",
+            "report.json",
+            "sheets/sheet-001.dxf",
+        ]
+        .iter()
+        .map(PathBuf::from)
+        .collect();
         assert_eq!(names, expected);
     }
 

@@ -13,9 +13,9 @@ use crate::progress::Progress;
 
 use super::config::RunConfig;
 use super::output_folder::{InterruptHandle, OutputFolder, check_inputs_outside};
-use super::run::{load_all, run_loaded};
 use super::report::{part_report, report_options};
 use super::run::RunOutput;
+use super::run::{load_all, run_loaded};
 
 /// Runs the whole pipeline into the output folder `directory`, safely: checks the options and
 /// that no input is in the folder under a name a run writes, loads every input, creates the

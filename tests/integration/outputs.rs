@@ -36,11 +36,17 @@ fn absurd_options_and_an_unwritable_folder_are_refused_before_any_work() {
     let output_directory = directory.path().join("out");
     let cases: [(&[&str], &str); 7] = [
         (&["--sheet", "0x0"], "--sheet 0x0: the sheet width is 0 mm"),
-        (&["--sheet", "infxinf"], "--sheet infxinf: the sheet width is inf"),
+        (
+            &["--sheet", "infxinf"],
+            "--sheet infxinf: the sheet width is inf",
+        ),
         (&["--sheet", "100x-1"], "the sheet height is -1 mm"),
         (&["--roll", "1e300"], "--roll 1e300"),
         (&["--sheet", "100x100", "--gap=-5"], "--gap -5"),
-        (&["--tolerance", "1"], "--tolerance 1: give a fraction above 0 and at most 0.5"),
+        (
+            &["--tolerance", "1"],
+            "--tolerance 1: give a fraction above 0 and at most 0.5",
+        ),
         (&["--dxf-chord", "0"], "--dxf-chord 0.01"),
     ];
     for (options, expected) in cases {
@@ -58,8 +64,14 @@ fn absurd_options_and_an_unwritable_folder_are_refused_before_any_work() {
     let output = flatcut(&["run", path(&input), "-o", path(&under_a_file)]);
     let message = stderr(&output);
     assert_eq!(output.status.code(), Some(1), "{message}");
-    assert!(message.contains("cannot create or write the output directory"), "{message}");
-    assert!(!message.contains("E_S"), "refused before flattening: {message}");
+    assert!(
+        message.contains("cannot create or write the output directory"),
+        "{message}"
+    );
+    assert!(
+        !message.contains("E_S"),
+        "refused before flattening: {message}"
+    );
 }
 
 /// Files in a folder after `flatcut flatten INPUTS... -o DIR`, sorted, relative.
@@ -72,7 +84,11 @@ fn files(directory: &Path) -> Vec<String> {
             if entry.file_type().expect("a type").is_dir() {
                 folders.push(entry.path());
             } else {
-                let relative = entry.path().strip_prefix(directory).expect("inside").to_owned();
+                let relative = entry
+                    .path()
+                    .strip_prefix(directory)
+                    .expect("inside")
+                    .to_owned();
                 names.push(relative.to_string_lossy().into_owned());
             }
         }
@@ -109,4 +125,44 @@ fn a_second_run_replaces_the_first_as_one_set() {
     let manifest = std::fs::read_to_string(folder.join(".flatcut-manifest.json")).expect("read");
     let manifest: serde_json::Value = serde_json::from_str(&manifest).expect("JSON");
     assert_eq!(manifest["files"].as_array().expect("a list").len(), 5);
+}
+
+/// A pipe whose reading end is closed: writing to it fails with a broken pipe.
+fn closed_pipe() -> std::io::PipeWriter {
+    let (reader, writer) = std::io::pipe().expect("a pipe");
+    drop(reader);
+    writer
+}
+
+/// stdout or stderr closed (piped into `head`): the run finishes quietly with its exit code and
+/// writes every file, never a panic (exit 101).
+#[test]
+fn a_closed_stdout_or_stderr_is_a_quiet_exit() {
+    let input = sample("cone_frustum.obj");
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let binary = env!("CARGO_BIN_EXE_flatcut");
+    for (index, (close_stdout, close_stderr)) in [(true, false), (false, true), (true, true)]
+        .into_iter()
+        .enumerate()
+    {
+        let folder = directory.path().join(format!("out-{index}"));
+        let mut command = std::process::Command::new(binary);
+        command.args(["flatten", path(&input), "-o", path(&folder), "--json"]);
+        if close_stdout {
+            command.stdout(closed_pipe());
+        }
+        if close_stderr {
+            command.stderr(closed_pipe());
+        } else {
+            command.stderr(std::process::Stdio::piped());
+        }
+        let output = command.output().expect("flatcut runs");
+        let message = stderr(&output);
+        assert!(!message.contains("panicked"), "{message}");
+        assert_eq!(output.status.code(), Some(0), "{index}: {message}");
+        assert!(
+            folder.join("report.json").exists(),
+            "{index}: the report is written"
+        );
+    }
 }
