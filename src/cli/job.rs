@@ -38,19 +38,25 @@ pub fn execute(
             part.seams.len(),
             part.cuts.len(),
             part.total_cut_length,
-            if part.tolerance_met {
-                "within tolerance"
+            if part.rejected.is_empty() {
+                "within tolerance".to_string()
             } else {
-                "OVER TOLERANCE"
+                format!(
+                    "REJECTED: {}; cut file {}.REJECTED.dxf",
+                    part.rejected.join(", "),
+                    part.name
+                )
             }
         );
     }
     if json {
         stdout_text(&report.to_json());
     }
-    Ok(if report.parts.iter().all(|part| part.tolerance_met) {
-        Outcome::Success
-    } else {
-        Outcome::OverTolerance
-    })
+    Ok(
+        if report.parts.iter().all(|part| part.rejected.is_empty()) {
+            Outcome::Success
+        } else {
+            Outcome::OverTolerance
+        },
+    )
 }

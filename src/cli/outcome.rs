@@ -1,4 +1,4 @@
-//! How a command ended, as an exit code: 0 success, 1 bad input or failure, 3 over tolerance
+//! How a command ended, as an exit code: 0 success, 1 bad input or failure, 3 a part rejected
 //! (2, bad usage, is clap's). Errors are printed with their causes.
 
 use super::console::say;
@@ -8,7 +8,8 @@ use std::process::ExitCode;
 const EXIT_SUCCESS: u8 = 0;
 /// Exit code for bad input or a runtime failure.
 const EXIT_FAILURE: u8 = 1;
-/// Exit code when the run finished but a part is over tolerance (outputs are still written).
+/// Exit code when the run finished but a part is rejected: over tolerance, flipped triangles or
+/// overlap (outputs are still written, its cut file as `<part>.REJECTED.dxf`).
 const EXIT_OVER_TOLERANCE: u8 = 3;
 
 /// How a successful command ended.
@@ -16,7 +17,7 @@ const EXIT_OVER_TOLERANCE: u8 = 3;
 pub enum Outcome {
     /// Everything within tolerance.
     Success,
-    /// Finished, outputs written, but at least one part is over tolerance.
+    /// Finished, outputs written, but at least one part is rejected.
     OverTolerance,
 }
 

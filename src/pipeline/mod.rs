@@ -12,6 +12,7 @@ mod load;
 mod output_folder;
 mod outputs;
 mod part_result;
+mod rejection;
 mod report;
 mod run;
 
@@ -26,5 +27,6 @@ pub use load::{PartJob, TessellationFigures, load_parts, tessellate_part};
 pub use output_folder::{InterruptHandle, MANIFEST_FILE, OutputFolder, check_inputs_outside};
 pub use outputs::{run_into, write_outputs};
 pub use part_result::PartResult;
+pub use rejection::rejection_reasons;
 pub use report::{part_report, report_options};
 pub use run::{NestedLayout, PAPER_SOLVER_ADVISED_TRIANGLES, RunOutput, load_all, run, run_loaded};

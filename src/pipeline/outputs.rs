@@ -69,6 +69,11 @@ pub fn write_outputs(
             pattern: &part.pattern,
             cuts: part.cuts.len(),
             spring_constant: config.options.flatten.spring_constant,
+            rejected: !super::rejection::rejection_reasons(
+                &part.flattened.stats.accuracy,
+                config.options.flatten.tolerance,
+            )
+            .is_empty(),
         };
         write_part_files(directory, &files, &file_options)?;
     }

@@ -166,3 +166,32 @@ fn a_closed_stdout_or_stderr_is_a_quiet_exit() {
         );
     }
 }
+
+/// A part over tolerance is marked: its cut file is `<part>.REJECTED.dxf` (no `<part>.dxf`), the
+/// summary line and the report say why, and the run exits with 3.
+#[test]
+fn a_rejected_part_is_marked_and_says_why() {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let folder = directory.path();
+    let output =
+        crate::util::flatten_into(&sample("saddle.obj"), folder, &["--tolerance", "0.0001"]);
+    let message = stderr(&output);
+    assert_eq!(output.status.code(), Some(3), "{message}");
+    assert!(folder.join("saddle.REJECTED.dxf").exists());
+    assert!(!folder.join("saddle.dxf").exists());
+    assert!(message.contains("REJECTED: E_"), "{message}");
+    assert!(message.contains("over the tolerance 0.01 %"), "{message}");
+    let report = crate::util::read_report(folder);
+    let reasons = report["parts"][0]["rejected"].as_array().expect("reasons");
+    assert!(!reasons.is_empty());
+    // An accepted part has no `rejected` entry and a normal cut file.
+    let accepted = directory.path().join("accepted");
+    let output = crate::util::flatten_into(&sample("cone_frustum.obj"), &accepted, &[]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    assert!(accepted.join("cone_frustum.dxf").exists());
+    assert!(
+        crate::util::read_report(&accepted)["parts"][0]
+            .get("rejected")
+            .is_none()
+    );
+}
