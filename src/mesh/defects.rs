@@ -13,6 +13,14 @@ pub enum Defect {
         /// Vertex index.
         vertex: usize,
     },
+    /// A vertex has a coordinate larger in magnitude than
+    /// [`MAXIMUM_COORDINATE`](crate::mesh::MAXIMUM_COORDINATE) (a unit or exporter error).
+    TooLargeVertex {
+        /// Vertex index.
+        vertex: usize,
+        /// The largest coordinate magnitude of the vertex.
+        value: f64,
+    },
     /// A triangle references a vertex that does not exist.
     IndexOutOfRange {
         /// Triangle index.
@@ -86,6 +94,12 @@ impl fmt::Display for Defect {
             Defect::NonFiniteVertex { vertex } => {
                 write!(f, "vertex {vertex} has a NaN or infinite coordinate")
             }
+            Defect::TooLargeVertex { vertex, value } => write!(
+                f,
+                "vertex {vertex} has a coordinate too large ({value:e}, above {:e}): check the \
+                 file's units and the exporter",
+                crate::mesh::MAXIMUM_COORDINATE
+            ),
             Defect::IndexOutOfRange {
                 triangle,
                 index,

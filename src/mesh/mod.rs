@@ -13,4 +13,4 @@ pub use chains::chain_edges;
 pub use defects::{Defect, MeshDefects};
 pub use facet::{FacetModel, NONE};
 pub use rows::compressed_rows;
-pub use validate::{ValidatedMesh, validate};
+pub use validate::{MAXIMUM_COORDINATE, ValidatedMesh, validate};
