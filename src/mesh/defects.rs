@@ -3,6 +3,10 @@
 
 use std::fmt;
 
+/// Largest coordinate magnitude accepted, in the mesh's units (1e9 mm is 1,000 km): beyond it a
+/// coordinate is a unit or exporter error, and squared lengths lose their precision.
+pub const MAXIMUM_COORDINATE: f64 = 1e9;
+
 /// One defect of an input mesh.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Defect {
@@ -14,7 +18,7 @@ pub enum Defect {
         vertex: usize,
     },
     /// A vertex has a coordinate larger in magnitude than
-    /// [`MAXIMUM_COORDINATE`](crate::mesh::MAXIMUM_COORDINATE) (a unit or exporter error).
+    /// [`MAXIMUM_COORDINATE`] (a unit or exporter error).
     TooLargeVertex {
         /// Vertex index.
         vertex: usize,
@@ -98,7 +102,7 @@ impl fmt::Display for Defect {
                 f,
                 "vertex {vertex} has a coordinate too large ({value:e}, above {:e}): check the \
                  file's units and the exporter",
-                crate::mesh::MAXIMUM_COORDINATE
+                MAXIMUM_COORDINATE
             ),
             Defect::IndexOutOfRange {
                 triangle,

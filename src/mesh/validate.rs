@@ -10,7 +10,7 @@
 
 use glam::DVec3;
 
-use super::defects::{Defect, MeshDefects};
+use super::defects::{Defect, MAXIMUM_COORDINATE, MeshDefects};
 use super::facet::{FacetModel, NONE};
 use crate::cad::TriangleSoup;
 use crate::geometry::tolerance::DEGENERATE_AREA_RATIO;
@@ -99,10 +99,6 @@ fn drop_repeated_vertices(soup: &TriangleSoup, warnings: &mut Vec<Defect>) -> Ve
     }
     kept
 }
-
-/// Largest coordinate magnitude accepted, in the mesh's units (1e9 mm is 1,000 km): beyond it a
-/// coordinate is a unit or exporter error, and squared lengths lose their precision.
-pub const MAXIMUM_COORDINATE: f64 = 1e9;
 
 fn check_areas(soup: &TriangleSoup, kept: &[usize], errors: &mut Vec<Defect>) {
     for &triangle in kept {
