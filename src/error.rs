@@ -128,8 +128,35 @@ pub enum Error {
         /// Every defect found.
         violations: Vec<Violation>,
     },
+    /// An option is out of its range (found before any input is read).
+    #[error("{option} {value}: {reason}")]
+    InvalidOption {
+        /// The command-line option.
+        option: &'static str,
+        /// The value given.
+        value: String,
+        /// What is wrong and what to give instead.
+        reason: String,
+    },
+    /// An input lies in the output folder under a name of the kind a run writes there.
+    #[error(
+        "{}: this input is in the output folder {} under a name of the kind a run writes \
+         (`<part>.mesh.obj`, `.pattern.obj`, `.dxf`, `.png`, `report.json`): the run would \
+         overwrite or remove it; move it out of the folder or give another -o",
+        input.display(),
+        directory.display()
+    )]
+    InputInOutput {
+        /// The input file.
+        input: PathBuf,
+        /// The output folder.
+        directory: PathBuf,
+    },
+    /// The run was interrupted (SIGINT or SIGTERM) before it replaced the output folder's files.
+    #[error("interrupted: the output folder keeps the previous run")]
+    Interrupted,
     /// The output directory could not be created.
-    #[error("{}: cannot create the output directory", path.display())]
+    #[error("{}: cannot create or write the output directory", path.display())]
     CreateDirectory {
         /// The directory.
         path: PathBuf,

@@ -25,7 +25,7 @@ pub struct FlattenArgs {
     /// Output directory (created if missing).
     #[arg(short, long, value_name = "DIR")]
     output: PathBuf,
-    /// Permissible area and shape error E_S, E_C (fractions: 0.01 is 1 %).
+    /// Permissible area and shape error E_S, E_C (fractions: 0.01 is 1 %; at most 0.5).
     #[arg(long, default_value_t = FlattenOptions::default().tolerance)]
     tolerance: f64,
     /// Solver: `fast` minimises the paper's energy quickly; `paper` follows the paper step by step.
@@ -86,11 +86,6 @@ impl FlattenArgs {
 
     /// The run's configuration, converted in one place (no stock: nesting is `run`'s).
     pub fn config(&self) -> anyhow::Result<RunConfig> {
-        anyhow::ensure!(
-            self.tolerance.is_finite() && self.tolerance > 0.0,
-            "--tolerance must be a positive fraction (0.01 is 1 %), got {}",
-            self.tolerance
-        );
         let flatten = FlattenOptions {
             solver: self.solver,
             tolerance: self.tolerance,

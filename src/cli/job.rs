@@ -3,12 +3,14 @@
 
 use std::path::Path;
 
-use flatcut::pipeline::{RunConfig, run, write_outputs};
+use flatcut::pipeline::{RunConfig, run_into};
 use flatcut::progress::Progress;
 
+use super::console::{say, stdout_text};
 use super::outcome::Outcome;
 
-/// Runs `config` (warnings go through `progress`), writes the output folder into `output`, prints
+/// Runs `config` into the output folder `output` (warnings go through `progress`; SIGINT and
+/// SIGTERM leave the folder with the previous run), prints
 /// the figures on stderr and, when `json`, the report on stdout.
 pub fn execute(
     config: &RunConfig,
@@ -16,11 +18,10 @@ pub fn execute(
     json: bool,
     progress: &dyn Progress,
 ) -> anyhow::Result<Outcome> {
-    let result = run(config, progress)?;
-    let report = write_outputs(&result, config, output)?;
+    let (result, report) = run_into(config, output, progress, &super::interrupt::watch)?;
     if let Some(nested) = &result.nesting {
         let layout = &nested.layout;
-        eprintln!(
+        say!(
             "flatcut: nested on {} sheet(s), utilisation {:.2} %, length used {:.1} mm",
             layout.sheets.len(),
             layout.utilisation * 100.0,
@@ -28,7 +29,7 @@ pub fn execute(
         );
     }
     for part in &report.parts {
-        eprintln!(
+        say!(
             "flatcut: {}: E_S {:.4} %, E_C {:.4} %, {} flipped, {} seam(s), {} cut(s) of total length {:.4}, {}",
             part.name,
             part.area_error * 100.0,
@@ -37,19 +38,25 @@ pub fn execute(
             part.seams.len(),
             part.cuts.len(),
             part.total_cut_length,
-            if part.tolerance_met {
-                "within tolerance"
+            if part.rejected.is_empty() {
+                "within tolerance".to_string()
             } else {
-                "OVER TOLERANCE"
+                format!(
+                    "REJECTED: {}; cut file {}.REJECTED.dxf",
+                    part.rejected.join(", "),
+                    part.name
+                )
             }
         );
     }
     if json {
-        print!("{}", report.to_json());
+        stdout_text(&report.to_json());
     }
-    Ok(if report.parts.iter().all(|part| part.tolerance_met) {
-        Outcome::Success
-    } else {
-        Outcome::OverTolerance
-    })
+    Ok(
+        if report.parts.iter().all(|part| part.rejected.is_empty()) {
+            Outcome::Success
+        } else {
+            Outcome::OverTolerance
+        },
+    )
 }

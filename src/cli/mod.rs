@@ -4,7 +4,9 @@
 //! exit code.
 
 mod command;
+mod console;
 mod flatten;
+mod interrupt;
 mod job;
 mod nest;
 mod outcome;

@@ -10,6 +10,7 @@ use flatcut::nest::{Rotations, Stock};
 use flatcut::pipeline::{BenchmarkConfig, nest_benchmark, write_benchmark};
 use flatcut::progress::Progress;
 
+use super::console::{say, stdout_text};
 use super::outcome::Outcome;
 use super::parse::{parse_rotations, parse_sheet};
 
@@ -86,14 +87,14 @@ pub fn run(args: NestArgs, progress: &dyn Progress) -> anyhow::Result<Outcome> {
     let output = nest_benchmark(&config, progress)?;
     let json = write_benchmark(&output, &config, &args.output)?;
     if args.json {
-        print!("{json}");
+        stdout_text(&json);
     }
     let layout = &output.layout;
     let stock_word = match output.options.stock {
         Stock::Sheets { .. } => format!("{} sheet(s)", layout.sheets.len()),
         Stock::Roll { .. } => "roll".to_string(),
     };
-    eprintln!(
+    say!(
         "flatcut nest: {}: {stock_word}, length used {:.3} mm, utilisation {:.2} %, {:.1} s, seed {}, {} evaluations, stopped by {:?}, verified",
         output.names.join("+"),
         layout.used_length,

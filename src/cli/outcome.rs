@@ -1,13 +1,15 @@
-//! How a command ended, as an exit code: 0 success, 1 bad input or failure, 3 over tolerance
+//! How a command ended, as an exit code: 0 success, 1 bad input or failure, 3 a part rejected
 //! (2, bad usage, is clap's). Errors are printed with their causes.
 
+use super::console::say;
 use std::process::ExitCode;
 
 /// Exit code when every part finished within tolerance.
 const EXIT_SUCCESS: u8 = 0;
 /// Exit code for bad input or a runtime failure.
 const EXIT_FAILURE: u8 = 1;
-/// Exit code when the run finished but a part is over tolerance (outputs are still written).
+/// Exit code when the run finished but a part is rejected: over tolerance, flipped triangles or
+/// overlap (outputs are still written, its cut file as `<part>.REJECTED.dxf`).
 const EXIT_OVER_TOLERANCE: u8 = 3;
 
 /// How a successful command ended.
@@ -15,7 +17,7 @@ const EXIT_OVER_TOLERANCE: u8 = 3;
 pub enum Outcome {
     /// Everything within tolerance.
     Success,
-    /// Finished, outputs written, but at least one part is over tolerance.
+    /// Finished, outputs written, but at least one part is rejected.
     OverTolerance,
 }
 
@@ -25,7 +27,7 @@ pub fn exit_code(result: anyhow::Result<Outcome>) -> ExitCode {
         Ok(Outcome::Success) => ExitCode::from(EXIT_SUCCESS),
         Ok(Outcome::OverTolerance) => ExitCode::from(EXIT_OVER_TOLERANCE),
         Err(error) => {
-            eprintln!("flatcut: error: {}", error_message(&error));
+            say!("flatcut: error: {}", error_message(&error));
             ExitCode::from(EXIT_FAILURE)
         }
     }

@@ -6,6 +6,7 @@ use std::sync::Mutex;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
+use super::console::say;
 use flatcut::progress::Progress;
 
 /// A progress bar on stderr, silent when stderr is not a terminal (scripts, CI, pipes).
@@ -77,8 +78,8 @@ impl Progress for TerminalProgress {
             .unwrap_or_else(|poisoned| poisoned.into_inner())
             .as_ref()
         {
-            Some(bar) => bar.suspend(|| eprintln!("{line}")),
-            None => eprintln!("{line}"),
+            Some(bar) => bar.suspend(|| say!("{line}")),
+            None => say!("{line}"),
         }
     }
 }

@@ -9,6 +9,7 @@ use flatcut::pipeline::{FacetSource, facet_model, write_facet_model};
 use flatcut::tessellate::TessellateOptions;
 use flatcut::units::Units;
 
+use super::console::say;
 use super::outcome::Outcome;
 
 /// Arguments of `tessellate`.
@@ -62,7 +63,7 @@ pub fn run(args: TessellateArgs) -> anyhow::Result<Outcome> {
     let options = args.sizes.options()?;
     let model = facet_model(&args.input, args.units, &options)?;
     for warning in &model.warnings {
-        eprintln!("flatcut: warning: {}: {warning}", args.input.display());
+        say!("flatcut: warning: {}: {warning}", args.input.display());
     }
     let summary = summary(&model.source);
     let header = format!(
@@ -72,7 +73,7 @@ pub fn run(args: TessellateArgs) -> anyhow::Result<Outcome> {
     );
     write_facet_model(&model, &header, &args.output)?;
     let soup = &model.soup;
-    eprintln!(
+    say!(
         "flatcut: {}: {} triangles, {} vertices, {} fold edges; {summary}",
         args.input.display(),
         soup.triangles.len(),

@@ -1,6 +1,6 @@
 //! The files of one flattened part, written into the output directory:
 //! `<part>.mesh.obj` and `<part>.pattern.obj` (same vertices and faces), `<part>.dxf` (the cut
-//! file) and `<part>.energy.png` (the energy map). Every file is written atomically.
+//! file; `<part>.REJECTED.dxf` for a rejected part) and `<part>.energy.png` (the energy map). Every file is written atomically.
 
 use std::path::Path;
 
@@ -45,6 +45,8 @@ pub struct PartFiles<'a> {
     pub cuts: usize,
     /// The spring constant `C` the part was flattened with.
     pub spring_constant: f64,
+    /// Whether the part is rejected: its cut file is then `<part>.REJECTED.dxf`.
+    pub rejected: bool,
 }
 
 /// Writes every file of a flattened part into `directory`.
@@ -86,7 +88,7 @@ pub fn write_part_files(
     let files: [(&str, &[u8]); 4] = [
         ("mesh.obj", mesh.as_bytes()),
         ("pattern.obj", pattern.as_bytes()),
-        ("dxf", &dxf),
+        (if part.rejected { "REJECTED.dxf" } else { "dxf" }, &dxf),
         ("energy.png", &png),
     ];
     for (suffix, bytes) in files {

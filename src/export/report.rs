@@ -148,6 +148,10 @@ pub struct PartReport {
     pub tessellation: Option<TessellationReport>,
     /// Repairs made to the input.
     pub warnings: Vec<String>,
+    /// Why the part is rejected (over tolerance, flipped triangles, overlap; its cut file is then
+    /// `<part>.REJECTED.dxf`); left out of the JSON when the part is accepted.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub rejected: Vec<String>,
 }
 
 /// One nested sheet, or the used part of a roll. Lengths in mm.

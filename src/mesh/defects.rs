@@ -3,6 +3,10 @@
 
 use std::fmt;
 
+/// Largest coordinate magnitude accepted, in the mesh's units (1e9 mm is 1,000 km): beyond it a
+/// coordinate is a unit or exporter error, and squared lengths lose their precision.
+pub const MAXIMUM_COORDINATE: f64 = 1e9;
+
 /// One defect of an input mesh.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Defect {
@@ -12,6 +16,14 @@ pub enum Defect {
     NonFiniteVertex {
         /// Vertex index.
         vertex: usize,
+    },
+    /// A vertex has a coordinate larger in magnitude than
+    /// [`MAXIMUM_COORDINATE`] (a unit or exporter error).
+    TooLargeVertex {
+        /// Vertex index.
+        vertex: usize,
+        /// The largest coordinate magnitude of the vertex.
+        value: f64,
     },
     /// A triangle references a vertex that does not exist.
     IndexOutOfRange {
@@ -86,6 +98,12 @@ impl fmt::Display for Defect {
             Defect::NonFiniteVertex { vertex } => {
                 write!(f, "vertex {vertex} has a NaN or infinite coordinate")
             }
+            Defect::TooLargeVertex { vertex, value } => write!(
+                f,
+                "vertex {vertex} has a coordinate too large ({value:e}, above {:e}): check the \
+                 file's units and the exporter",
+                MAXIMUM_COORDINATE
+            ),
             Defect::IndexOutOfRange {
                 triangle,
                 index,

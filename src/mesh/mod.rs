@@ -10,7 +10,7 @@ mod validate;
 pub use crate::cad::{FoldEdge, NO_SOURCE_FACE, TriangleSoup};
 pub use crate::geometry::tolerance::DEGENERATE_AREA_RATIO;
 pub use chains::chain_edges;
-pub use defects::{Defect, MeshDefects};
+pub use defects::{Defect, MAXIMUM_COORDINATE, MeshDefects};
 pub use facet::{FacetModel, NONE};
 pub use rows::compressed_rows;
 pub use validate::{ValidatedMesh, validate};

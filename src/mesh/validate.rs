@@ -10,7 +10,7 @@
 
 use glam::DVec3;
 
-use super::defects::{Defect, MeshDefects};
+use super::defects::{Defect, MAXIMUM_COORDINATE, MeshDefects};
 use super::facet::{FacetModel, NONE};
 use crate::cad::TriangleSoup;
 use crate::geometry::tolerance::DEGENERATE_AREA_RATIO;
@@ -68,6 +68,9 @@ fn check_coordinates_and_indices(soup: &TriangleSoup, errors: &mut Vec<Defect>) 
     for (vertex, p) in soup.positions.iter().enumerate() {
         if !p.is_finite() {
             errors.push(Defect::NonFiniteVertex { vertex });
+        } else if p.abs().max_element() > MAXIMUM_COORDINATE {
+            let value = p.abs().max_element();
+            errors.push(Defect::TooLargeVertex { vertex, value });
         }
     }
     let vertex_count = soup.positions.len();
@@ -105,7 +108,11 @@ fn check_areas(soup: &TriangleSoup, kept: &[usize], errors: &mut Vec<Defect>) {
             .length_squared()
             .max((c - b).length_squared())
             .max((a - c).length_squared());
-        if area <= DEGENERATE_AREA_RATIO * longest {
+        // A non-finite or too large vertex is reported as such, not as a zero area.
+        let usable = [a, b, c]
+            .iter()
+            .all(|p| p.is_finite() && p.abs().max_element() <= MAXIMUM_COORDINATE);
+        if usable && area <= DEGENERATE_AREA_RATIO * longest {
             errors.push(Defect::ZeroArea { triangle, area });
         }
     }
@@ -347,6 +354,13 @@ mod tests {
         let defects =
             validate(&soup(&positions, &[[0, 1, 2], [0, 2, 9], [0, 2, 4]])).expect_err("defects");
         assert!(defects.0.contains(&Defect::NonFiniteVertex { vertex: 4 }));
+        assert!(
+            !defects
+                .0
+                .iter()
+                .any(|defect| matches!(defect, Defect::ZeroArea { .. })),
+            "{defects}"
+        );
         assert!(defects.0.contains(&Defect::IndexOutOfRange {
             triangle: 1,
             index: 9,

@@ -25,7 +25,7 @@ pub enum PatternError {
         contour: String,
     },
     /// The chord tolerance is not a positive finite length.
-    #[error("chord tolerance {value} mm is not a positive length; pass e.g. --chord 0.01")]
+    #[error("chord tolerance {value} mm is not a positive length; pass e.g. --dxf-chord 0.01")]
     InvalidChordTolerance {
         /// The rejected value, in mm.
         value: f64,

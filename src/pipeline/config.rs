@@ -8,10 +8,11 @@ use std::time::Duration;
 use serde::Serialize;
 
 use crate::cut::CutOptions;
+use crate::error::Error;
 use crate::export::DxfVersion;
 use crate::export::energy_png::EnergyPngOptions;
 use crate::flatten::FlattenOptions;
-use crate::nest::{DEFAULT_SEED, NestOptions, Rotations, Stock};
+use crate::nest::{DEFAULT_SEED, MAXIMUM_STOCK_MM, NestOptions, Rotations, Stock};
 use crate::pattern::PatternOptions;
 use crate::tessellate::TessellateOptions;
 use crate::units::Units;
@@ -28,6 +29,10 @@ pub struct RunOptions {
     /// Tessellation of part and STEP files.
     pub tessellate: TessellateOptions,
 }
+
+/// Largest permissible area and shape error a run accepts (a fraction: 0.5 is 50 %); a larger
+/// one is almost surely a percentage given as a fraction (`1` meant as 1 %).
+pub const MAXIMUM_TOLERANCE: f64 = 0.5;
 
 /// Gap between nested parts and to the stock edge in a run, mm.
 pub const DEFAULT_RUN_GAP: f64 = 2.0;
@@ -119,5 +124,121 @@ impl Default for RunConfig {
             nesting: NestingConfig::default(),
             timings: true,
         }
+    }
+}
+
+impl RunConfig {
+    /// Checks every option that can be checked before any input is read: the tolerance in
+    /// (0, [`MAXIMUM_TOLERANCE`]], the pattern's lengths, the stock's sizes (positive, finite, at
+    /// most [`MAXIMUM_STOCK_MM`]), the gap and the rotations. The error names the command-line
+    /// option.
+    pub fn validate(&self) -> Result<(), Error> {
+        let invalid = |option: &'static str, value: String, reason: String| {
+            Err(Error::InvalidOption {
+                option,
+                value,
+                reason,
+            })
+        };
+        let tolerance = self.options.flatten.tolerance;
+        if !(tolerance.is_finite() && tolerance > 0.0 && tolerance <= MAXIMUM_TOLERANCE) {
+            return invalid(
+                "--tolerance",
+                tolerance.to_string(),
+                format!("give a fraction above 0 and at most {MAXIMUM_TOLERANCE} (0.01 is 1 %)"),
+            );
+        }
+        self.pattern.validate()?;
+        let size = |value: f64| value.is_finite() && value > 0.0 && value <= MAXIMUM_STOCK_MM;
+        let size_reason = |dimension: &str, value: f64| {
+            format!(
+                "the {dimension} is {} mm: give a positive size in mm, at most {MAXIMUM_STOCK_MM} mm",
+                figure(value)
+            )
+        };
+        match self.stock {
+            Some(Stock::Sheets { width, height }) => {
+                for (dimension, value) in [("sheet width", width), ("sheet height", height)] {
+                    if !size(value) {
+                        return invalid(
+                            "--sheet",
+                            format!("{}x{}", figure(width), figure(height)),
+                            size_reason(dimension, value),
+                        );
+                    }
+                }
+            }
+            Some(Stock::Roll { width }) if !size(width) => {
+                return invalid("--roll", figure(width), size_reason("roll width", width));
+            }
+            _ => {}
+        }
+        let gap = self.nesting.gap;
+        if !(gap.is_finite() && gap >= 0.0) {
+            return invalid(
+                "--gap",
+                gap.to_string(),
+                "give a gap of 0 mm or more".to_string(),
+            );
+        }
+        if self.stock.is_some() && self.nesting.rotations.angles().is_none() {
+            let (value, reason) = match &self.nesting.rotations {
+                Rotations::Step(step) => (
+                    format!("step:{step}"),
+                    format!(
+                        "rotation step {step} degrees is invalid: give a step in [{}, 360]",
+                        crate::nest::MINIMUM_ROTATION_STEP_DEGREES
+                    ),
+                ),
+                other => (
+                    format!("{other:?}"),
+                    "give at least one angle, every one finite".to_string(),
+                ),
+            };
+            return invalid("--rotations", value, reason);
+        }
+        Ok(())
+    }
+}
+
+/// A figure as given, or in exponent form when it is huge (`1e300`, not 301 digits).
+fn figure(value: f64) -> String {
+    if value.is_finite() && value.abs() >= 1e15 {
+        format!("{value:e}")
+    } else {
+        value.to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::pipeline::config::*;
+
+    fn refused(config: &RunConfig) -> String {
+        match config.validate() {
+            Err(error @ Error::InvalidOption { .. }) => error.to_string(),
+            other => panic!("expected an invalid option, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn absurd_options_are_refused_naming_the_option() {
+        assert!(RunConfig::default().validate().is_ok());
+        let mut config = RunConfig::default();
+        config.options.flatten.tolerance = 1.0;
+        assert!(refused(&config).starts_with("--tolerance 1:"));
+        let mut config = RunConfig {
+            stock: Some(Stock::Sheets {
+                width: f64::INFINITY,
+                height: 100.0,
+            }),
+            ..RunConfig::default()
+        };
+        assert!(refused(&config).starts_with("--sheet infx100:"));
+        config.stock = Some(Stock::Roll { width: 0.0 });
+        assert!(refused(&config).contains("roll width is 0 mm"));
+        config.stock = Some(Stock::Roll { width: 100.0 });
+        config.nesting.gap = -5.0;
+        assert!(refused(&config).starts_with("--gap -5:"));
     }
 }

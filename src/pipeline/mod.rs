@@ -9,20 +9,24 @@ mod config;
 mod facet_model;
 mod flatten_part;
 mod load;
+mod output_folder;
 mod outputs;
 mod part_result;
+mod rejection;
 mod report;
 mod run;
 
 pub use benchmark::{BenchmarkConfig, BenchmarkOutput, nest_benchmark, write_benchmark};
 pub use config::{
-    DEFAULT_RUN_GAP, DEFAULT_RUN_ROTATIONS, DEFAULT_RUN_TIME_LIMIT, NestingConfig, RunConfig,
-    RunOptions,
+    DEFAULT_RUN_GAP, DEFAULT_RUN_ROTATIONS, DEFAULT_RUN_TIME_LIMIT, MAXIMUM_TOLERANCE,
+    NestingConfig, RunConfig, RunOptions,
 };
 pub use facet_model::{FacetModelOutput, FacetSource, facet_model, write_facet_model};
 pub use flatten_part::flatten_part;
 pub use load::{PartJob, TessellationFigures, load_parts, tessellate_part};
-pub use outputs::write_outputs;
+pub use output_folder::{InterruptHandle, MANIFEST_FILE, OutputFolder, check_inputs_outside};
+pub use outputs::{run_into, write_outputs};
 pub use part_result::PartResult;
+pub use rejection::rejection_reasons;
 pub use report::{part_report, report_options};
-pub use run::{NestedLayout, PAPER_SOLVER_ADVISED_TRIANGLES, RunOutput, run};
+pub use run::{NestedLayout, PAPER_SOLVER_ADVISED_TRIANGLES, RunOutput, load_all, run, run_loaded};

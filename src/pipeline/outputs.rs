@@ -9,10 +9,37 @@ use crate::export::part_files::{PartFileOptions, PartFiles, write_part_files};
 use crate::export::report::{Report, sheet_reports};
 use crate::export::sheets::{sheet_drawings, write_sheet_files};
 use crate::pattern::PartDrawing;
+use crate::progress::Progress;
 
 use super::config::RunConfig;
+use super::output_folder::{InterruptHandle, OutputFolder, check_inputs_outside};
 use super::report::{part_report, report_options};
 use super::run::RunOutput;
+use super::run::{load_all, run_loaded};
+
+/// Runs the whole pipeline into the output folder `directory`, safely: checks the options and
+/// that no input is in the folder under a name a run writes, loads every input, creates the
+/// folder and its staging folder (so an unwritable folder is found before the long work) and
+/// hands `on_staging` the handle that abandons the run (for a signal handler); then flattens,
+/// cuts and nests, writes every file into the staging folder and replaces the previous run's
+/// files with them as one set ([`OutputFolder::commit`]). On an error the folder keeps the
+/// previous run. Returns what the run made and its report.
+pub fn run_into(
+    config: &RunConfig,
+    directory: &Path,
+    progress: &dyn Progress,
+    on_staging: &dyn Fn(InterruptHandle),
+) -> Result<(RunOutput, Report), Error> {
+    config.validate()?;
+    check_inputs_outside(directory, &config.inputs)?;
+    let jobs = load_all(config, progress)?;
+    let folder = OutputFolder::prepare(directory)?;
+    on_staging(folder.interrupt_handle());
+    let output = run_loaded(jobs, config, progress)?;
+    let report = write_outputs(&output, config, folder.staging())?;
+    folder.commit()?;
+    Ok((output, report))
+}
 
 /// Writes the output folder of a run into `directory` (created if missing) and returns the
 /// report written to `report.json`.
@@ -42,6 +69,11 @@ pub fn write_outputs(
             pattern: &part.pattern,
             cuts: part.cuts.len(),
             spring_constant: config.options.flatten.spring_constant,
+            rejected: !super::rejection::rejection_reasons(
+                &part.flattened.stats.accuracy,
+                config.options.flatten.tolerance,
+            )
+            .is_empty(),
         };
         write_part_files(directory, &files, &file_options)?;
     }

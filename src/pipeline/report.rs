@@ -82,5 +82,6 @@ pub fn part_report(result: &PartResult, config: &RunConfig) -> PartReport {
             minimum_angle: figures.minimum_angle,
         }),
         warnings: job.warnings.clone(),
+        rejected: super::rejection::rejection_reasons(&accuracy, flatten.tolerance),
     }
 }

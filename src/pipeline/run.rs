@@ -36,12 +36,19 @@ pub struct NestedLayout {
     pub layout: NestLayout,
 }
 
-/// Runs the whole pipeline: loads every input (refusing two parts of one name), reports their
-/// repairs as warnings through `progress`, flattens and cuts every part into its pattern, and
-/// nests the patterns when `config` has stock, rejecting a layout the independent check
-/// ([`verify`]) finds a defect in.
+/// Runs the whole pipeline: checks the options ([`RunConfig::validate`]), loads every input
+/// ([`load_all`]), flattens and cuts every part into its pattern, and nests the patterns when
+/// `config` has stock ([`run_loaded`]).
 pub fn run(config: &RunConfig, progress: &dyn Progress) -> Result<RunOutput, Error> {
-    config.pattern.validate()?;
+    let jobs = load_all(config, progress)?;
+    run_loaded(jobs, config, progress)
+}
+
+/// Checks the options ([`RunConfig::validate`]) and loads every input (refusing two parts of one
+/// name), reporting their repairs as warnings through `progress`: everything a run can find
+/// wrong before its long work.
+pub fn load_all(config: &RunConfig, progress: &dyn Progress) -> Result<Vec<PartJob>, Error> {
+    config.validate()?;
     let mut jobs = Vec::new();
     for input in &config.inputs {
         jobs.extend(load_parts(input, &config.options)?);
@@ -62,6 +69,16 @@ pub fn run(config: &RunConfig, progress: &dyn Progress) -> Result<RunOutput, Err
             ));
         }
     }
+    Ok(jobs)
+}
+
+/// Flattens and cuts every loaded part into its pattern, and nests the patterns when `config`
+/// has stock, rejecting a layout the independent check ([`verify`]) finds a defect in.
+pub fn run_loaded(
+    jobs: Vec<PartJob>,
+    config: &RunConfig,
+    progress: &dyn Progress,
+) -> Result<RunOutput, Error> {
     let parts = jobs
         .into_iter()
         .map(|job| flatten_part(job, &config.options, progress))

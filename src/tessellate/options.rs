@@ -30,14 +30,22 @@ pub struct TessellateOptions {
     pub chord: Option<f64>,
 }
 
+/// `value` rounded to 4 significant digits for a message (`0.02939`, not `0.02939387691339814`).
+fn significant(value: &f64) -> f64 {
+    format!("{value:.3e}").parse().unwrap_or(*value)
+}
+
 /// Errors of tessellation.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TessellateError {
     /// The mesh size or chord tolerance is not a positive length, or too small for the part.
     #[error(
-        "the mesh size {mesh_size} and chord {chord} must be positive, the mesh size at least \
-         {minimum} and the chord at least {minimum_chord} for a part of this size; give a larger \
-         --mesh-size or --chord"
+        "the mesh size {} and chord {} must be positive, the mesh size at least {} and the chord \
+         at least {} for a part of this size; give a larger --mesh-size or --chord",
+        significant(.mesh_size),
+        significant(.chord),
+        significant(.minimum),
+        significant(.minimum_chord)
     )]
     BadSize {
         /// The mesh size used.

@@ -231,3 +231,41 @@ fn unknown_kind() {
         "unknown input kind",
     );
 }
+
+/// A 1e300 coordinate is named too large, not a zero-area triangle.
+#[test]
+fn too_large_coordinate() {
+    refuses(
+        "huge.obj",
+        b"v 0 0 0\nv 1e300 0 0\nv 0 1e300 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n",
+        "coordinate too large (1e300",
+    );
+}
+
+/// A mesh size too small for the part: the figures of the message are rounded.
+#[test]
+fn too_small_mesh_size_prints_rounded_figures() {
+    let input = crate::util::sample("cone_frustum.toml");
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let output_directory = directory.path().join("out");
+    let output = flatcut(&[
+        "flatten",
+        path(&input),
+        "-o",
+        path(&output_directory),
+        "--mesh-size",
+        "0.01",
+    ]);
+    let message = stderr(&output);
+    assert_eq!(output.status.code(), Some(1), "{message}");
+    assert!(
+        message.contains("the mesh size 0.01 and chord"),
+        "{message}"
+    );
+    let longest_number = message
+        .split(|c: char| !c.is_ascii_digit())
+        .map(str::len)
+        .max()
+        .unwrap_or(0);
+    assert!(longest_number <= 8, "rounded figures: {message}");
+}

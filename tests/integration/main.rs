@@ -6,4 +6,5 @@ mod energy_png;
 mod flatten;
 mod golden;
 mod nesting;
+mod outputs;
 mod util;
