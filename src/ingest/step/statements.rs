@@ -30,7 +30,8 @@ pub struct Statements {
 }
 
 impl Statements {
-    /// Scans the text of a STEP file (see [`Statement`]).
+    /// Scans the exchange text of a STEP file (comments dropped by
+    /// `text.rs`; see [`Statement`]).
     pub fn parse(text: &str) -> Self {
         let mut by_id = BTreeMap::new();
         for statement in split_statements(text) {
@@ -78,27 +79,17 @@ impl Statements {
     }
 }
 
-/// The statements of the file (`;`-terminated), outside quoted strings and comments.
+/// The statements of the file (`;`-terminated, outside quoted strings); the text comes without
+/// comments (`text.rs`).
 fn split_statements(text: &str) -> Vec<String> {
     let mut statements = Vec::new();
     let mut current = String::new();
-    let mut chars = text.chars().peekable();
     let mut quoted = false;
-    while let Some(c) = chars.next() {
+    for c in text.chars() {
         match c {
             '\'' => {
                 quoted = !quoted;
                 current.push(c);
-            }
-            '/' if !quoted && chars.peek() == Some(&'*') => {
-                chars.next();
-                let mut previous = ' ';
-                for c in chars.by_ref() {
-                    if previous == '*' && c == '/' {
-                        break;
-                    }
-                    previous = c;
-                }
             }
             ';' if !quoted => statements.push(std::mem::take(&mut current).trim().to_string()),
             _ => current.push(c),
@@ -173,13 +164,14 @@ pub fn measure_value(body: &str, keyword: &str) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use crate::ingest::step::statements::*;
+    use crate::ingest::step::text::exchange_text;
 
     #[test]
     fn instances_complex_instances_comments_and_strings_are_scanned() {
         let text = "DATA;\n/* a comment; with #9 */\n#1=PRODUCT('a;b #7','',(#2));\n\
                     #2=(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.));\n\
                     #3 = LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE( 2.54E1 ),#2);\nENDSEC;";
-        let statements = Statements::parse(text);
+        let statements = Statements::parse(&exchange_text(text.as_bytes()));
         let product = statements.get(&1).expect("#1");
         assert_eq!(product.names, vec!["PRODUCT"]);
         assert_eq!(product.references, vec![2]);
