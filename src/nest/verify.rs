@@ -429,13 +429,15 @@ fn ring_distance(first: &[DVec2], second: &[DVec2]) -> f64 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use crate::nest::layout::{SheetLayout, StopReason};
     use crate::nest::rotations::Rotations;
     use crate::nest::stock::Stock;
     use crate::nest::verify::*;
 
-    fn square(name: &str, side: f64, quantity: u32) -> NestItem {
+    /// A square item of side `side` mm, in `quantity`, upright only (a fixture other nest tests
+    /// share).
+    pub(crate) fn square(name: &str, side: f64, quantity: u32) -> NestItem {
         NestItem {
             name: name.to_string(),
             outer: vec![

@@ -11,10 +11,10 @@ use crate::export::obj::mesh_obj;
 use crate::export::write_atomically;
 use crate::ingest::{Input, read_input};
 use crate::mesh::validate;
-use crate::tessellate::{TessellateOptions, TessellationFigures, tessellate_brep};
+use crate::tessellate::{TessellateOptions, TessellationFigures};
 use crate::units::Units;
 
-use super::load::tessellate_part;
+use super::load::{tessellate_part, tessellate_step};
 
 /// Where a facet model came from.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -63,10 +63,7 @@ pub fn facet_model(
             (tessellation.soup().clone(), source)
         }
         Input::Step(brep) => {
-            let tessellation = tessellate_brep(&brep, options).map_err(|defect| Error::Brep {
-                path: path.to_path_buf(),
-                defect,
-            })?;
+            let tessellation = tessellate_step(path, &brep, options)?;
             let source = FacetSource::Step {
                 figures: tessellation.figures,
             };

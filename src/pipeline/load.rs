@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::cad::{
-    ParameterRegion, PartAttributes, PartModel, RegionShape, SurfaceDomain, TriangleSoup,
+    Brep, ParameterRegion, PartAttributes, PartModel, RegionShape, SurfaceDomain, TriangleSoup,
 };
 use crate::cut::{CutConstraints, NoCutRegion};
 use crate::error::Error;
@@ -56,11 +56,7 @@ pub fn load_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Err
             split_parts(path, &mesh.soup, template, |_, _, _| {})
         }
         Input::Step(brep) => {
-            let tessellation =
-                tessellate_brep(&brep, &options.tessellate).map_err(|defect| Error::Brep {
-                    path: path.to_path_buf(),
-                    defect,
-                })?;
+            let tessellation = tessellate_step(path, &brep, &options.tessellate)?;
             let mut template = template(brep.name, Units::Millimetres);
             template.tessellation = Some(tessellation.figures);
             split_parts(path, tessellation.soup(), template, |_, _, _| {})
@@ -76,6 +72,18 @@ pub fn tessellate_part(
     options: &TessellateOptions,
 ) -> Result<Tessellation, Error> {
     tessellate_cad(&part.cad, options).map_err(|defect| Error::Tessellate {
+        path: path.to_path_buf(),
+        defect,
+    })
+}
+
+/// Tessellates a STEP file's B-rep (for `flatcut tessellate` and the pipeline).
+pub fn tessellate_step(
+    path: &Path,
+    brep: &Brep,
+    options: &TessellateOptions,
+) -> Result<Tessellation, Error> {
+    tessellate_brep(brep, options).map_err(|defect| Error::Brep {
         path: path.to_path_buf(),
         defect,
     })

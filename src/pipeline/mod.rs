@@ -23,7 +23,7 @@ pub use config::{
 };
 pub use facet_model::{FacetModelOutput, FacetSource, facet_model, write_facet_model};
 pub use flatten_part::flatten_part;
-pub use load::{PartJob, TessellationFigures, load_parts, tessellate_part};
+pub use load::{PartJob, TessellationFigures, load_parts, tessellate_part, tessellate_step};
 pub use output_folder::{InterruptHandle, MANIFEST_FILE, OutputFolder, check_inputs_outside};
 pub use outputs::{run_into, write_outputs};
 pub use part_result::PartResult;

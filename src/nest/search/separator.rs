@@ -321,35 +321,17 @@ impl<'p, 'a> Separator<'p, 'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::nest::item::NestItem;
     use crate::nest::layout::StopReason;
     use crate::nest::options::NestOptions;
-    use crate::nest::rotations::Rotations;
     use crate::nest::stock::Stock;
+    use crate::nest::verify::tests::square;
     use crate::nest::verify::verify;
-
-    fn square(side: f64, quantity: u32) -> NestItem {
-        NestItem {
-            name: format!("square {side}"),
-            outer: vec![
-                DVec2::new(0.0, 0.0),
-                DVec2::new(side, 0.0),
-                DVec2::new(side, side),
-                DVec2::new(0.0, side),
-            ],
-            holes: Vec::new(),
-            quantity,
-            rotations: Rotations::Fixed(vec![0.0]),
-            mirror_allowed: false,
-            grain_degrees: None,
-        }
-    }
 
     /// Four 10 mm squares piled onto each other on a 21 mm roll 40 mm long: the separator must
     /// spread them into a layout the independent check accepts.
     #[test]
     fn the_separator_resolves_piled_squares_into_a_verified_layout() {
-        let items = vec![square(10.0, 4)];
+        let items = vec![square("square 10", 10.0, 4)];
         let options = NestOptions {
             stock: Stock::Roll { width: 21.0 },
             ..NestOptions::default()
@@ -387,7 +369,7 @@ mod tests {
     /// rows) finds a shorter verified layout.
     #[test]
     fn compression_shortens_a_loose_layout() {
-        let items = vec![square(10.0, 4)];
+        let items = vec![square("square 10", 10.0, 4)];
         let options = NestOptions {
             stock: Stock::Roll { width: 20.5 },
             ..NestOptions::default()
