@@ -5,10 +5,12 @@
 //! `ingest` (files to the `cad` model: surfaces, B-reps, triangle soups) → `tessellate` (CAD
 //! model to triangle soup) → `mesh` (validated facet models) → `flatten` (the paper's energy
 //! model) → `cut` → `pattern` (outlines, cut contours) → `nest` → `export` (the only module that
-//! writes files); `pipeline` owns the whole run. `docs/architecture.md` draws the stages.
+//! writes files); `pipeline` owns the whole run, and `batch` runs many parts, each in a worker
+//! process. `docs/architecture.md` draws the stages.
 
 #![warn(missing_docs)]
 
+pub mod batch;
 pub mod cad;
 pub mod cut;
 pub mod error;

@@ -4,6 +4,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+use super::batch::{self, BatchArgs};
 use super::flatten::{self, FlattenArgs};
 use super::nest::{self, NestArgs};
 use super::outcome::{Outcome, exit_code};
@@ -29,6 +30,12 @@ enum Command {
     Nest(NestArgs),
     /// Write the facet model of a part file or STEP file as OBJ.
     Tessellate(TessellateArgs),
+    /// Flatten many parts (input files or a manifest), each into OUT/parts/<name>/, in
+    /// parallel, resumable and shardable; writes OUT/batch.json.
+    Batch(BatchArgs),
+    /// One part of a batch, its task as JSON on standard input (run by `batch`).
+    #[command(name = flatcut::batch::WORKER_SUBCOMMAND, hide = true)]
+    BatchPart,
 }
 
 /// Parses the command line, runs the command and returns its exit code. Usage errors exit with 2
@@ -41,6 +48,8 @@ pub fn main() -> ExitCode {
         Command::Flatten(args) => flatten::run(args, &progress),
         Command::Nest(args) => nest::run(args, &progress),
         Command::Tessellate(args) => tessellate::run(args),
+        Command::Batch(args) => batch::run(args),
+        Command::BatchPart => batch::run_worker(),
     };
     exit_code(result)
 }

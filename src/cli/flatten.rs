@@ -9,7 +9,7 @@ use flatcut::cut::CutOptions;
 use flatcut::export::DxfVersion;
 use flatcut::flatten::{FlattenOptions, Solver};
 use flatcut::pattern::PatternOptions;
-use flatcut::pipeline::{RunConfig, RunOptions};
+use flatcut::pipeline::{PartOverrides, RunConfig, RunOptions};
 use flatcut::progress::Progress;
 use flatcut::units::Units;
 
@@ -25,6 +25,20 @@ pub struct FlattenArgs {
     /// Output directory (created if missing).
     #[arg(short, long, value_name = "DIR")]
     output: PathBuf,
+    #[command(flatten)]
+    part: PartArgs,
+    /// Print the report to stdout as JSON.
+    #[arg(long)]
+    json: bool,
+    /// Write 0 for every `seconds` in the report, so reports of the same input are byte-identical.
+    #[arg(long)]
+    no_timings: bool,
+}
+
+/// How each part is loaded, flattened, cut and drawn: the options `flatten`, `run` and `batch`
+/// share.
+#[derive(Debug, Args)]
+pub struct PartArgs {
     /// Permissible area and shape error E_S, E_C (fractions: 0.01 is 1 %; at most 0.5).
     #[arg(long, default_value_t = FlattenOptions::default().tolerance)]
     tolerance: f64,
@@ -56,12 +70,16 @@ pub struct FlattenArgs {
     seam_allowance: Option<f64>,
     #[command(flatten)]
     sizes: super::tessellate::MeshSizeArgs,
-    /// Print the report to stdout as JSON.
-    #[arg(long)]
-    json: bool,
-    /// Write 0 for every `seconds` in the report, so reports of the same input are byte-identical.
-    #[arg(long)]
-    no_timings: bool,
+    /// How many copies of each part to cut, over what its file says (a mesh says 1).
+    #[arg(long, value_name = "N")]
+    quantity: Option<u32>,
+    /// Material of the parts, over what their files say: printed on the label; parts of
+    /// different materials are nested on separate stock.
+    #[arg(long, value_name = "NAME")]
+    material: Option<String>,
+    /// Sheet thickness of the parts in mm, over what their files say.
+    #[arg(long, value_name = "MM")]
+    thickness: Option<f64>,
 }
 
 /// DXF versions on the command line.
@@ -86,6 +104,18 @@ impl FlattenArgs {
 
     /// The run's configuration, converted in one place (no stock: nesting is `run`'s).
     pub fn config(&self) -> anyhow::Result<RunConfig> {
+        Ok(RunConfig {
+            inputs: self.inputs.clone(),
+            timings: !self.no_timings,
+            ..self.part.config()?
+        })
+    }
+}
+
+impl PartArgs {
+    /// The options of every part as a run's configuration with no inputs, converted in one
+    /// place.
+    pub fn config(&self) -> anyhow::Result<RunConfig> {
         let flatten = FlattenOptions {
             solver: self.solver,
             tolerance: self.tolerance,
@@ -101,9 +131,14 @@ impl FlattenArgs {
             flatten,
             cut,
             tessellate: self.sizes.options()?,
+            overrides: PartOverrides {
+                name: None,
+                quantity: self.quantity,
+                material: self.material.clone(),
+                thickness_mm: self.thickness,
+            },
         };
         Ok(RunConfig {
-            inputs: self.inputs.clone(),
             options,
             pattern: PatternOptions {
                 chord_tolerance: self.dxf_chord,
@@ -113,7 +148,6 @@ impl FlattenArgs {
                 DxfVersionArg::R2000 => DxfVersion::R2000,
                 DxfVersionArg::R12 => DxfVersion::R12,
             },
-            timings: !self.no_timings,
             ..RunConfig::default()
         })
     }

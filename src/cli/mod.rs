@@ -3,6 +3,7 @@
 //! one place and calls the library; [`main`] parses and dispatches, and maps the outcome to an
 //! exit code.
 
+mod batch;
 mod command;
 mod console;
 mod flatten;

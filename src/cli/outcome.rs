@@ -19,6 +19,9 @@ pub enum Outcome {
     Success,
     /// Finished, outputs written, but at least one part is rejected.
     OverTolerance,
+    /// Finished with this exit code, the reason already printed (a batch: its worst part's
+    /// code, or 130 when stopped by a signal).
+    Exit(u8),
 }
 
 /// The exit code of a command's result; an error is printed to stderr first.
@@ -26,6 +29,7 @@ pub fn exit_code(result: anyhow::Result<Outcome>) -> ExitCode {
     match result {
         Ok(Outcome::Success) => ExitCode::from(EXIT_SUCCESS),
         Ok(Outcome::OverTolerance) => ExitCode::from(EXIT_OVER_TOLERANCE),
+        Ok(Outcome::Exit(code)) => ExitCode::from(code),
         Err(error) => {
             say!("flatcut: error: {}", error_message(&error));
             ExitCode::from(EXIT_FAILURE)

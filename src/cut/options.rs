@@ -44,7 +44,7 @@ pub const WIDER_SEARCH: usize = 4;
 
 /// Options of [`super::cut_loop::cut_and_flatten`]. `Default` is the only source of defaults. The tolerance is the
 /// flattening's ([`crate::flatten::FlattenOptions::tolerance`]).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CutOptions {
     /// Largest number of crest-line cuts; `None` (the default) for [`super::cut_loop::default_cut_budget`] of the
     /// opened part. `Some(0)` disables cutting (seams are still made).

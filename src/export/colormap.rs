@@ -16,7 +16,7 @@
 use serde::Serialize;
 
 /// How a value is placed on the colour scale between 0 and the upper value.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ScaleMapping {
     /// Position `v / upper`.

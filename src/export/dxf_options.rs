@@ -1,12 +1,12 @@
 //! How DXF files are written: the version, and the chord tolerance and seam allowance of the
 //! contours drawn.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::pattern::PatternOptions;
 
 /// DXF version written.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum DxfVersion {
     /// AutoCAD 2000 (AC1015): LWPOLYLINE, `$INSUNITS`. The default.

@@ -10,7 +10,7 @@
 //! the same bytes.
 
 use glam::DVec2;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use tiny_skia::{Color, Pixmap};
 
 use super::colormap::{ColorScale, ScaleMapping};
@@ -30,7 +30,7 @@ pub const DEFAULT_ISOLINE_COUNT: usize = 9;
 pub const WIDTH_PIXEL_RANGE: (u32, u32) = (480, 8000);
 
 /// Options of [`render_energy_png`]. `Default` is the only source of defaults.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct EnergyPngOptions {
     /// Image width in pixels, within [`WIDTH_PIXEL_RANGE`]; default [`DEFAULT_WIDTH_PIXELS`]. The
     /// height follows from the pattern's aspect ratio.

@@ -1,6 +1,6 @@
 //! Options of the flatten stage: the solver and its parameters, with their defaults.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::accuracy::DEFAULT_TOLERANCE;
 use super::energy_release::{PAPER_ENERGY_VARIATION, PAPER_STEP_BUDGET, PAPER_TIME_STEP};
@@ -9,7 +9,7 @@ use super::init_flatten::PAPER_INIT_RELEASE_STEPS;
 use super::springs::PAPER_SPRING_CONSTANT;
 
 /// Which procedure minimises the energy.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]
 pub enum Solver {
     /// Near-linear initial pattern, then a fast minimiser of the same energy.
@@ -20,7 +20,7 @@ pub enum Solver {
 }
 
 /// Options of [`flatten`](crate::flatten::flatten). `Default` is the only source of defaults.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FlattenOptions {
     /// The solver.
     pub solver: Solver,

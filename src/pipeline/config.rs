@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 use std::time::Duration;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::cut::CutOptions;
 use crate::error::Error;
@@ -18,7 +18,7 @@ use crate::tessellate::TessellateOptions;
 use crate::units::Units;
 
 /// Options of loading and flattening one part, echoed in the report.
-#[derive(Debug, Clone, PartialEq, Serialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 pub struct RunOptions {
     /// Units of mesh files (part files and STEP files carry their own).
     pub units: Units,
@@ -28,6 +28,58 @@ pub struct RunOptions {
     pub cut: CutOptions,
     /// Tessellation of part and STEP files.
     pub tessellate: TessellateOptions,
+    /// Quantity, material and thickness given for the parts, over what their files say (echoed
+    /// only when one is given).
+    #[serde(default, skip_serializing_if = "PartOverrides::is_empty")]
+    pub overrides: PartOverrides,
+}
+
+/// What the command line or a batch manifest says of a part, over what its file says.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct PartOverrides {
+    /// The part's name, over the file's stem (`NAME-1`, `NAME-2`, … for a file of several
+    /// parts): a batch's manifest names its parts.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// How many copies to cut (a mesh says 1, a part file its `quantity`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub quantity: Option<u32>,
+    /// Material, printed on the label and used to group parts onto stock.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<String>,
+    /// Sheet thickness in mm.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thickness_mm: Option<f64>,
+}
+
+impl PartOverrides {
+    /// Whether nothing is overridden.
+    pub fn is_empty(&self) -> bool {
+        self == &Self::default()
+    }
+
+    /// Checks the quantity (at least 1) and the thickness (positive, finite); the error names
+    /// the command-line option.
+    pub fn validate(&self) -> Result<(), Error> {
+        if self.quantity == Some(0) {
+            return Err(Error::InvalidOption {
+                option: "--quantity",
+                value: "0".to_string(),
+                reason: "give at least 1 copy".to_string(),
+            });
+        }
+        if let Some(thickness) = self.thickness_mm
+            && !(thickness.is_finite() && thickness > 0.0)
+        {
+            return Err(Error::InvalidOption {
+                option: "--thickness",
+                value: figure(thickness),
+                reason: "give a positive thickness in mm".to_string(),
+            });
+        }
+        Ok(())
+    }
 }
 
 /// Largest permissible area and shape error a run accepts (a fraction: 0.5 is 50 %); a larger
@@ -149,6 +201,7 @@ impl RunConfig {
             );
         }
         self.pattern.validate()?;
+        self.options.overrides.validate()?;
         let size = |value: f64| value.is_finite() && value > 0.0 && value <= MAXIMUM_STOCK_MM;
         let size_reason = |dimension: &str, value: f64| {
             format!(

@@ -18,7 +18,7 @@ use crate::tessellate::{
 };
 use crate::units::Units;
 
-use super::config::RunOptions;
+use super::config::{PartOverrides, RunOptions};
 
 /// One part ready to flatten: a connected facet model with its stiffness map.
 #[derive(Debug, Clone)]
@@ -50,6 +50,23 @@ pub struct PartJob {
 /// Reads an input file (mesh, part file or STEP file) and splits it into parts, one per
 /// connected component.
 pub fn load_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> {
+    let mut jobs = read_parts(path, options)?;
+    let several = jobs.len() > 1;
+    for (index, job) in jobs.iter_mut().enumerate() {
+        apply_overrides(job, &options.overrides);
+        if let Some(name) = &options.overrides.name {
+            job.name = if several {
+                format!("{name}-{}", index + 1)
+            } else {
+                name.clone()
+            };
+        }
+    }
+    Ok(jobs)
+}
+
+/// Reads an input file into its parts, as the file describes them.
+fn read_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> {
     match read_input(path, options.units)? {
         Input::Mesh(mesh) => {
             let template = template(mesh.name, mesh.units);
@@ -62,6 +79,19 @@ pub fn load_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Err
             split_parts(path, tessellation.soup(), template, |_, _, _| {})
         }
         Input::Part(part) => load_part_file(path, &part, &options.tessellate),
+    }
+}
+
+/// Puts the quantity, material and thickness given for the part over the file's.
+fn apply_overrides(job: &mut PartJob, overrides: &PartOverrides) {
+    if let Some(quantity) = overrides.quantity {
+        job.quantity = quantity;
+    }
+    if let Some(material) = &overrides.material {
+        job.attributes.material = Some(material.clone());
+    }
+    if let Some(millimetres) = overrides.thickness_mm {
+        job.attributes.thickness = Some(millimetres / job.units.millimetres());
     }
 }
 

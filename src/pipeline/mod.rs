@@ -19,12 +19,15 @@ mod run;
 pub use benchmark::{BenchmarkConfig, BenchmarkOutput, nest_benchmark, write_benchmark};
 pub use config::{
     DEFAULT_RUN_GAP, DEFAULT_RUN_ROTATIONS, DEFAULT_RUN_TIME_LIMIT, MAXIMUM_TOLERANCE,
-    NestingConfig, RunConfig, RunOptions,
+    NestingConfig, PartOverrides, RunConfig, RunOptions,
 };
 pub use facet_model::{FacetModelOutput, FacetSource, facet_model, write_facet_model};
 pub use flatten_part::flatten_part;
 pub use load::{PartJob, TessellationFigures, load_parts, tessellate_part, tessellate_step};
-pub use output_folder::{InterruptHandle, MANIFEST_FILE, OutputFolder, check_inputs_outside};
+pub use output_folder::{
+    InterruptHandle, MANIFEST_FILE, OutputFolder, check_inputs_outside, complete_run_present,
+    remove_previous_run,
+};
 pub use outputs::{run_into, write_outputs};
 pub use part_result::PartResult;
 pub use rejection::rejection_reasons;

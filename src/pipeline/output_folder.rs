@@ -244,6 +244,31 @@ fn list_files(root: &Path, relative: &Path, files: &mut Vec<PathBuf>) -> io::Res
     Ok(())
 }
 
+/// Whether `directory` holds a complete run: its manifest and every file the manifest lists.
+pub fn complete_run_present(directory: &Path) -> bool {
+    directory.join(MANIFEST_FILE).is_file()
+        && read_manifest(directory)
+            .iter()
+            .all(|file| directory.join(file).is_file())
+}
+
+/// Removes the last complete run's files and its manifest from `directory`, leaving the files no
+/// run wrote: for a folder whose new run was refused, so that no stale run looks current.
+pub fn remove_previous_run(directory: &Path) -> io::Result<()> {
+    for file in read_manifest(directory) {
+        if is_run_file(&file) {
+            match fs::remove_file(directory.join(&file)) {
+                Err(error) if error.kind() != io::ErrorKind::NotFound => return Err(error),
+                _ => {}
+            }
+        }
+    }
+    match fs::remove_file(directory.join(MANIFEST_FILE)) {
+        Err(error) if error.kind() != io::ErrorKind::NotFound => Err(error),
+        _ => Ok(()),
+    }
+}
+
 /// The files the previous complete run in `directory` wrote (none without a manifest).
 fn read_manifest(directory: &Path) -> Vec<PathBuf> {
     let Ok(text) = fs::read_to_string(directory.join(MANIFEST_FILE)) else {

@@ -1,7 +1,7 @@
 //! The tessellation's options and errors, and the mesh size and chord tolerance they give for a
 //! part of a given size.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::cad::CadPart;
 
@@ -21,7 +21,7 @@ pub const MINIMUM_MESH_SIZE_RATIO: f64 = 1.0 / 2000.0;
 pub const MINIMUM_CHORD_RATIO: f64 = 1e-7;
 /// Options of the tessellation of part files and STEP files. `Default` is the only source of
 /// defaults.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct TessellateOptions {
     /// Target edge length (part units); default the bounding diagonal / [`DEFAULT_DIVISIONS`].
     pub mesh_size: Option<f64>,

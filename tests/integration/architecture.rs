@@ -1,8 +1,8 @@
 //! The architecture, checked from the code's own `use` lines: the stages run one way
-//! (`cad → ingest → tessellate → mesh → flatten → cut → pattern → nest → export → pipeline`, over
-//! the shared `geometry`, `units` and `progress`), each module importing only modules to its left
-//! or inside itself, and no file-level import cycle anywhere (in particular, no two files importing
-//! each other). A folder's `mod.rs` is its facade: it declares and re-exports its files, and its
+//! (`cad → ingest → tessellate → mesh → flatten → cut → pattern → nest → export → pipeline →
+//! batch`, over the shared `geometry`, `units` and `progress`), each module importing only
+//! modules to its left or inside itself, and no file-level import cycle anywhere (in particular,
+//! no two files importing each other). A folder's `mod.rs` is its facade: it declares and re-exports its files, and its
 //! files import one another by path (`super::sibling::Item`), never through the facade.
 //!
 //! Paths are read from `use` trees and from `crate::`/`super::` paths in code (comments and doc
@@ -28,8 +28,9 @@ const STAGES: &[(&str, usize)] = &[
     ("export", 9),
     ("error", 10),
     ("pipeline", 11),
-    ("cli", 12),
-    ("main", 12),
+    ("batch", 12),
+    ("cli", 13),
+    ("main", 13),
 ];
 
 /// A module path inside the crate: `["cut", "seam"]` for `src/cut/seam.rs`.

@@ -2,6 +2,7 @@
 
 mod architecture;
 mod bad_inputs;
+mod batch;
 mod energy_png;
 mod flatten;
 mod golden;

@@ -14,7 +14,7 @@ pub const ENERGY_WINDOW: usize = 5;
 pub const DEFAULT_ANDERSON_DEPTH: usize = 5;
 
 /// Options of the fast solver. `Default` gives the documented defaults.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct FastOptions {
     /// Largest number of iterations; default [`DEFAULT_MAX_ITERATIONS`].
     pub max_iterations: usize,
