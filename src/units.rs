@@ -12,6 +12,14 @@ pub enum Units {
     #[value(name = "mm")]
     #[serde(rename = "mm")]
     Millimetres,
+    /// Centimetres.
+    #[value(name = "cm")]
+    #[serde(rename = "cm")]
+    Centimetres,
+    /// Metres (garment tools and scanners export meshes in metres).
+    #[value(name = "m")]
+    #[serde(rename = "m")]
+    Metres,
     /// Inches.
     #[value(name = "in")]
     #[serde(rename = "in")]
@@ -23,6 +31,8 @@ impl Units {
     pub fn symbol(self) -> &'static str {
         match self {
             Units::Millimetres => "mm",
+            Units::Centimetres => "cm",
+            Units::Metres => "m",
             Units::Inches => "in",
         }
     }
@@ -31,6 +41,8 @@ impl Units {
     pub fn millimetres(self) -> f64 {
         match self {
             Units::Millimetres => 1.0,
+            Units::Centimetres => 10.0,
+            Units::Metres => 1000.0,
             Units::Inches => 25.4,
         }
     }

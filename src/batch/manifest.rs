@@ -190,7 +190,7 @@ fn entry_of_fields(fields: &BTreeMap<&str, &str>) -> Result<ManifestEntry, Strin
         .get("units")
         .map(|value| {
             <Units as clap::ValueEnum>::from_str(value, true)
-                .map_err(|_| format!("`units` is {value:?}: give mm or in"))
+                .map_err(|_| format!("`units` is {value:?}: give mm, cm, m or in"))
         })
         .transpose()?;
     Ok(ManifestEntry {

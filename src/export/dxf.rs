@@ -181,6 +181,8 @@ fn new_document(version: DxfVersion, units: Units) -> Result<Drawing, ExportErro
         document.header.drawing_units,
     ) = match units {
         Units::Millimetres => (DxfUnits::Millimeters, DrawingUnits::Metric),
+        Units::Centimetres => (DxfUnits::Centimeters, DrawingUnits::Metric),
+        Units::Metres => (DxfUnits::Meters, DrawingUnits::Metric),
         Units::Inches => (DxfUnits::Inches, DrawingUnits::English),
     };
     document.add_line_type(dashed_line_type(units));

@@ -3,7 +3,7 @@
 //!
 //! A segment runs from one [`BulgeVertex`] to the next; its `bulge` is `tan(sweep / 4)`, where
 //! `sweep` is the signed angle the arc turns through (positive counter-clockwise, zero for a
-//! straight segment, ±1 for a half circle). Coordinates are in drawing units (mm or inches).
+//! straight segment, ±1 for a half circle). Coordinates are in drawing units (the part's: mm, cm, m or inches).
 
 use glam::DVec2;
 use std::f64::consts::FRAC_PI_2;

@@ -220,3 +220,42 @@ fn a_closed_tetrahedron_opens_to_its_exact_net() {
     );
     assert_eq!(figures.flipped, 0);
 }
+
+#[test]
+fn a_mesh_in_metres_gives_the_same_pattern_in_metres() {
+    let folder = tempfile::tempdir().expect("temporary directory");
+    let (vertices, faces) = read_obj(&sample("cone_frustum.obj"));
+    let metres: Vec<[f64; 3]> = vertices
+        .iter()
+        .map(|vertex| vertex.map(|coordinate| coordinate / 1000.0))
+        .collect();
+    let input = folder.path().join("cone_frustum.obj");
+    write_obj(&input, &metres, &faces);
+    let in_metres = folder.path().join("metres");
+    let in_millimetres = folder.path().join("millimetres");
+    let output = flatten_into(&input, &in_metres, &["--units", "m"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let output = flatten_into(&sample("cone_frustum.obj"), &in_millimetres, &[]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let part = &read_report(&in_metres)["parts"][0];
+    assert_eq!(part["units"], "m");
+    assert!(part["area_error"].as_f64().unwrap() < DEVELOPABLE_ERROR);
+    let (flat_metres, _) = read_obj(&in_metres.join("cone_frustum.pattern.obj"));
+    let (flat_millimetres, _) = read_obj(&in_millimetres.join("cone_frustum.pattern.obj"));
+    let span = |points: &[[f64; 3]]| {
+        let xs = points.iter().map(|point| point[0]);
+        xs.clone().fold(f64::MIN, f64::max) - xs.fold(f64::MAX, f64::min)
+    };
+    let ratio = span(&flat_millimetres) / span(&flat_metres);
+    assert!(
+        (ratio - 1000.0).abs() < 1e-6 * 1000.0,
+        "same pattern, in metres: {ratio}"
+    );
+    let dxf = std::fs::read_to_string(in_metres.join("cone_frustum.dxf")).expect("DXF");
+    let lines: Vec<&str> = dxf.lines().map(str::trim).collect();
+    let units = lines
+        .iter()
+        .position(|line| *line == "$INSUNITS")
+        .expect("$INSUNITS in the header");
+    assert_eq!(lines[units + 2], "6", "DXF units: metres");
+}
