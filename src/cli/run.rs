@@ -33,6 +33,10 @@ pub struct RunArgs {
     /// Nesting search budget in seconds (a deterministic work budget, capped by the wall clock).
     #[arg(long, value_name = "S", default_value_t = NestingConfig::default().time_limit.as_secs_f64())]
     time: f64,
+    /// Nesting work budget in collision queries instead of --time × the nominal rate: the same
+    /// layout on any machine (--time still caps the wall clock).
+    #[arg(long, value_name = "QUERIES")]
+    work: Option<u64>,
     /// Seed of the nesting search.
     #[arg(long, value_name = "N", default_value_t = NestingConfig::default().seed)]
     seed: u64,
@@ -74,6 +78,7 @@ impl RunArgs {
             } else {
                 defaults.time_limit
             },
+            work_limit: self.work,
             seed: self.seed,
             rotations: self.rotations.clone().unwrap_or(defaults.rotations),
             in_holes: self.in_holes,

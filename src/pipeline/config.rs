@@ -52,6 +52,9 @@ pub struct NestingConfig {
     /// Search budget (a deterministic work budget, capped by the wall clock); default
     /// [`DEFAULT_RUN_TIME_LIMIT`].
     pub time_limit: Duration,
+    /// Work budget in collision queries, replacing the time budget × the nominal rate (the
+    /// wall clock still caps it): the same layout on any machine. Default `None`.
+    pub work_limit: Option<u64>,
     /// Seed of the search; default [`DEFAULT_SEED`].
     pub seed: u64,
     /// Rotations allowed for every part, measured from its minimum-area bounding rectangle; a
@@ -68,6 +71,7 @@ impl Default for NestingConfig {
         Self {
             gap: DEFAULT_RUN_GAP,
             time_limit: DEFAULT_RUN_TIME_LIMIT,
+            work_limit: None,
             seed: DEFAULT_SEED,
             rotations: Rotations::Fixed(DEFAULT_RUN_ROTATIONS.to_vec()),
             in_holes: false,
@@ -84,7 +88,7 @@ impl NestingConfig {
             gap: self.gap,
             time_limit: self.time_limit,
             seed: self.seed,
-            work_limit: None,
+            work_limit: self.work_limit,
             in_holes: self.in_holes,
         }
     }

@@ -27,6 +27,7 @@ pub fn report_options(config: &RunConfig) -> ReportOptions {
                 gap: nesting.gap,
                 time_limit_seconds: nesting.time_limit.as_secs_f64(),
                 seed: nesting.seed,
+                work_limit: nesting.work_limit,
                 rotations: nesting.rotations.clone(),
                 in_holes: nesting.in_holes,
                 mirror: nesting.mirror,
