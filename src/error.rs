@@ -141,7 +141,7 @@ pub enum Error {
     /// An input lies in the output folder under a name of the kind a run writes there.
     #[error(
         "{}: this input is in the output folder {} under a name of the kind a run writes \
-         (`<part>.mesh.obj`, `.pattern.obj`, `.dxf`, `.png`, `report.json`): the run would \
+         (`<part>.mesh.obj`, `.pattern.obj`, `.pattern.json`, `.dxf`, `.png`, `report.json`): the run would \
          overwrite or remove it; move it out of the folder or give another -o",
         input.display(),
         directory.display()

@@ -1,13 +1,13 @@
 //! Options of the pattern stage: how closely the fitted contour follows the flat outline, and
 //! the seam allowance. `Default` is the only source of defaults.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::contour::DEFAULT_CHORD_TOLERANCE;
 use super::errors::PatternError;
 
 /// How a part's cut contours are made from its flat outline.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct PatternOptions {
     /// Largest distance between the part's polyline and the fitted contour (lines and arcs), in
     /// mm; default [`DEFAULT_CHORD_TOLERANCE`] (0.01 mm).

@@ -18,9 +18,9 @@ use crate::export::write_atomically;
 pub const MANIFEST_FILE: &str = ".flatcut-manifest.json";
 
 /// Endings of the file names a run writes into its output folder (`<part>.mesh.obj`,
-/// `<part>.pattern.obj`, `<part>.dxf`, `<part>.REJECTED.dxf`, `<part>.energy.png`, and in
-/// `sheets/` `sheet-NNN.dxf` and `.png`).
-const WRITTEN_ENDINGS: [&str; 4] = [".mesh.obj", ".pattern.obj", ".dxf", ".png"];
+/// `<part>.pattern.obj`, `<part>.pattern.json`, `<part>.dxf`, `<part>.REJECTED.dxf`,
+/// `<part>.energy.png`, and in `sheets/` `sheet-NNN.dxf` and `.png`).
+const WRITTEN_ENDINGS: [&str; 5] = [".mesh.obj", ".pattern.obj", ".pattern.json", ".dxf", ".png"];
 
 /// Whole names a run writes into its output folder.
 const WRITTEN_NAMES: [&str; 2] = ["report.json", MANIFEST_FILE];

@@ -1,5 +1,6 @@
-//! Writing a run's output folder: every part's files (`<part>.mesh.obj`, `.pattern.obj`, `.dxf`,
-//! `.energy.png`), the nested sheets (`sheets/sheet-NNN.dxf` and `.png`) and `report.json`.
+//! Writing a run's output folder: every part's files (`<part>.mesh.obj`, `.pattern.obj`,
+//! `.pattern.json`, `.dxf`, `.energy.png`), the nested sheets (`sheets/sheet-NNN.dxf` and `.png`)
+//! and `report.json`.
 
 use std::path::Path;
 
@@ -60,29 +61,25 @@ pub fn write_outputs(
         dxf,
         energy: config.energy_png,
     };
-    for part in &output.parts {
+    for (part, pattern_file) in output.parts.iter().zip(&output.patterns) {
         let files = PartFiles {
             source: &part.job.source,
             model: &part.job.model,
             flattened: &part.flattened,
             uncut: part.uncut.as_ref(),
             pattern: &part.pattern,
+            pattern_file,
             cuts: part.cuts.len(),
             spring_constant: config.options.flatten.spring_constant,
-            rejected: !super::rejection::rejection_reasons(
-                &part.flattened.stats.accuracy,
-                config.options.flatten.tolerance,
-            )
-            .is_empty(),
         };
         write_part_files(directory, &files, &file_options)?;
     }
     let sheets = match &output.nesting {
         Some(nested) => {
             let drawings: Vec<PartDrawing> = output
-                .parts
+                .patterns
                 .iter()
-                .map(|part| part.pattern.drawing.clone())
+                .map(|pattern| pattern.drawing.clone())
                 .collect();
             let sheets = sheet_drawings(&drawings, &nested.layout);
             let files = write_sheet_files(directory, &sheets, &dxf)?;
