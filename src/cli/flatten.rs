@@ -6,7 +6,6 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 
 use flatcut::cut::CutOptions;
-use flatcut::export::DxfVersion;
 use flatcut::flatten::{FlattenOptions, Solver};
 use flatcut::pattern::PatternOptions;
 use flatcut::pipeline::{RunConfig, RunOptions};
@@ -15,6 +14,7 @@ use flatcut::units::Units;
 
 use super::job::execute;
 use super::outcome::Outcome;
+use super::parse::DxfVersionArg;
 
 /// Arguments shared by `flatten` and `run`.
 #[derive(Debug, Args)]
@@ -64,15 +64,6 @@ pub struct FlattenArgs {
     no_timings: bool,
 }
 
-/// DXF versions on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-enum DxfVersionArg {
-    /// AutoCAD 2000.
-    R2000,
-    /// AutoCAD R12.
-    R12,
-}
-
 impl FlattenArgs {
     /// The output directory.
     pub fn output(&self) -> &Path {
@@ -109,10 +100,7 @@ impl FlattenArgs {
                 chord_tolerance: self.dxf_chord,
                 seam_allowance: self.seam_allowance,
             },
-            dxf_version: match self.dxf_version {
-                DxfVersionArg::R2000 => DxfVersion::R2000,
-                DxfVersionArg::R12 => DxfVersion::R12,
-            },
+            dxf_version: self.dxf_version.into(),
             timings: !self.no_timings,
             ..RunConfig::default()
         })

@@ -34,4 +34,6 @@ pub use errors::PatternError;
 pub use fold_polylines::fold_polylines;
 pub use options::PatternOptions;
 pub use part_pattern::{FlatShape, Pattern, PatternSource, part_pattern};
-pub use pattern_file::{PATTERN_FILE_FORMAT, PATTERN_FILE_VERSION, PatternFile, PatternFileError};
+pub use pattern_file::{
+    PATTERN_FILE_ENDING, PATTERN_FILE_FORMAT, PATTERN_FILE_VERSION, PatternFile, PatternFileError,
+};

@@ -12,6 +12,9 @@ use serde::{Deserialize, Serialize};
 use super::drawing::PartDrawing;
 use super::options::PatternOptions;
 
+/// The ending of a pattern file's name: `<part>.pattern.json`.
+pub const PATTERN_FILE_ENDING: &str = ".pattern.json";
+
 /// The `format` key of every pattern file.
 pub const PATTERN_FILE_FORMAT: &str = "flatcut-pattern";
 
