@@ -37,13 +37,11 @@ pub struct NestArgs {
     /// --sheet); for instances it defaults to their strip_height.
     #[arg(long, value_name = "W")]
     roll: Option<f64>,
-    /// Gap between parts and to the stock edge, mm [default: 2 for patterns, as `flatcut run`;
-    /// 0 for instances].
-    #[arg(long, value_name = "MM")]
+    /// Gap between parts and to the stock edge, mm (defaults: [`gap_help`]).
+    #[arg(long, value_name = "MM", help = gap_help())]
     gap: Option<f64>,
-    /// Search budget in seconds (a deterministic work budget, capped by the wall clock)
-    /// [default: 10 for patterns, as `flatcut run`; 60 for instances].
-    #[arg(long, value_name = "S")]
+    /// Search budget in seconds (defaults: [`time_help`]).
+    #[arg(long, value_name = "S", help = time_help())]
     time: Option<f64>,
     /// Work budget in collision queries instead of --time × the nominal rate: the same result on
     /// any machine (--time still caps the wall clock).
@@ -74,6 +72,26 @@ pub struct NestArgs {
     /// Print nest.json to stdout.
     #[arg(long)]
     json: bool,
+}
+
+/// The help of `--gap`, with the defaults of both kinds of input.
+fn gap_help() -> String {
+    format!(
+        "Gap between parts and to the stock edge, mm [default: {} for patterns, as `flatcut run`; \
+         {} for instances]",
+        NestingConfig::default().gap,
+        BenchmarkConfig::default().gap
+    )
+}
+
+/// The help of `--time`, with the defaults of both kinds of input.
+fn time_help() -> String {
+    format!(
+        "Search budget in seconds (a deterministic work budget, capped by the wall clock) \
+         [default: {} for patterns, as `flatcut run`; {} for instances]",
+        NestingConfig::default().time_limit.as_secs_f64(),
+        BenchmarkConfig::default().time_seconds
+    )
 }
 
 impl NestArgs {
