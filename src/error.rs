@@ -9,7 +9,7 @@ use crate::ingest::IngestError;
 use crate::mesh::MeshDefects;
 use crate::nest::NestError;
 use crate::nest::verify::Violation;
-use crate::pattern::PatternError;
+use crate::pattern::{PatternError, PatternFileError};
 
 /// An error of a flatcut run.
 #[derive(Debug, thiserror::Error)]
@@ -128,6 +128,82 @@ pub enum Error {
         /// Every defect found.
         violations: Vec<Violation>,
     },
+    /// `flatcut nest` was given pattern inputs and benchmark instances together.
+    #[error(
+        "{} is a pattern input (a `.pattern.json` file or a folder of them) and {} a benchmark \
+         instance: nest one kind at a time",
+        pattern.display(),
+        instance.display()
+    )]
+    MixedNestInputs {
+        /// A pattern input.
+        pattern: PathBuf,
+        /// A benchmark instance.
+        instance: PathBuf,
+    },
+    /// A folder given to `flatcut nest` holds no pattern file.
+    #[error(
+        "{}: no `*.pattern.json` file in this folder: give a run's output folder or pattern files",
+        folder.display()
+    )]
+    NoPatternFiles {
+        /// The folder.
+        folder: PathBuf,
+    },
+    /// A pattern file or folder could not be read.
+    #[error("{}: cannot read: {source}", path.display())]
+    ReadPatterns {
+        /// The file or folder.
+        path: PathBuf,
+        /// The operating system's reason.
+        source: std::io::Error,
+    },
+    /// A pattern file is not one this flatcut reads.
+    #[error("{}: {source}", path.display())]
+    PatternFile {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: PatternFileError,
+    },
+    /// Two pattern files are of parts of one name: their sheets and reports would mix them up.
+    #[error(
+        "{}: part '{name}' has the name of the part of {}: give each part its own name",
+        path.display(),
+        earlier.display()
+    )]
+    DuplicatePattern {
+        /// The second pattern file.
+        path: PathBuf,
+        /// The name both parts have.
+        name: String,
+        /// The first pattern file.
+        earlier: PathBuf,
+    },
+    /// Pattern files of rejected parts were given without `--include-rejected`.
+    #[error(
+        "these parts were rejected (over tolerance, flipped triangles or overlap; their run's \
+         report.json says why) and are not nested unless --include-rejected is given: {}",
+        parts.iter().map(|(name, path)| format!("'{name}' ({})", path.display())).collect::<Vec<_>>().join(", ")
+    )]
+    RejectedPatterns {
+        /// Each rejected part's name and pattern file.
+        parts: Vec<(String, PathBuf)>,
+    },
+    /// Pattern files made with different pattern options, which the sheet drawings cannot mix.
+    #[error(
+        "{}: its cut contours are made with other pattern options (chord tolerance, seam \
+         allowance) than those of {}: nest them separately, or flatten them again with the same \
+         --dxf-chord and --seam-allowance",
+        path.display(),
+        earlier.display()
+    )]
+    PatternOptionsDiffer {
+        /// The pattern file whose options differ.
+        path: PathBuf,
+        /// The first pattern file.
+        earlier: PathBuf,
+    },
     /// An option is out of its range (found before any input is read).
     #[error("{option} {value}: {reason}")]
     InvalidOption {
@@ -141,7 +217,7 @@ pub enum Error {
     /// An input lies in the output folder under a name of the kind a run writes there.
     #[error(
         "{}: this input is in the output folder {} under a name of the kind a run writes \
-         (`<part>.mesh.obj`, `.pattern.obj`, `.dxf`, `.png`, `report.json`): the run would \
+         (`<part>.mesh.obj`, `.pattern.obj`, `.pattern.json`, `.dxf`, `.png`, `report.json`): the run would \
          overwrite or remove it; move it out of the folder or give another -o",
         input.display(),
         directory.display()

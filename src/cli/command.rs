@@ -26,7 +26,8 @@ enum Command {
     Run(RunArgs),
     /// Flatten parts and write their patterns, no nesting.
     Flatten(FlattenArgs),
-    /// Nest parts or a benchmark instance (ESICUP JSON) on sheets or a roll; writes OUT/nest.json.
+    /// Nest the pattern files of runs (by material and thickness) or benchmark instances (ESICUP
+    /// JSON) on sheets or a roll; writes the sheets and OUT/nest.json.
     Nest(NestArgs),
     /// Write the facet model of a part file or STEP file as OBJ.
     Tessellate(TessellateArgs),

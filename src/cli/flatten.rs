@@ -6,7 +6,6 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 
 use flatcut::cut::CutOptions;
-use flatcut::export::DxfVersion;
 use flatcut::flatten::{FlattenOptions, Solver};
 use flatcut::pattern::PatternOptions;
 use flatcut::pipeline::{PartOverrides, RunConfig, RunOptions};
@@ -15,6 +14,7 @@ use flatcut::units::Units;
 
 use super::job::execute;
 use super::outcome::Outcome;
+use super::parse::DxfVersionArg;
 
 /// Arguments shared by `flatten` and `run`.
 #[derive(Debug, Args)]
@@ -82,15 +82,6 @@ pub struct PartArgs {
     thickness: Option<f64>,
 }
 
-/// DXF versions on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-enum DxfVersionArg {
-    /// AutoCAD 2000.
-    R2000,
-    /// AutoCAD R12.
-    R12,
-}
-
 impl FlattenArgs {
     /// The output directory.
     pub fn output(&self) -> &Path {
@@ -144,10 +135,7 @@ impl PartArgs {
                 chord_tolerance: self.dxf_chord,
                 seam_allowance: self.seam_allowance,
             },
-            dxf_version: match self.dxf_version {
-                DxfVersionArg::R2000 => DxfVersion::R2000,
-                DxfVersionArg::R12 => DxfVersion::R12,
-            },
+            dxf_version: self.dxf_version.into(),
             ..RunConfig::default()
         })
     }

@@ -1,6 +1,7 @@
 //! The files of one flattened part, written into the output directory:
-//! `<part>.mesh.obj` and `<part>.pattern.obj` (same vertices and faces), `<part>.dxf` (the cut
-//! file; `<part>.REJECTED.dxf` for a rejected part) and `<part>.energy.png` (the energy map). Every file is written atomically.
+//! `<part>.mesh.obj` and `<part>.pattern.obj` (same vertices and faces), `<part>.pattern.json`
+//! (what nesting needs, [`PatternFile`]), `<part>.dxf` (the cut file; `<part>.REJECTED.dxf` for a
+//! rejected part) and `<part>.energy.png` (the energy map). Every file is written atomically.
 
 use std::path::Path;
 
@@ -17,7 +18,7 @@ use super::obj::{mesh_obj, pattern_obj};
 use crate::cut::UncutPattern;
 use crate::flatten::Flattened;
 use crate::mesh::FacetModel;
-use crate::pattern::{Pattern, VertexEnergy, fold_polylines};
+use crate::pattern::{Pattern, PatternFile, VertexEnergy, fold_polylines};
 
 /// How a part's files are drawn.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -41,12 +42,13 @@ pub struct PartFiles<'a> {
     pub uncut: Option<&'a UncutPattern>,
     /// The part's pattern: drawing, cut lines and energies.
     pub pattern: &'a Pattern,
+    /// The part's pattern file, written as `<part>.pattern.json`; a rejected part's cut file is
+    /// `<part>.REJECTED.dxf`.
+    pub pattern_file: &'a PatternFile,
     /// Number of crest-line cuts made.
     pub cuts: usize,
     /// The spring constant `C` the part was flattened with.
     pub spring_constant: f64,
-    /// Whether the part is rejected: its cut file is then `<part>.REJECTED.dxf`.
-    pub rejected: bool,
 }
 
 /// Writes every file of a flattened part into `directory`.
@@ -85,10 +87,17 @@ pub fn write_part_files(
         part: name.clone(),
         source,
     })?;
-    let files: [(&str, &[u8]); 4] = [
+    let pattern_json = part.pattern_file.to_json().map_err(ExportError::Json)?;
+    let cut_file = if part.pattern_file.rejected {
+        "REJECTED.dxf"
+    } else {
+        "dxf"
+    };
+    let files: [(&str, &[u8]); 5] = [
         ("mesh.obj", mesh.as_bytes()),
         ("pattern.obj", pattern.as_bytes()),
-        (if part.rejected { "REJECTED.dxf" } else { "dxf" }, &dxf),
+        ("pattern.json", pattern_json.as_bytes()),
+        (cut_file, &dxf),
         ("energy.png", &png),
     ];
     for (suffix, bytes) in files {

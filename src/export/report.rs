@@ -70,6 +70,8 @@ pub struct NestingReport {
     pub time_limit_seconds: f64,
     /// Seed of the search.
     pub seed: u64,
+    /// Work budget in collision queries, when given (`--work`).
+    pub work_limit: Option<u64>,
     /// Rotations allowed, degrees from each pattern's minimum-area bounding rectangle.
     pub rotations: Rotations,
     /// Whether small parts could go inside the holes of larger ones.

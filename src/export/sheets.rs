@@ -60,14 +60,20 @@ fn placed(drawing: &PartDrawing, placement: &Placement) -> PartDrawing {
     }
 }
 
-/// Writes `sheets/sheet-NNN.dxf` and `.png` for every sheet into `directory/sheets`, and
-/// returns the DXF paths relative to `directory`.
+/// The folder, in an output folder, that a run's sheet files go in.
+pub const SHEETS_FOLDER: &str = "sheets";
+
+/// Writes `sheet-NNN.dxf` and `.png` for every sheet into `directory/folder` (`folder` is
+/// [`SHEETS_FOLDER`] for a run, or a folder inside it), and returns the DXF paths relative to
+/// `directory`.
 pub fn write_sheet_files(
     directory: &Path,
+    folder: &Path,
     sheets: &[SheetDrawing],
     options: &DxfOptions,
 ) -> Result<Vec<PathBuf>, ExportError> {
-    let folder = directory.join("sheets");
+    let relative = folder;
+    let folder = directory.join(relative);
     std::fs::create_dir_all(&folder).map_err(|source| ExportError::Write {
         path: folder.clone(),
         source,
@@ -86,7 +92,7 @@ pub fn write_sheet_files(
             let path = folder.join(format!("{stem}.{extension}"));
             write_atomically(&path, bytes).map_err(|source| ExportError::Write { path, source })?;
         }
-        files.push(Path::new("sheets").join(format!("{stem}.dxf")));
+        files.push(relative.join(format!("{stem}.dxf")));
     }
     Ok(files)
 }

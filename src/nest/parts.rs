@@ -1,50 +1,57 @@
-//! Patterns as nesting items: each part's cut outline (with the seam allowance when one is
+//! Pattern files as nesting items: each part's cut outline (with the seam allowance when one is
 //! given), in millimetres, in its quantity.
 
 use glam::DVec2;
 
 use super::{NestItem, Rotations};
 use crate::geometry::long_side_of_smallest_rectangle;
-use crate::pattern::{Pattern, PatternError, PatternOptions, part_contours, sample_closed};
+use crate::pattern::{PatternError, PatternFile, part_contours, sample_closed};
 
 /// Largest step when a fitted contour (lines and arcs) is sampled back into a polygon for the
 /// nester, in mm: arcs are followed within a fraction of the chord tolerance.
 pub const OUTLINE_SAMPLE_STEP: f64 = 1.0;
 
-/// One nesting item per pattern, in mm: the contour that will be cut (offset by the seam
-/// allowance when `options` has one), with `rotations` taken from the part's minimum-area
-/// bounding rectangle ([`aligned_rotations`]), mirroring as given, and the pattern's grain
-/// direction ([`Pattern::grain_degrees`]), which overrides the rotations.
+/// One nesting item per pattern file, in mm: the contour that will be cut (made with the file's
+/// own chord tolerance and seam allowance), with `rotations` taken from the part's minimum-area
+/// bounding rectangle ([`aligned_rotations`]), mirroring as given, and the file's grain direction
+/// ([`PatternFile::grain_degrees`]), which overrides the rotations. `flatcut run` nests the
+/// pattern files it writes, and `flatcut nest` the ones it reads, through this one function.
 pub fn items_from_patterns<'a>(
-    patterns: impl IntoIterator<Item = &'a Pattern>,
-    options: &PatternOptions,
+    patterns: impl IntoIterator<Item = &'a PatternFile>,
     rotations: &Rotations,
     mirror_allowed: bool,
 ) -> Result<Vec<NestItem>, PatternError> {
     patterns
         .into_iter()
-        .map(|pattern| {
-            let drawing = &pattern.drawing;
-            let scale = drawing.units.millimetres();
-            let contours = part_contours(drawing, options)?;
-            let to_millimetres = |ring: Vec<DVec2>| ring.into_iter().map(|p| p * scale).collect();
-            let step = OUTLINE_SAMPLE_STEP / scale;
-            let outer: Vec<DVec2> = to_millimetres(sample_closed(&contours.outer, step));
-            Ok(NestItem {
-                name: drawing.name.clone(),
-                outer: outer.clone(),
-                holes: contours
-                    .holes
-                    .iter()
-                    .map(|hole| to_millimetres(sample_closed(hole, step)))
-                    .collect(),
-                quantity: drawing.quantity,
-                rotations: aligned_rotations(rotations, &outer),
-                mirror_allowed,
-                grain_degrees: pattern.grain_degrees,
-            })
-        })
+        .map(|pattern| nest_item(pattern, rotations, mirror_allowed))
         .collect()
+}
+
+/// The nesting item of one pattern file (see [`items_from_patterns`]).
+fn nest_item(
+    pattern: &PatternFile,
+    rotations: &Rotations,
+    mirror_allowed: bool,
+) -> Result<NestItem, PatternError> {
+    let drawing = &pattern.drawing;
+    let scale = drawing.units.millimetres();
+    let contours = part_contours(drawing, &pattern.options)?;
+    let to_millimetres = |ring: Vec<DVec2>| ring.into_iter().map(|p| p * scale).collect();
+    let step = OUTLINE_SAMPLE_STEP / scale;
+    let outer: Vec<DVec2> = to_millimetres(sample_closed(&contours.outer, step));
+    Ok(NestItem {
+        name: drawing.name.clone(),
+        holes: contours
+            .holes
+            .iter()
+            .map(|hole| to_millimetres(sample_closed(hole, step)))
+            .collect(),
+        quantity: drawing.quantity,
+        rotations: aligned_rotations(rotations, &outer),
+        outer,
+        mirror_allowed,
+        grain_degrees: pattern.grain_degrees,
+    })
 }
 
 /// `rotations` measured from the orientation that lays the side of the minimum-area bounding

@@ -3,12 +3,13 @@
 //! values, made by [`super::part_pattern`] from a flattened part.
 
 use glam::DVec2;
+use serde::{Deserialize, Serialize};
 
 use crate::geometry::deep_interior_point;
 use crate::units::Units;
 
 /// One part's flat pattern, at 1:1 in `units`: nominal geometry (the CAM adds kerf).
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct PartDrawing {
     /// Part name: labels the part and names its file.
     pub name: String,

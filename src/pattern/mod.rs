@@ -1,7 +1,8 @@
 //! The pattern stage (after cut, before nest): a flattened part's flat outline, holes, fold and
 //! cut lines, grain line and label anchor ([`part_pattern`]), and its cut contours: lines and
 //! true arcs fitted within the chord tolerance, offset by the seam allowance
-//! ([`part_contours`]). Nesting takes the contours that will be cut; export draws them.
+//! ([`part_contours`]). Nesting takes the contours that will be cut; export draws them. A
+//! [`PatternFile`] is what nesting needs of a pattern, as written to `<part>.pattern.json`.
 //!
 //! Contours are bulge polylines ([`BulgeVertex`]): a point and the bulge (`tan(θ/4)` of the arc
 //! to the next vertex, 0 for a line).
@@ -15,6 +16,7 @@ mod errors;
 mod fold_polylines;
 mod options;
 mod part_pattern;
+mod pattern_file;
 mod seam_allowance;
 
 pub use bulge::{
@@ -32,3 +34,6 @@ pub use errors::PatternError;
 pub use fold_polylines::fold_polylines;
 pub use options::PatternOptions;
 pub use part_pattern::{FlatShape, Pattern, PatternSource, part_pattern};
+pub use pattern_file::{
+    PATTERN_FILE_ENDING, PATTERN_FILE_FORMAT, PATTERN_FILE_VERSION, PatternFile, PatternFileError,
+};

@@ -104,6 +104,9 @@ pub struct NestingConfig {
     /// Search budget (a deterministic work budget, capped by the wall clock); default
     /// [`DEFAULT_RUN_TIME_LIMIT`].
     pub time_limit: Duration,
+    /// Work budget in collision queries, replacing the time budget × the nominal rate (the
+    /// wall clock still caps it): the same layout on any machine. Default `None`.
+    pub work_limit: Option<u64>,
     /// Seed of the search; default [`DEFAULT_SEED`].
     pub seed: u64,
     /// Rotations allowed for every part, measured from its minimum-area bounding rectangle; a
@@ -120,6 +123,7 @@ impl Default for NestingConfig {
         Self {
             gap: DEFAULT_RUN_GAP,
             time_limit: DEFAULT_RUN_TIME_LIMIT,
+            work_limit: None,
             seed: DEFAULT_SEED,
             rotations: Rotations::Fixed(DEFAULT_RUN_ROTATIONS.to_vec()),
             in_holes: false,
@@ -136,9 +140,64 @@ impl NestingConfig {
             gap: self.gap,
             time_limit: self.time_limit,
             seed: self.seed,
-            work_limit: None,
+            work_limit: self.work_limit,
             in_holes: self.in_holes,
         }
+    }
+
+    /// Checks the nesting options on `stock` before any input is read: the stock's sizes
+    /// (positive, finite, at most [`MAXIMUM_STOCK_MM`]), the gap and, with stock, the rotations.
+    /// The error names the command-line option.
+    pub fn validate(&self, stock: Option<Stock>) -> Result<(), Error> {
+        let size = |value: f64| value.is_finite() && value > 0.0 && value <= MAXIMUM_STOCK_MM;
+        let size_reason = |dimension: &str, value: f64| {
+            format!(
+                "the {dimension} is {} mm: give a positive size in mm, at most {MAXIMUM_STOCK_MM} mm",
+                figure(value)
+            )
+        };
+        match stock {
+            Some(Stock::Sheets { width, height }) => {
+                for (dimension, value) in [("sheet width", width), ("sheet height", height)] {
+                    if !size(value) {
+                        return invalid(
+                            "--sheet",
+                            format!("{}x{}", figure(width), figure(height)),
+                            size_reason(dimension, value),
+                        );
+                    }
+                }
+            }
+            Some(Stock::Roll { width }) if !size(width) => {
+                return invalid("--roll", figure(width), size_reason("roll width", width));
+            }
+            _ => {}
+        }
+        let gap = self.gap;
+        if !(gap.is_finite() && gap >= 0.0) {
+            return invalid(
+                "--gap",
+                gap.to_string(),
+                "give a gap of 0 mm or more".to_string(),
+            );
+        }
+        if stock.is_some() && self.rotations.angles().is_none() {
+            let (value, reason) = match &self.rotations {
+                Rotations::Step(step) => (
+                    format!("step:{step}"),
+                    format!(
+                        "rotation step {step} degrees is invalid: give a step in [{}, 360]",
+                        crate::nest::MINIMUM_ROTATION_STEP_DEGREES
+                    ),
+                ),
+                other => (
+                    format!("{other:?}"),
+                    "give at least one angle, every one finite".to_string(),
+                ),
+            };
+            return invalid("--rotations", value, reason);
+        }
+        Ok(())
     }
 }
 
@@ -181,17 +240,9 @@ impl Default for RunConfig {
 
 impl RunConfig {
     /// Checks every option that can be checked before any input is read: the tolerance in
-    /// (0, [`MAXIMUM_TOLERANCE`]], the pattern's lengths, the stock's sizes (positive, finite, at
-    /// most [`MAXIMUM_STOCK_MM`]), the gap and the rotations. The error names the command-line
-    /// option.
+    /// (0, [`MAXIMUM_TOLERANCE`]], the pattern's lengths and the nesting options on the stock
+    /// ([`NestingConfig::validate`]). The error names the command-line option.
     pub fn validate(&self) -> Result<(), Error> {
-        let invalid = |option: &'static str, value: String, reason: String| {
-            Err(Error::InvalidOption {
-                option,
-                value,
-                reason,
-            })
-        };
         let tolerance = self.options.flatten.tolerance;
         if !(tolerance.is_finite() && tolerance > 0.0 && tolerance <= MAXIMUM_TOLERANCE) {
             return invalid(
@@ -202,56 +253,17 @@ impl RunConfig {
         }
         self.pattern.validate()?;
         self.options.overrides.validate()?;
-        let size = |value: f64| value.is_finite() && value > 0.0 && value <= MAXIMUM_STOCK_MM;
-        let size_reason = |dimension: &str, value: f64| {
-            format!(
-                "the {dimension} is {} mm: give a positive size in mm, at most {MAXIMUM_STOCK_MM} mm",
-                figure(value)
-            )
-        };
-        match self.stock {
-            Some(Stock::Sheets { width, height }) => {
-                for (dimension, value) in [("sheet width", width), ("sheet height", height)] {
-                    if !size(value) {
-                        return invalid(
-                            "--sheet",
-                            format!("{}x{}", figure(width), figure(height)),
-                            size_reason(dimension, value),
-                        );
-                    }
-                }
-            }
-            Some(Stock::Roll { width }) if !size(width) => {
-                return invalid("--roll", figure(width), size_reason("roll width", width));
-            }
-            _ => {}
-        }
-        let gap = self.nesting.gap;
-        if !(gap.is_finite() && gap >= 0.0) {
-            return invalid(
-                "--gap",
-                gap.to_string(),
-                "give a gap of 0 mm or more".to_string(),
-            );
-        }
-        if self.stock.is_some() && self.nesting.rotations.angles().is_none() {
-            let (value, reason) = match &self.nesting.rotations {
-                Rotations::Step(step) => (
-                    format!("step:{step}"),
-                    format!(
-                        "rotation step {step} degrees is invalid: give a step in [{}, 360]",
-                        crate::nest::MINIMUM_ROTATION_STEP_DEGREES
-                    ),
-                ),
-                other => (
-                    format!("{other:?}"),
-                    "give at least one angle, every one finite".to_string(),
-                ),
-            };
-            return invalid("--rotations", value, reason);
-        }
-        Ok(())
+        self.nesting.validate(self.stock)
     }
+}
+
+/// The error of an option out of its range.
+fn invalid(option: &'static str, value: String, reason: String) -> Result<(), Error> {
+    Err(Error::InvalidOption {
+        option,
+        value,
+        reason,
+    })
 }
 
 /// A figure as given, or in exponent form when it is huge (`1e300`, not 301 digits).

@@ -2,7 +2,9 @@
 //! their patterns and the nested layout (checked independently), and [`write_outputs`] writes the
 //! output folder through [`crate::export`]. The stages one part goes through are also callable
 //! on their own: [`load_parts`] reads an input into parts (ingest, tessellate, validate,
-//! stiffness) and [`flatten_part`] flattens, cuts and makes the pattern of one.
+//! stiffness) and [`flatten_part`] flattens, cuts and makes the pattern of one. The fan-in,
+//! [`nest_patterns`] (and [`nest_patterns_into`] an output folder), nests the pattern files runs
+//! wrote, grouped by material and thickness, without flattening again.
 
 mod benchmark;
 mod config;
@@ -12,6 +14,7 @@ mod load;
 mod output_folder;
 mod outputs;
 mod part_result;
+mod pattern_nest;
 mod rejection;
 mod report;
 mod run;
@@ -30,6 +33,14 @@ pub use output_folder::{
 };
 pub use outputs::{run_into, write_outputs};
 pub use part_result::PartResult;
+pub use pattern_nest::{
+    NestInputKind, NestedGroup, PatternNestConfig, PatternNestOutput, SourcedPattern,
+    group_folder_name, nest_input_kind, nest_loaded, nest_patterns, nest_patterns_into,
+    pattern_files, read_pattern_file, read_patterns, write_pattern_nest,
+};
 pub use rejection::rejection_reasons;
-pub use report::{part_report, report_options};
-pub use run::{NestedLayout, PAPER_SOLVER_ADVISED_TRIANGLES, RunOutput, load_all, run, run_loaded};
+pub use report::{nesting_report, part_report, report_options};
+pub use run::{
+    NestedLayout, PAPER_SOLVER_ADVISED_TRIANGLES, RunOutput, load_all, nest_checked, run,
+    run_loaded,
+};

@@ -13,17 +13,24 @@ use std::sync::{Arc, Mutex, PoisonError};
 
 use crate::error::Error;
 use crate::export::write_atomically;
+use crate::pattern::PATTERN_FILE_ENDING;
 
 /// Name of the file, in the output folder, listing every file the last complete run wrote.
 pub const MANIFEST_FILE: &str = ".flatcut-manifest.json";
 
 /// Endings of the file names a run writes into its output folder (`<part>.mesh.obj`,
-/// `<part>.pattern.obj`, `<part>.dxf`, `<part>.REJECTED.dxf`, `<part>.energy.png`, and in
-/// `sheets/` `sheet-NNN.dxf` and `.png`).
-const WRITTEN_ENDINGS: [&str; 4] = [".mesh.obj", ".pattern.obj", ".dxf", ".png"];
+/// `<part>.pattern.obj`, `<part>.pattern.json`, `<part>.dxf`, `<part>.REJECTED.dxf`,
+/// `<part>.energy.png`, and in `sheets/` `sheet-NNN.dxf` and `.png`).
+const WRITTEN_ENDINGS: [&str; 5] = [
+    ".mesh.obj",
+    ".pattern.obj",
+    PATTERN_FILE_ENDING,
+    ".dxf",
+    ".png",
+];
 
-/// Whole names a run writes into its output folder.
-const WRITTEN_NAMES: [&str; 2] = ["report.json", MANIFEST_FILE];
+/// Whole names a run (or `flatcut nest`) writes into its output folder.
+const WRITTEN_NAMES: [&str; 3] = ["report.json", "nest.json", MANIFEST_FILE];
 
 /// Refuses an input that lies in `directory` (or its `sheets/` folder) under a name of the kind a
 /// run writes or replaces there: the run would overwrite or remove it. Nothing is created; an
@@ -288,16 +295,14 @@ fn read_manifest(directory: &Path) -> Vec<PathBuf> {
         .unwrap_or_default()
 }
 
-/// Whether `path` is a name a run writes: a file of the folder or of `sheets/`, of a kind a run
-/// writes.
+/// Whether `path` is a name a run writes: a file of the folder, of `sheets/` or of a folder in
+/// `sheets/` (`flatcut nest` puts each group's sheets in one), of a kind a run writes.
 fn is_run_file(path: &Path) -> bool {
+    use std::path::Component::Normal;
     let components: Vec<_> = path.components().collect();
     let in_place = match components.as_slice() {
-        [std::path::Component::Normal(_)] => true,
-        [
-            std::path::Component::Normal(folder),
-            std::path::Component::Normal(_),
-        ] => *folder == "sheets",
+        [Normal(_)] => true,
+        [Normal(folder), Normal(_)] | [Normal(folder), Normal(_), Normal(_)] => *folder == "sheets",
         _ => false,
     };
     let name = path
@@ -326,6 +331,25 @@ mod tests {
             Err(Error::InputInOutput { .. })
         ));
         assert!(check_inputs_outside(&directory.path().join("missing"), &[]).is_ok());
+    }
+
+    #[test]
+    fn the_sheets_of_a_nest_group_are_run_files_and_nothing_deeper() {
+        for name in [
+            "sheets/steel-2mm/sheet-001.dxf",
+            "nest.json",
+            "a.pattern.json",
+        ] {
+            assert!(is_run_file(Path::new(name)), "{name}");
+        }
+        for name in [
+            "parts/a/a.dxf",
+            "sheets/a/b/sheet-001.dxf",
+            "../a.dxf",
+            "notes.txt",
+        ] {
+            assert!(!is_run_file(Path::new(name)), "{name}");
+        }
     }
 
     fn stage(folder: &OutputFolder, files: &[&str]) {

@@ -1,20 +1,21 @@
-//! Writing a run's output folder: every part's files (`<part>.mesh.obj`, `.pattern.obj`, `.dxf`,
-//! `.energy.png`), the nested sheets (`sheets/sheet-NNN.dxf` and `.png`) and `report.json`.
+//! Writing a run's output folder: every part's files (`<part>.mesh.obj`, `.pattern.obj`,
+//! `.pattern.json`, `.dxf`, `.energy.png`), the nested sheets (`sheets/sheet-NNN.dxf` and `.png`)
+//! and `report.json`.
 
 use std::path::Path;
 
 use crate::error::Error;
 use crate::export::DxfOptions;
 use crate::export::part_files::{PartFileOptions, PartFiles, write_part_files};
-use crate::export::report::{Report, sheet_reports};
-use crate::export::sheets::{sheet_drawings, write_sheet_files};
+use crate::export::report::{Report, SheetReport, sheet_reports};
+use crate::export::sheets::{SHEETS_FOLDER, sheet_drawings, write_sheet_files};
 use crate::pattern::PartDrawing;
 use crate::progress::Progress;
 
 use super::config::RunConfig;
 use super::output_folder::{InterruptHandle, OutputFolder, check_inputs_outside};
 use super::report::{part_report, report_options};
-use super::run::RunOutput;
+use super::run::{NestedLayout, RunOutput};
 use super::run::{load_all, run_loaded};
 
 /// Runs the whole pipeline into the output folder `directory`, safely: checks the options and
@@ -60,34 +61,27 @@ pub fn write_outputs(
         dxf,
         energy: config.energy_png,
     };
-    for part in &output.parts {
+    for (part, pattern_file) in output.parts.iter().zip(&output.patterns) {
         let files = PartFiles {
             source: &part.job.source,
             model: &part.job.model,
             flattened: &part.flattened,
             uncut: part.uncut.as_ref(),
             pattern: &part.pattern,
+            pattern_file,
             cuts: part.cuts.len(),
             spring_constant: config.options.flatten.spring_constant,
-            rejected: !super::rejection::rejection_reasons(
-                &part.flattened.stats.accuracy,
-                config.options.flatten.tolerance,
-            )
-            .is_empty(),
         };
         write_part_files(directory, &files, &file_options)?;
     }
     let sheets = match &output.nesting {
         Some(nested) => {
             let drawings: Vec<PartDrawing> = output
-                .parts
+                .patterns
                 .iter()
-                .map(|part| part.pattern.drawing.clone())
+                .map(|pattern| pattern.drawing.clone())
                 .collect();
-            let sheets = sheet_drawings(&drawings, &nested.layout);
-            let files = write_sheet_files(directory, &sheets, &dxf)?;
-            let names: Vec<String> = nested.items.iter().map(|item| item.name.clone()).collect();
-            sheet_reports(&nested.layout, &names, &files)
+            write_sheets(directory, Path::new(SHEETS_FOLDER), &drawings, nested, &dxf)?
         }
         None => Vec::new(),
     };
@@ -100,4 +94,19 @@ pub fn write_outputs(
     report.sheets = sheets;
     report.write(directory)?;
     Ok(report)
+}
+
+/// Writes the sheets of a nested layout of `drawings` (item `i` is `drawings[i]`) into
+/// `directory/folder` and returns their report entries (file names relative to `directory`).
+pub(super) fn write_sheets(
+    directory: &Path,
+    folder: &Path,
+    drawings: &[PartDrawing],
+    nested: &NestedLayout,
+    dxf: &DxfOptions,
+) -> Result<Vec<SheetReport>, Error> {
+    let sheets = sheet_drawings(drawings, &nested.layout);
+    let files = write_sheet_files(directory, folder, &sheets, dxf)?;
+    let names: Vec<String> = nested.items.iter().map(|item| item.name.clone()).collect();
+    Ok(sheet_reports(&nested.layout, &names, &files))
 }

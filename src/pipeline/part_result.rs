@@ -4,9 +4,10 @@
 
 use crate::cut::{Cut, CutStop, Seam, UncutPattern};
 use crate::flatten::Flattened;
-use crate::pattern::Pattern;
+use crate::pattern::{Pattern, PatternFile, PatternOptions};
 
 use super::load::PartJob;
+use super::rejection::rejection_reasons;
 
 /// A flattened part.
 #[derive(Debug, Clone)]
@@ -29,4 +30,23 @@ pub struct PartResult {
     pub cut_edges: Vec<usize>,
     /// The part's pattern: what is cut, drawn and nested.
     pub pattern: Pattern,
+}
+
+impl PartResult {
+    /// The part's pattern file (`<part>.pattern.json`): its drawing and grain direction, its
+    /// thickness in mm, the pattern `options` its cut contours are made with, and whether it is
+    /// rejected at `tolerance` ([`rejection_reasons`]).
+    pub fn pattern_file(&self, options: &PatternOptions, tolerance: f64) -> PatternFile {
+        let job = &self.job;
+        PatternFile {
+            drawing: self.pattern.drawing.clone(),
+            grain_degrees: self.pattern.grain_degrees,
+            thickness_mm: job
+                .attributes
+                .thickness
+                .map(|thickness| thickness * job.units.millimetres()),
+            options: *options,
+            rejected: !rejection_reasons(&self.flattened.stats.accuracy, tolerance).is_empty(),
+        }
+    }
 }

@@ -6,7 +6,9 @@ use crate::export::report::{
 };
 use crate::flatten::fold_lines::fold_line_lengths;
 
-use super::config::RunConfig;
+use crate::nest::Stock;
+
+use super::config::{NestingConfig, RunConfig};
 use super::part_result::PartResult;
 
 /// The options the report records.
@@ -20,18 +22,23 @@ pub fn report_options(config: &RunConfig) -> ReportOptions {
         pattern: config.pattern,
         dxf_version: config.dxf_version,
         energy_png: config.energy_png,
-        nesting: config.stock.map(|stock| {
-            let nesting = &config.nesting;
-            NestingReport {
-                stock,
-                gap: nesting.gap,
-                time_limit_seconds: nesting.time_limit.as_secs_f64(),
-                seed: nesting.seed,
-                rotations: nesting.rotations.clone(),
-                in_holes: nesting.in_holes,
-                mirror: nesting.mirror,
-            }
-        }),
+        nesting: config
+            .stock
+            .map(|stock| nesting_report(stock, &config.nesting)),
+    }
+}
+
+/// The nesting options a report records: `nesting` on `stock`.
+pub fn nesting_report(stock: Stock, nesting: &NestingConfig) -> NestingReport {
+    NestingReport {
+        stock,
+        gap: nesting.gap,
+        time_limit_seconds: nesting.time_limit.as_secs_f64(),
+        seed: nesting.seed,
+        work_limit: nesting.work_limit,
+        rotations: nesting.rotations.clone(),
+        in_holes: nesting.in_holes,
+        mirror: nesting.mirror,
     }
 }
 

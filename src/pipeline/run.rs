@@ -6,10 +6,11 @@ use crate::error::Error;
 use crate::flatten::Solver;
 use crate::nest::parts::items_from_patterns;
 use crate::nest::verify::verify;
-use crate::nest::{NestItem, NestLayout, nest};
+use crate::nest::{NestItem, NestLayout, Stock, nest};
+use crate::pattern::PatternFile;
 use crate::progress::Progress;
 
-use super::config::RunConfig;
+use super::config::{NestingConfig, RunConfig};
 use super::flatten_part::flatten_part;
 use super::load::{PartJob, load_parts};
 use super::part_result::PartResult;
@@ -23,6 +24,9 @@ pub const PAPER_SOLVER_ADVISED_TRIANGLES: usize = 5_000;
 pub struct RunOutput {
     /// Every part, flattened, cut and made a pattern, in input order.
     pub parts: Vec<PartResult>,
+    /// Every part's pattern file (`patterns[i]` is part `i`'s): what the run nests and writes
+    /// as `<part>.pattern.json`.
+    pub patterns: Vec<PatternFile>,
     /// The nested layout, when the run had stock.
     pub nesting: Option<NestedLayout>,
 }
@@ -83,25 +87,37 @@ pub fn run_loaded(
         .into_iter()
         .map(|job| flatten_part(job, &config.options, progress))
         .collect::<Result<Vec<PartResult>, _>>()?;
+    let tolerance = config.options.flatten.tolerance;
+    let patterns: Vec<PatternFile> = parts
+        .iter()
+        .map(|part| part.pattern_file(&config.pattern, tolerance))
+        .collect();
     let nesting = match config.stock {
-        Some(stock) => {
-            let nesting = &config.nesting;
-            let items = items_from_patterns(
-                parts.iter().map(|part| &part.pattern),
-                &config.pattern,
-                &nesting.rotations,
-                nesting.mirror,
-            )?;
-            let layout = nest(&items, &nesting.nest_options(stock), progress)?;
-            let violations = verify(&items, &layout);
-            if !violations.is_empty() {
-                return Err(Error::LayoutRejected { violations });
-            }
-            Some(NestedLayout { items, layout })
-        }
+        Some(stock) => Some(nest_checked(&patterns, stock, &config.nesting, progress)?),
         None => None,
     };
-    Ok(RunOutput { parts, nesting })
+    Ok(RunOutput {
+        parts,
+        patterns,
+        nesting,
+    })
+}
+
+/// Nests `patterns` on `stock` ([`items_from_patterns`], [`nest`]) and checks the layout
+/// independently ([`verify`]): a layout with a defect is an error, never a result.
+pub fn nest_checked<'a>(
+    patterns: impl IntoIterator<Item = &'a PatternFile>,
+    stock: Stock,
+    nesting: &NestingConfig,
+    progress: &dyn Progress,
+) -> Result<NestedLayout, Error> {
+    let items = items_from_patterns(patterns, &nesting.rotations, nesting.mirror)?;
+    let layout = nest(&items, &nesting.nest_options(stock), progress)?;
+    let violations = verify(&items, &layout);
+    if !violations.is_empty() {
+        return Err(Error::LayoutRejected { violations });
+    }
+    Ok(NestedLayout { items, layout })
 }
 
 /// Refuses two parts of the same name: the second's files would overwrite the first's.

@@ -4,6 +4,7 @@ mod architecture;
 mod bad_inputs;
 mod batch;
 mod energy_png;
+mod fan_in;
 mod flatten;
 mod golden;
 mod nesting;

@@ -117,6 +117,7 @@ fn a_second_run_replaces_the_first_as_one_set() {
         "cone_ring.dxf",
         "cone_ring.energy.png",
         "cone_ring.mesh.obj",
+        "cone_ring.pattern.json",
         "cone_ring.pattern.obj",
         "notes.txt",
         "report.json",
@@ -124,7 +125,7 @@ fn a_second_run_replaces_the_first_as_one_set() {
     assert_eq!(files(&folder), expected);
     let manifest = std::fs::read_to_string(folder.join(".flatcut-manifest.json")).expect("read");
     let manifest: serde_json::Value = serde_json::from_str(&manifest).expect("JSON");
-    assert_eq!(manifest["files"].as_array().expect("a list").len(), 5);
+    assert_eq!(manifest["files"].as_array().expect("a list").len(), 6);
 }
 
 /// A pipe whose reading end is closed: writing to it fails with a broken pipe.
