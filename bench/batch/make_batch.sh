@@ -13,7 +13,9 @@ dir=${1:?usage: make_batch.sh DIR [COUNT]}
 count=${2:-120}
 here=$(cd "$(dirname "$0")/../.." && pwd)
 mkdir -p "$dir/parts" "$dir/meshes"
+# Each material with its sheet thickness (mm; none for cloth): the fan-in nest groups by both.
 materials=(steel aluminium "stainless steel" cotton)
+thicknesses=(1.5 2 1 "")
 meshes=(saddle cone_frustum cylinder_segment cone_ring)
 
 cylinder() { # name radius height sweep
@@ -31,8 +33,8 @@ transition() { # name width diameter height
     for ((i = 0; i < count; i++)); do
         name=$(printf 'part-%03d' "$i")
         material=${materials[$((i % ${#materials[@]}))]}
-        quantity=$((1 + i % 4))
-        thickness=$(printf '%s.%s' $((1 + i % 3)) $((i % 2 * 5)))
+        thickness=${thicknesses[$((i % ${#materials[@]}))]}
+        quantity=$((1 + i % 3))
         case $((i % 5)) in
             0) cylinder "$name" $((100 + i)) $((150 + 2 * i)) $((60 + i % 90)) > "$dir/parts/$name.toml"
                input=parts/$name.toml ;;

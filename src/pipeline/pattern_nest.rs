@@ -114,20 +114,37 @@ pub fn nest_input_kind(inputs: &[PathBuf]) -> Result<NestInputKind, Error> {
 }
 
 /// The pattern files of `inputs` in order: a file as given, a folder as every `*.pattern.json`
-/// directly inside it, in file-name order (a folder without one is refused).
-pub fn pattern_files(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
+/// directly inside it, in file-name order. A folder without one (the folder of a batch part that
+/// was refused) is skipped with a warning through `progress`; none at all is refused.
+pub fn pattern_files(inputs: &[PathBuf], progress: &dyn Progress) -> Result<Vec<PathBuf>, Error> {
     let mut files = Vec::new();
+    let mut empty = Vec::new();
     for input in inputs {
         if input.is_dir() {
-            files.extend(pattern_files_in(input)?);
+            let found = pattern_files_in(input)?;
+            if found.is_empty() {
+                empty.push(input);
+            }
+            files.extend(found);
         } else {
             files.push(input.clone());
         }
     }
+    if let (true, Some(folder)) = (files.is_empty(), empty.first()) {
+        return Err(Error::NoPatternFiles {
+            folder: folder.to_path_buf(),
+        });
+    }
+    for folder in empty {
+        progress.warn(&format!(
+            "{}: no `*.pattern.json` file in this folder (a part that was refused?): skipped",
+            folder.display()
+        ));
+    }
     Ok(files)
 }
 
-/// Every `*.pattern.json` file directly inside `folder`, sorted by file name.
+/// Every `*.pattern.json` file directly inside `folder`, sorted by file name (none, maybe).
 fn pattern_files_in(folder: &Path) -> Result<Vec<PathBuf>, Error> {
     let unreadable = |source| Error::ReadPatterns {
         path: folder.to_path_buf(),
@@ -145,11 +162,6 @@ fn pattern_files_in(folder: &Path) -> Result<Vec<PathBuf>, Error> {
         {
             files.push(entry.path());
         }
-    }
-    if files.is_empty() {
-        return Err(Error::NoPatternFiles {
-            folder: folder.to_path_buf(),
-        });
     }
     files.sort_by(|a, b| a.file_name().cmp(&b.file_name()));
     Ok(files)
@@ -252,7 +264,8 @@ pub fn nest_patterns(
     progress: &dyn Progress,
 ) -> Result<PatternNestOutput, Error> {
     let stock = validate(config)?;
-    let patterns = read_patterns(&pattern_files(&config.inputs)?, config.include_rejected)?;
+    let files = pattern_files(&config.inputs, progress)?;
+    let patterns = read_patterns(&files, config.include_rejected)?;
     nest_loaded(patterns, stock, &config.nesting, progress)
 }
 
@@ -447,7 +460,7 @@ pub fn nest_patterns_into(
     on_staging: &dyn Fn(InterruptHandle),
 ) -> Result<(PatternNestOutput, String), Error> {
     let stock = validate(config)?;
-    let files = pattern_files(&config.inputs)?;
+    let files = pattern_files(&config.inputs, progress)?;
     check_inputs_outside(directory, &files)?;
     let patterns = read_patterns(&files, config.include_rejected)?;
     let folder = OutputFolder::prepare(directory)?;

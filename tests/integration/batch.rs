@@ -306,3 +306,52 @@ fn the_gnu_parallel_recipe_gives_the_unsharded_batch() {
     assert!(result.status.success(), "{}", stderr(&result));
     assert_same_tree(&whole, &sharded);
 }
+
+#[test]
+fn the_fan_in_nest_of_a_batch_is_the_run_of_its_parts() {
+    let folder = tempfile::tempdir().expect("temporary folder");
+    let parts = [sample("cone_frustum.obj"), sample("cylinder_segment.obj")];
+    let parts: Vec<&str> = parts.iter().map(|path| path.to_str().unwrap()).collect();
+    let refused = sample("bad/degenerate_grid.toml");
+    let output = folder.path().join("batch");
+    let mut inputs = parts.clone();
+    inputs.push(refused.to_str().unwrap());
+    assert_eq!(
+        batch(&inputs, &output).status.code(),
+        Some(1),
+        "a refused part"
+    );
+
+    let nesting = ["--sheet", "600x400", "--work", "20000", "--seed", "3"];
+    let folders: Vec<String> = ["cone_frustum", "cylinder_segment", "degenerate_grid"]
+        .iter()
+        .map(|name| {
+            output
+                .join("parts")
+                .join(name)
+                .to_string_lossy()
+                .into_owned()
+        })
+        .collect();
+    let nested = folder.path().join("nested");
+    let mut arguments: Vec<&str> = vec!["nest"];
+    arguments.extend(folders.iter().map(String::as_str));
+    arguments.extend_from_slice(&nesting);
+    arguments.extend_from_slice(&["-o", nested.to_str().unwrap()]);
+    let fan_in = flatcut(&arguments);
+    let said = stderr(&fan_in);
+    assert!(fan_in.status.success(), "{said}");
+    assert!(
+        said.contains("degenerate_grid: no `*.pattern.json`"),
+        "the refused part is skipped: {said}"
+    );
+
+    let run = folder.path().join("run");
+    let mut arguments: Vec<&str> = vec!["run"];
+    arguments.extend_from_slice(&parts);
+    arguments.extend_from_slice(&nesting);
+    arguments.extend_from_slice(&["-o", run.to_str().unwrap(), "--no-timings"]);
+    let whole = flatcut(&arguments);
+    assert!(whole.status.success(), "{}", stderr(&whole));
+    assert_same_tree(&run.join("sheets"), &nested.join("sheets"));
+}
