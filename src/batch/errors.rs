@@ -68,6 +68,9 @@ pub enum BatchError {
         /// Why.
         source: io::Error,
     },
+    /// The part's worker was stopped by a signal: its folder keeps its previous run.
+    #[error("interrupted: the part's folder keeps its previous run")]
+    Interrupted,
     /// A task file handed to a worker is not one.
     #[error("not a batch task: {0}")]
     Task(String),

@@ -249,9 +249,12 @@ impl WorkerRun<'_> {
         let task = self.task;
         let written =
             PartRecord::read(&task.folder).filter(|record| &record.fingerprint == self.fingerprint);
+        // A Ctrl-C reaches the workers too: one may end before the batch sees its stop.
+        let stopped = self.stop.load(Ordering::SeqCst);
         let (status, reason) = match (end, written) {
             (WorkerEnd::Exited(_), Some(record)) => return Ok(Some(record)),
             (WorkerEnd::Stopped, _) => return Ok(None),
+            (WorkerEnd::Exited(_), None) if stopped => return Ok(None),
             (WorkerEnd::TimedOut, _) => (
                 PartStatus::TimedOut,
                 format!(

@@ -9,6 +9,7 @@ use std::sync::{Mutex, PoisonError};
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
+use crate::error::Error;
 use crate::export::DxfVersion;
 use crate::export::energy_png::EnergyPngOptions;
 use crate::ingest::cut_sidecar_path;
@@ -190,7 +191,7 @@ impl Progress for WarningCollector {
 /// old record, runs the whole pipeline into the folder ([`run_into`], handing `on_staging` the
 /// handle that abandons it), and writes and returns the part's record: ok or over tolerance
 /// with its patterns' figures, or refused with the reason (the previous run's files are then
-/// removed, so that no stale outputs look current).
+/// removed, so that no stale outputs look current). An interrupted part writes no record.
 pub fn run_part_task(
     task: &PartTask,
     on_staging: &dyn Fn(InterruptHandle),
@@ -223,6 +224,7 @@ pub fn run_part_task(
                 warnings: Vec::new(),
             }
         }
+        Err(Error::Interrupted) => return Err(BatchError::Interrupted),
         Err(error) => {
             remove_previous_run(&task.folder).map_err(write_error)?;
             task.record_without_outputs(fingerprint, PartStatus::Refused, error_chain(&error))

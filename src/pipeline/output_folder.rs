@@ -104,13 +104,31 @@ impl InterruptHandle {
         let mut phase = self.phase.lock().unwrap_or_else(PoisonError::into_inner);
         match *phase {
             Phase::Writing => {
-                // Best effort: a staging folder left behind is removed by the next run.
-                let _ = fs::remove_dir_all(&self.staging);
+                remove_staging(&self.staging);
                 *phase = Phase::Finished;
                 true
             }
             Phase::Replacing => false,
             Phase::Finished => true,
+        }
+    }
+}
+
+/// Removes a staging folder the run may still be writing into from another thread: renamed
+/// first (still a staging folder's name), so that no new file lands in it by its path, then
+/// removed. Best effort: a staging folder left behind is removed by the next run.
+fn remove_staging(staging: &Path) {
+    let mut abandoned = staging.as_os_str().to_owned();
+    abandoned.push("-abandoned");
+    let abandoned = PathBuf::from(abandoned);
+    let doomed = if fs::rename(staging, &abandoned).is_ok() {
+        abandoned.as_path()
+    } else {
+        staging
+    };
+    for _ in 0..3 {
+        if fs::remove_dir_all(doomed).is_ok() || !doomed.exists() {
+            return;
         }
     }
 }
@@ -144,6 +162,12 @@ impl OutputFolder {
             staging,
             phase: Arc::new(Mutex::new(Phase::Writing)),
         })
+    }
+
+    /// Whether the run was abandoned ([`InterruptHandle::abandon`]): an error it meets while
+    /// writing is then the interruption's doing.
+    pub fn abandoned(&self) -> bool {
+        *self.phase.lock().unwrap_or_else(PoisonError::into_inner) == Phase::Finished
     }
 
     /// The staging folder: the run writes its files here.

@@ -24,7 +24,8 @@ use super::run::{load_all, run_loaded};
 /// hands `on_staging` the handle that abandons the run (for a signal handler); then flattens,
 /// cuts and nests, writes every file into the staging folder and replaces the previous run's
 /// files with them as one set ([`OutputFolder::commit`]). On an error the folder keeps the
-/// previous run. Returns what the run made and its report.
+/// previous run; an error met after the run was abandoned is [`Error::Interrupted`]. Returns
+/// what the run made and its report.
 pub fn run_into(
     config: &RunConfig,
     directory: &Path,
@@ -36,10 +37,19 @@ pub fn run_into(
     let jobs = load_all(config, progress)?;
     let folder = OutputFolder::prepare(directory)?;
     on_staging(folder.interrupt_handle());
-    let output = run_loaded(jobs, config, progress)?;
-    let report = write_outputs(&output, config, folder.staging())?;
-    folder.commit()?;
-    Ok((output, report))
+    let written = run_loaded(jobs, config, progress).and_then(|output| {
+        let report = write_outputs(&output, config, folder.staging())?;
+        Ok((output, report))
+    });
+    // A signal that abandoned the staging folder makes the writes fail: that is no input's fault.
+    match written {
+        Err(_) if folder.abandoned() => Err(Error::Interrupted),
+        Err(error) => Err(error),
+        Ok((output, report)) => {
+            folder.commit()?;
+            Ok((output, report))
+        }
+    }
 }
 
 /// Writes the output folder of a run into `directory` (created if missing) and returns the
