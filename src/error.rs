@@ -228,6 +228,12 @@ pub enum Error {
         /// The output folder.
         directory: PathBuf,
     },
+    /// Several inputs cannot be used: every one of them, in input order.
+    #[error("{} inputs cannot be used:\n{}", errors.len(), bulleted(errors))]
+    Inputs {
+        /// Each input's error.
+        errors: Vec<Error>,
+    },
     /// The run was interrupted (SIGINT or SIGTERM) before it replaced the output folder's files.
     #[error("interrupted: the output folder keeps the previous run")]
     Interrupted,
@@ -242,4 +248,13 @@ pub enum Error {
     /// An output file could not be written or drawn.
     #[error(transparent)]
     Export(#[from] ExportError),
+}
+
+/// Each error on a line of its own, indented: `  - message`.
+fn bulleted(errors: &[Error]) -> String {
+    errors
+        .iter()
+        .map(|error| format!("  - {}", error.to_string().replace('\n', "\n    ")))
+        .collect::<Vec<_>>()
+        .join("\n")
 }

@@ -1,5 +1,6 @@
-//! The defects a mesh check finds, each naming the element (vertex or triangle index, 0-based),
-//! and whether it was repaired.
+//! The defects a mesh check finds, each naming the element (vertex or triangle index, 0-based
+//! here; printed 1-based, in the file's order, as OBJ numbers its vertices), and whether it was
+//! repaired.
 
 use std::fmt;
 
@@ -92,16 +93,19 @@ impl Defect {
 }
 
 impl fmt::Display for Defect {
+    /// Vertices and triangles are numbered from 1, as in the file.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let n = |index: usize| index + 1;
         match self {
             Defect::NoTriangles => write!(f, "the mesh has no triangles"),
             Defect::NonFiniteVertex { vertex } => {
-                write!(f, "vertex {vertex} has a NaN or infinite coordinate")
+                write!(f, "vertex {} has a NaN or infinite coordinate", n(*vertex))
             }
             Defect::TooLargeVertex { vertex, value } => write!(
                 f,
-                "vertex {vertex} has a coordinate too large ({value:e}, above {:e}): check the \
+                "vertex {} has a coordinate too large ({value:e}, above {:e}): check the \
                  file's units and the exporter",
+                n(*vertex),
                 MAXIMUM_COORDINATE
             ),
             Defect::IndexOutOfRange {
@@ -110,33 +114,42 @@ impl fmt::Display for Defect {
                 vertex_count,
             } => write!(
                 f,
-                "triangle {triangle} references vertex {index}, but there are only {vertex_count} vertices"
+                "triangle {} references vertex {}, but there are only {vertex_count} vertices",
+                n(*triangle),
+                n(*index as usize)
             ),
             Defect::RepeatedVertex { triangle } => {
                 write!(
                     f,
-                    "triangle {triangle} uses the same vertex twice (dropped)"
+                    "triangle {} uses the same vertex twice (dropped)",
+                    n(*triangle)
                 )
             }
             Defect::ZeroArea { triangle, area } => write!(
                 f,
-                "triangle {triangle} has zero area ({area:.3e}): its vertices are collinear; \
-                 remove it or collapse its shortest edge"
+                "triangle {} has zero area ({area:.3e}): its vertices are collinear; \
+                 remove it or collapse its shortest edge",
+                n(*triangle)
             ),
             Defect::NonManifoldEdge {
                 vertices: [a, b],
                 faces,
             } => write!(
                 f,
-                "edge {a}-{b} is shared by {faces} triangles (non-manifold; at most 2 allowed)"
+                "edge {}-{} is shared by {faces} triangles (non-manifold; at most 2 allowed)",
+                n(*a as usize),
+                n(*b as usize)
             ),
             Defect::NonManifoldVertex { vertex, fans } => write!(
                 f,
-                "vertex {vertex} joins {fans} separate fans of triangles (non-manifold vertex)"
+                "vertex {} joins {fans} separate fans of triangles (non-manifold vertex)",
+                n(*vertex)
             ),
             Defect::NonOrientable { vertices: [a, b] } => write!(
                 f,
-                "the surface is not orientable (orientations conflict at edge {a}-{b})"
+                "the surface is not orientable (orientations conflict at edge {}-{})",
+                n(*a as usize),
+                n(*b as usize)
             ),
             Defect::Reoriented { count } => {
                 write!(
@@ -147,7 +160,8 @@ impl fmt::Display for Defect {
             Defect::UnreferencedVertices { count, first } => {
                 write!(
                     f,
-                    "{count} vertices are used by no triangle (first: {first}); dropped"
+                    "{count} vertices are used by no triangle (first: {}); dropped",
+                    n(*first)
                 )
             }
         }

@@ -49,13 +49,23 @@ pub fn run(config: &RunConfig, progress: &dyn Progress) -> Result<RunOutput, Err
 }
 
 /// Checks the options ([`RunConfig::validate`]) and loads every input (refusing two parts of one
-/// name), reporting their repairs as warnings through `progress`: everything a run can find
+/// name; every input that cannot be used is reported, not only the first), reporting their repairs as warnings through `progress`: everything a run can find
 /// wrong before its long work.
 pub fn load_all(config: &RunConfig, progress: &dyn Progress) -> Result<Vec<PartJob>, Error> {
     config.validate()?;
     let mut jobs = Vec::new();
+    let mut errors = Vec::new();
     for input in &config.inputs {
-        jobs.extend(load_parts(input, &config.options)?);
+        match load_parts(input, &config.options) {
+            Ok(parts) => jobs.extend(parts),
+            Err(error) => errors.push(error),
+        }
+    }
+    if errors.len() > 1 {
+        return Err(Error::Inputs { errors });
+    }
+    if let Some(error) = errors.pop() {
+        return Err(error);
     }
     check_distinct_names(&jobs)?;
     for job in &jobs {

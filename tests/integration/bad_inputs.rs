@@ -269,3 +269,38 @@ fn too_small_mesh_size_prints_rounded_figures() {
         .unwrap_or(0);
     assert!(longest_number <= 8, "rounded figures: {message}");
 }
+
+#[test]
+fn every_bad_input_is_reported_with_vertices_numbered_as_in_the_file() {
+    let folder = tempfile::tempdir().expect("temporary directory");
+    // Edge 1-2 (OBJ numbering) is shared by three triangles in both files.
+    let fan = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0\nf 1 2 3\nf 1 2 4\nf 2 1 5\n";
+    let first = folder.path().join("first.obj");
+    let second = folder.path().join("second.obj");
+    std::fs::write(&first, fan).unwrap();
+    std::fs::write(&second, fan).unwrap();
+    let good = crate::util::sample("saddle.obj");
+    let output = flatcut(&[
+        "flatten",
+        path(&first),
+        path(&good),
+        path(&second),
+        "-o",
+        path(&folder.path().join("out")),
+    ]);
+    let said = stderr(&output);
+    assert_eq!(output.status.code(), Some(1), "{said}");
+    assert!(said.contains("2 inputs cannot be used"), "{said}");
+    for file in [&first, &second] {
+        assert!(
+            said.contains(path(file)),
+            "{} named: {said}",
+            file.display()
+        );
+    }
+    assert!(
+        said.contains("edge 1-2 is shared by 3 triangles"),
+        "1-based: {said}"
+    );
+    assert!(!folder.path().join("out").exists(), "nothing written");
+}
