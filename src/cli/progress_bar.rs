@@ -3,11 +3,15 @@
 
 use std::io::IsTerminal;
 use std::sync::Mutex;
+use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::console::say;
 use flatcut::progress::Progress;
+
+/// How often a spinner (a stage of unknown length: reading, tessellating) turns.
+const SPINNER_TICK: Duration = Duration::from_millis(120);
 
 /// A progress bar on stderr, silent when stderr is not a terminal (scripts, CI, pipes).
 pub struct TerminalProgress {
@@ -35,11 +39,18 @@ impl Progress for TerminalProgress {
         } else {
             ProgressBar::new_spinner()
         };
-        let template = "{msg:>12} [{bar:40}] {pos}/{len} {elapsed_precise}";
+        let template = if total > 0 {
+            "{msg} [{bar:30}] {pos}/{len} {elapsed_precise}, about {eta} left"
+        } else {
+            "{msg} {spinner} {elapsed_precise}"
+        };
         if let Ok(style) = ProgressStyle::with_template(template) {
             bar.set_style(style.progress_chars("=> "));
         }
         bar.set_message(stage.to_string());
+        if total == 0 {
+            bar.enable_steady_tick(SPINNER_TICK);
+        }
         let mut slot = self
             .bar
             .lock()

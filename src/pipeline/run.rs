@@ -55,8 +55,19 @@ pub fn load_all(config: &RunConfig, progress: &dyn Progress) -> Result<Vec<PartJ
     config.validate()?;
     let mut jobs = Vec::new();
     let mut errors = Vec::new();
-    for input in &config.inputs {
-        match load_parts(input, &config.options) {
+    for (index, input) in config.inputs.iter().enumerate() {
+        progress.start(
+            &format!(
+                "reading {}/{} {}",
+                index + 1,
+                config.inputs.len(),
+                input.display()
+            ),
+            0,
+        );
+        let loaded = load_parts(input, &config.options);
+        progress.finish();
+        match loaded {
             Ok(parts) => jobs.extend(parts),
             Err(error) => errors.push(error),
         }
@@ -93,9 +104,17 @@ pub fn run_loaded(
     config: &RunConfig,
     progress: &dyn Progress,
 ) -> Result<RunOutput, Error> {
+    let count = jobs.len();
     let parts = jobs
         .into_iter()
-        .map(|job| flatten_part(job, &config.options, progress))
+        .enumerate()
+        .map(|(index, job)| {
+            let part_progress = PartProgress {
+                inner: progress,
+                prefix: format!("part {}/{count} {}", index + 1, job.name),
+            };
+            flatten_part(job, &config.options, &part_progress)
+        })
         .collect::<Result<Vec<PartResult>, _>>()?;
     let tolerance = config.options.flatten.tolerance;
     let patterns: Vec<PatternFile> = parts
@@ -142,4 +161,29 @@ fn check_distinct_names(jobs: &[PartJob]) -> Result<(), Error> {
         }
     }
     Ok(())
+}
+
+/// Progress of one part among several: its stages named `part I/N NAME: STAGE`.
+struct PartProgress<'a> {
+    inner: &'a dyn Progress,
+    prefix: String,
+}
+
+impl Progress for PartProgress<'_> {
+    fn start(&self, stage: &str, total: u64) {
+        self.inner
+            .start(&format!("{}: {stage}", self.prefix), total);
+    }
+
+    fn advance(&self, done: u64) {
+        self.inner.advance(done);
+    }
+
+    fn finish(&self) {
+        self.inner.finish();
+    }
+
+    fn warn(&self, message: &str) {
+        self.inner.warn(message);
+    }
 }
