@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Throughput of `flatcut batch` with --jobs 1 and --jobs 2 on a generated batch of COUNT parts
 # (bench/batch/make_batch.sh), each into a fresh folder, and the peak memory of the whole batch
-# (the batch process and its workers, summed, sampled every 0.1 s).
+# (the batch process and its workers: the processes of BIN, summed, sampled every 0.1 s).
 #
 #   bench/batch/throughput.sh [COUNT=120] [BIN=target/release/flatcut] [JOBS="1 2"]
 set -euo pipefail
@@ -17,7 +17,7 @@ trap 'rm -rf "$work"' EXIT
 peak_memory() {
     local pid=$1 peak=0 now
     while kill -0 "$pid" 2> /dev/null; do
-        now=$(ps -C "$(basename "$bin")" -o rss= | awk '{ sum += $1 } END { print int(sum / 1024) }')
+        now=$(pgrep -f "^$bin " | xargs -r ps -o rss= -p | awk '{ sum += $1 } END { print int(sum / 1024) }')
         [ "$now" -gt "$peak" ] && peak=$now
         sleep 0.1
     done

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::export::report::PartReport;
-use crate::export::write_atomically;
+use crate::export::{remove_stale_temporaries, write_atomically};
 
 use super::errors::BatchError;
 
@@ -128,9 +128,11 @@ impl PartRecord {
             .map_err(|source| BatchError::Write { path, source })
     }
 
-    /// Removes the record in `folder`, if any: the part is being made anew.
+    /// Removes the record in `folder`, if any, and what a worker killed while writing it left:
+    /// the part is being made anew.
     pub fn remove(folder: &Path) -> Result<(), BatchError> {
         let path = folder.join(RECORD_FILE);
+        remove_stale_temporaries(&path);
         match fs::remove_file(&path) {
             Err(source) if source.kind() != io::ErrorKind::NotFound => {
                 Err(BatchError::Write { path, source })

@@ -330,11 +330,19 @@ fn terminate(child: &mut Child) {
 #[cfg(target_os = "linux")]
 fn end_with_parent(command: &mut Command) {
     use std::os::unix::process::CommandExt;
-    // SAFETY: prctl(PR_SET_PDEATHSIG) is async-signal-safe and touches no memory of the parent.
+    let batch = libc::pid_t::try_from(std::process::id()).unwrap_or(0);
+    // SAFETY: prctl(PR_SET_PDEATHSIG) and getppid are async-signal-safe and touch no memory of
+    // the parent.
     unsafe {
-        command.pre_exec(|| {
+        command.pre_exec(move || {
             if libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGTERM) == -1 {
                 return Err(std::io::Error::last_os_error());
+            }
+            // The batch died between the fork and the prctl: no signal will come, so stop here.
+            if libc::getppid() != batch {
+                return Err(std::io::Error::other(
+                    "the batch ended before its worker started",
+                ));
             }
             Ok(())
         });

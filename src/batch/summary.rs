@@ -9,7 +9,7 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use crate::export::write_atomically;
+use crate::export::{remove_stale_temporaries, write_atomically};
 
 use super::errors::BatchError;
 use super::record::{Fingerprint, PartRecord, PartStatus, PatternFigures, lock_exclusive};
@@ -124,6 +124,7 @@ pub fn write_summary(
     let mut text = serde_json::to_string_pretty(&summary).expect("a summary serialises");
     text.push('\n');
     let path = output.join(SUMMARY_FILE);
+    remove_stale_temporaries(&path);
     write_atomically(&path, text.as_bytes())
         .map_err(|source| BatchError::Write { path, source })?;
     Ok(summary)

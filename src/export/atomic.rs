@@ -10,6 +10,30 @@ use std::sync::atomic::{AtomicU64, Ordering};
 /// Distinguishes temporary files of one process (several writers may run at once).
 static TEMPORARY_COUNTER: AtomicU64 = AtomicU64::new(0);
 
+/// Removes the temporary files [`write_atomically`] left beside `path` when its process was
+/// killed while writing (`.NAME.PID-N.tmp`): before `path` is written anew, so that none
+/// lingers. Best effort.
+pub fn remove_stale_temporaries(path: &Path) {
+    let (Some(directory), Some(name)) = (path.parent(), path.file_name()) else {
+        return;
+    };
+    let directory = if directory.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        directory
+    };
+    let prefix = format!(".{}.", name.to_string_lossy());
+    let Ok(entries) = fs::read_dir(directory) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let entry_name = entry.file_name().to_string_lossy().into_owned();
+        if entry_name.starts_with(&prefix) && entry_name.ends_with(".tmp") {
+            let _ = fs::remove_file(entry.path());
+        }
+    }
+}
+
 /// Writes `bytes` to `path` atomically: temporary file in the same directory, fsync, rename, then
 /// fsync of the directory (on Unix) so the rename itself survives a crash.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> io::Result<()> {
@@ -57,6 +81,33 @@ fn sync_directory(directory: &Path) -> io::Result<()> {
 #[cfg(test)]
 mod tests {
     use crate::export::atomic::*;
+
+    #[test]
+    fn a_killed_writer_s_temporary_files_are_removed_and_no_other() {
+        let directory = tempfile::tempdir().expect("a temporary directory");
+        let path = directory.path().join("batch.json");
+        for name in [
+            ".batch.json.123-0.tmp",
+            ".batch.json.9-4.tmp",
+            "keep.tmp",
+            ".other.json.1-0.tmp",
+        ] {
+            fs::write(directory.path().join(name), b"x").expect("written");
+        }
+        remove_stale_temporaries(&path);
+        let mut left: Vec<String> = fs::read_dir(directory.path())
+            .expect("listable")
+            .map(|entry| {
+                entry
+                    .expect("entry")
+                    .file_name()
+                    .to_string_lossy()
+                    .into_owned()
+            })
+            .collect();
+        left.sort();
+        assert_eq!(left, [".other.json.1-0.tmp", "keep.tmp"]);
+    }
 
     #[test]
     fn writes_replaces_and_leaves_no_temporary_file() {

@@ -29,7 +29,7 @@ mod sheet_png;
 pub mod sheets;
 mod text;
 
-pub use atomic::write_atomically;
+pub use atomic::{remove_stale_temporaries, write_atomically};
 pub use drawing::{PlacedPart, SheetDrawing};
 pub use dxf::{layers, write_part_dxf, write_sheet_dxf};
 pub use dxf_options::{DxfOptions, DxfVersion};
