@@ -1,5 +1,6 @@
 //! PNG preview of a nested sheet: the sheet outline, every part filled light with its cut contours,
-//! holes left open, fold and sew lines dashed, grain lines with their arrowheads. No text.
+//! holes left open, fold and sew lines dashed, grain lines with their arrowheads, and each part's
+//! name at its label anchor where it fits inside the part.
 //!
 //! Input: a [`SheetDrawing`] and the same [`DxfOptions`] as its DXF, so the preview shows the
 //! contours that will be cut (fitted arcs, seam allowance). Output: PNG bytes, the longer side
@@ -9,7 +10,9 @@ use super::drawing::SheetDrawing;
 use super::dxf::check_sheet;
 use super::dxf_options::DxfOptions;
 use super::errors::ExportError;
-use crate::pattern::{BulgeVertex, part_contours, sample_closed, sample_open};
+use super::text::{Align, Label, Typeface};
+use crate::geometry::bounding_box;
+use crate::pattern::{BulgeVertex, PartDrawing, part_contours, sample_closed, sample_open};
 use glam::DVec2;
 use tiny_skia::{Color, FillRule, Paint, Path, PathBuilder, Pixmap, Stroke, StrokeDash, Transform};
 
@@ -24,6 +27,13 @@ const MARGIN_PIXELS: f64 = 8.0;
 
 /// Largest distance between points drawn along an arc, in pixels.
 const ARC_STEP_PIXELS: f64 = 1.0;
+
+/// Largest and smallest size of a part's name, in pixels: a name that would be smaller is left
+/// out.
+const NAME_PIXELS: (f32, f32) = (14.0, 7.0);
+
+/// Colour of the parts' names (sRGB).
+const NAME_COLOUR: [u8; 3] = [20, 30, 60];
 
 /// Dash and gap of fold and sew lines, in pixels.
 const DASH_PIXELS: [f32; 2] = [6.0, 4.0];
@@ -76,9 +86,42 @@ pub fn render_sheet_png(
             stroke(&mut pixmap, &path, GRAIN_LINE, None);
         }
     }
+    let typeface = Typeface::embedded()
+        .map_err(|error| ExportError::Png(format!("embedded font: {error}")))?;
+    for placed in &sheet.parts {
+        draw_name(&mut pixmap, &view, &typeface, &placed.drawing);
+    }
     pixmap
         .encode_png()
         .map_err(|error| ExportError::Png(error.to_string()))
+}
+
+/// The part's name, centred on its label anchor, as large as fits in 80 % of the part's width
+/// (up to [`NAME_PIXELS`]); left out when it would be too small to read.
+fn draw_name(pixmap: &mut Pixmap, view: &View, typeface: &Typeface, drawing: &PartDrawing) {
+    let Some(anchor) = drawing.label_anchor() else {
+        return;
+    };
+    let (low, high) = bounding_box(&drawing.outer);
+    let (largest, smallest) = NAME_PIXELS;
+    let room = (0.8 * (high.x - low.x) * view.scale) as f32;
+    let width_at_largest = typeface.width(&drawing.name, largest).max(f32::EPSILON);
+    let size = (largest * room / width_at_largest).min(largest);
+    if size < smallest {
+        return;
+    }
+    let (x, y) = view.to_pixels(anchor);
+    typeface.draw(
+        pixmap,
+        &Label {
+            text: &drawing.name,
+            x,
+            baseline: y + 0.35 * size,
+            size,
+            colour: NAME_COLOUR,
+            align: Align::Centre,
+        },
+    );
 }
 
 /// Dashed lines (sew or fold), closed or open.
@@ -253,6 +296,54 @@ mod tests {
         assert_eq!(
             pixel_at(&pixmap, &view, DVec2::new(600.0, 300.0)),
             SHEET_FILL
+        );
+    }
+
+    /// Pixels of the preview darker than any fill or line colour but the names', around a sheet
+    /// point (a square of `radius` pixels).
+    fn name_pixels(pixmap: &Pixmap, view: &View, point: DVec2, radius: i64) -> usize {
+        let (x, y) = view.to_pixels(point);
+        let (x, y) = (x as i64, y as i64);
+        let mut count = 0;
+        for dy in -radius..=radius {
+            for dx in -radius..=radius {
+                let Some(pixel) = pixmap.pixel((x + dx) as u32, (y + dy) as u32) else {
+                    continue;
+                };
+                if u16::from(pixel.red()) + u16::from(pixel.green()) < 150 && pixel.blue() < 120 {
+                    count += 1;
+                }
+            }
+        }
+        count
+    }
+
+    #[test]
+    fn each_part_is_named_where_its_name_fits() {
+        let mut sheet = sheet();
+        let options = DxfOptions::default();
+        let pixmap =
+            Pixmap::decode_png(&render_sheet_png(&sheet, &options, 1000).expect("renders"))
+                .expect("a PNG");
+        let view = View::fit(&sheet, 1000);
+        let anchor = sheet.parts[0].drawing.label_anchor().expect("an anchor");
+        assert!(
+            name_pixels(&pixmap, &view, anchor, 12) > 10,
+            "the name is written"
+        );
+        // A part a few millimetres wide has no room for its name.
+        for point in &mut sheet.parts[0].drawing.outer {
+            *point = DVec2::new(100.0, 100.0) + (*point - DVec2::new(100.0, 100.0)) * 0.04;
+        }
+        sheet.parts[0].drawing.holes.clear();
+        let pixmap =
+            Pixmap::decode_png(&render_sheet_png(&sheet, &options, 1000).expect("renders"))
+                .expect("a PNG");
+        let anchor = sheet.parts[0].drawing.label_anchor().expect("an anchor");
+        assert_eq!(
+            name_pixels(&pixmap, &view, anchor, 12),
+            0,
+            "no unreadable name"
         );
     }
 
