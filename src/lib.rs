@@ -23,6 +23,7 @@ pub mod nest;
 pub mod pattern;
 pub mod pipeline;
 pub mod progress;
+pub mod sheet;
 pub mod tessellate;
 pub mod units;
 
