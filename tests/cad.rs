@@ -1429,3 +1429,41 @@ fn step_faces_keep_their_exact_surfaces_and_adjacency() {
         shell.adjacent_faces()
     );
 }
+
+/// Thin-solid recognition on the B-rep: the FreeCAD L section is a 2 mm sheet whose chosen skin
+/// is one side (a flange, its bend and the other flange), the gusset bracket (two plates and a
+/// gusset, sharp corners) is planes only but no sheet, and a solid cone is not made of planes
+/// and cylinders.
+#[test]
+fn thin_solids_are_recognised_on_the_brep() {
+    use flatcut::ingest::{Input, read_input};
+    use flatcut::pipeline::tessellate_step;
+    use flatcut::sheet::{NotASheet, SheetSurface, recognise_shell};
+    let recognised = |name: &str| {
+        let Ok(Input::Step(brep)) = read_input(&sample(name), Default::default()) else {
+            panic!("{name}: not read as STEP");
+        };
+        let tessellation =
+            tessellate_step(&sample(name), &brep, &Default::default()).expect("tessellated");
+        recognise_shell(&brep.shells[0], tessellation.soup())
+    };
+    let solid = recognised("sheet_l_hole_freecad.step").expect("the L is a sheet");
+    assert!((solid.thickness - 2.0).abs() < 1e-9);
+    assert_eq!(solid.skin.len(), 3, "flange, bend, flange");
+    let cylinders = solid
+        .skin
+        .iter()
+        .filter(|&&face| matches!(solid.surfaces[face], SheetSurface::Cylinder { .. }))
+        .count();
+    assert_eq!(cylinders, 1);
+    match recognised("gusset_bracket_freecad.step") {
+        Err(NotASheet::NoConstantThickness(reason)) => {
+            assert!(reason.contains("neither on a skin nor a wall"), "{reason}")
+        }
+        other => panic!("the gusset bracket is no sheet: {other:?}"),
+    }
+    assert!(matches!(
+        recognised("cone_apex_freecad.step"),
+        Err(NotASheet::OtherSurfaces(_))
+    ));
+}
