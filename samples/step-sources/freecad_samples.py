@@ -36,6 +36,10 @@ Run from the repository root, headless:
 - vase_revolved_freecad.step: a solid of revolution whose side is a B-spline profile revolved
   a full turn (SURFACE_OF_REVOLUTION) between two plane disks, AP214, millimetres.
 
+- sheet_l_hole_freecad.step, sheet_u_freecad.step, sheet_z_freecad.step and
+  sheet_readme_case_freecad.step: bent sheet-metal solids (see sheet_profile and the functions
+  after it for their legs, radii and thicknesses); FLATCUT_SAMPLE_SET=sheet writes only these.
+
 It prints each shape's area (OpenCASCADE's own integration) in mm^2: flatcut's tests compare
 its tessellated areas with these figures.
 """

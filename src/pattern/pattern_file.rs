@@ -111,8 +111,8 @@ impl PatternFile {
 #[cfg(test)]
 mod tests {
     use crate::pattern::pattern_file::*;
-    use crate::units::Units;
     use crate::sheet::{BendDirection, BendLine};
+    use crate::units::Units;
     use glam::DVec2;
     use proptest::prelude::*;
 
