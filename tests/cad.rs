@@ -495,30 +495,33 @@ fn a_trimmed_edge_curve_is_read_as_its_basis_and_an_unreadable_one_is_named() {
 /// 3/16 in plate with holes and slots, in inches through an inch context. Open CASCADE (FreeCAD
 /// 0.20, `Part.read(path).Area`) integrates 541917.241 mm². Its long plate edges meet the short
 /// pieces of small holes' edges at shared vertices: before edges were graded there, the side
-/// faces had 4.1° slivers at those corners.
+/// faces had 4.1° slivers at those corners. (The whole solid's tessellation: the pipeline
+/// unfolds this plate as sheet metal, its part is one skin, see `tests/integration/sheet_metal.rs`.)
 #[test]
 fn a_solidworks_plate_keeps_its_area_units_and_graded_corners() {
-    let jobs = load_parts(
-        &sample("base_interface_solidworks.step"),
-        &RunOptions::default(),
-    )
-    .expect("loads");
-    assert_eq!(jobs.len(), 1, "one closed solid");
-    let job = &jobs[0];
-    let area = job.model.area();
+    use flatcut::ingest::{Input, read_input};
+    use flatcut::pipeline::tessellate_step;
+    let path = sample("base_interface_solidworks.step");
+    let Ok(Input::Step(brep)) = read_input(&path, Default::default()) else {
+        panic!("read as STEP");
+    };
+    let tessellation = tessellate_step(&path, &brep, &Default::default()).expect("tessellates");
+    let validated = flatcut::mesh::validate(tessellation.soup()).expect("a valid mesh");
+    assert_eq!(validated.components.len(), 1, "one closed solid");
+    let model = &validated.components[0];
+    let area = model.area();
     let reference = 541917.241;
     assert!(
         (area - reference).abs() / reference <= AREA_TOLERANCE,
         "area {area} vs {reference}"
     );
-    let largest = job
-        .model
+    let largest = model
         .positions()
         .iter()
         .map(|p| p.x.abs())
         .fold(0.0, f64::max);
     assert!((largest - 11.7994561 * 25.4).abs() < 0.01, "{largest}");
-    let angle = job.tessellation.expect("figures").minimum_angle;
+    let angle = tessellation.figures.minimum_angle;
     assert!(angle >= 7.0, "worst angle {angle}");
 }
 
