@@ -495,30 +495,33 @@ fn a_trimmed_edge_curve_is_read_as_its_basis_and_an_unreadable_one_is_named() {
 /// 3/16 in plate with holes and slots, in inches through an inch context. Open CASCADE (FreeCAD
 /// 0.20, `Part.read(path).Area`) integrates 541917.241 mm². Its long plate edges meet the short
 /// pieces of small holes' edges at shared vertices: before edges were graded there, the side
-/// faces had 4.1° slivers at those corners.
+/// faces had 4.1° slivers at those corners. (The whole solid's tessellation: the pipeline
+/// unfolds this plate as sheet metal, its part is one skin, see `tests/integration/sheet_metal.rs`.)
 #[test]
 fn a_solidworks_plate_keeps_its_area_units_and_graded_corners() {
-    let jobs = load_parts(
-        &sample("base_interface_solidworks.step"),
-        &RunOptions::default(),
-    )
-    .expect("loads");
-    assert_eq!(jobs.len(), 1, "one closed solid");
-    let job = &jobs[0];
-    let area = job.model.area();
+    use flatcut::ingest::{Input, read_input};
+    use flatcut::pipeline::tessellate_step;
+    let path = sample("base_interface_solidworks.step");
+    let Ok(Input::Step(brep)) = read_input(&path, Default::default()) else {
+        panic!("read as STEP");
+    };
+    let tessellation = tessellate_step(&path, &brep, &Default::default()).expect("tessellates");
+    let validated = flatcut::mesh::validate(tessellation.soup()).expect("a valid mesh");
+    assert_eq!(validated.components.len(), 1, "one closed solid");
+    let model = &validated.components[0];
+    let area = model.area();
     let reference = 541917.241;
     assert!(
         (area - reference).abs() / reference <= AREA_TOLERANCE,
         "area {area} vs {reference}"
     );
-    let largest = job
-        .model
+    let largest = model
         .positions()
         .iter()
         .map(|p| p.x.abs())
         .fold(0.0, f64::max);
     assert!((largest - 11.7994561 * 25.4).abs() < 0.01, "{largest}");
-    let angle = job.tessellation.expect("figures").minimum_angle;
+    let angle = tessellation.figures.minimum_angle;
     assert!(angle >= 7.0, "worst angle {angle}");
 }
 
@@ -1428,4 +1431,42 @@ fn step_faces_keep_their_exact_surfaces_and_adjacency() {
         "{:?}",
         shell.adjacent_faces()
     );
+}
+
+/// Thin-solid recognition on the B-rep: the FreeCAD L section is a 2 mm sheet whose chosen skin
+/// is one side (a flange, its bend and the other flange), the gusset bracket (two plates and a
+/// gusset, sharp corners) is planes only but no sheet, and a solid cone is not made of planes
+/// and cylinders.
+#[test]
+fn thin_solids_are_recognised_on_the_brep() {
+    use flatcut::ingest::{Input, read_input};
+    use flatcut::pipeline::tessellate_step;
+    use flatcut::sheet::{NotASheet, SheetSurface, recognise_shell};
+    let recognised = |name: &str| {
+        let Ok(Input::Step(brep)) = read_input(&sample(name), Default::default()) else {
+            panic!("{name}: not read as STEP");
+        };
+        let tessellation =
+            tessellate_step(&sample(name), &brep, &Default::default()).expect("tessellated");
+        recognise_shell(&brep.shells[0], tessellation.soup())
+    };
+    let solid = recognised("sheet_l_hole_freecad.step").expect("the L is a sheet");
+    assert!((solid.thickness - 2.0).abs() < 1e-9);
+    assert_eq!(solid.skin.len(), 3, "flange, bend, flange");
+    let cylinders = solid
+        .skin
+        .iter()
+        .filter(|&&face| matches!(solid.surfaces[face], SheetSurface::Cylinder { .. }))
+        .count();
+    assert_eq!(cylinders, 1);
+    match recognised("gusset_bracket_freecad.step") {
+        Err(NotASheet::NoConstantThickness(reason)) => {
+            assert!(reason.contains("neither on a skin nor a wall"), "{reason}")
+        }
+        other => panic!("the gusset bracket is no sheet: {other:?}"),
+    }
+    assert!(matches!(
+        recognised("cone_apex_freecad.step"),
+        Err(NotASheet::OtherSurfaces(_))
+    ));
 }

@@ -75,6 +75,7 @@ fn cone_part(offset: DVec2) -> PartDrawing {
             offset + DVec2::new(140.0, 60.0),
             offset + DVec2::new(200.0, 60.0),
         ]),
+        bends: Vec::new(),
     }
 }
 

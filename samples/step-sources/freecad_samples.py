@@ -36,6 +36,10 @@ Run from the repository root, headless:
 - vase_revolved_freecad.step: a solid of revolution whose side is a B-spline profile revolved
   a full turn (SURFACE_OF_REVOLUTION) between two plane disks, AP214, millimetres.
 
+- sheet_l_hole_freecad.step, sheet_u_freecad.step, sheet_z_freecad.step and
+  sheet_readme_case_freecad.step: bent sheet-metal solids (see sheet_profile and the functions
+  after it for their legs, radii and thicknesses); FLATCUT_SAMPLE_SET=sheet writes only these.
+
 It prints each shape's area (OpenCASCADE's own integration) in mm^2: flatcut's tests compare
 its tessellated areas with these figures.
 """
@@ -51,6 +55,8 @@ import FreeCAD
 # schema from these preferences once, when it is imported: one process writes one unit, so the
 # inch sample is written by a second run of this script with FLATCUT_SAMPLE_UNIT=in.
 UNIT = os.environ.get("FLATCUT_SAMPLE_UNIT", "mm")
+# FLATCUT_SAMPLE_SET=sheet writes only the sheet-metal samples (the others keep their bytes).
+SAMPLE_SET = os.environ.get("FLATCUT_SAMPLE_SET", "all")
 for group in ("Mod/Part/STEP", "Mod/Import/hSTEP"):
     STEP_PREFERENCES = FreeCAD.ParamGet("User parameter:BaseApp/Preferences/" + group)
     STEP_PREFERENCES.SetInt("Unit", {"mm": 0, "in": 2}[UNIT])
@@ -153,8 +159,98 @@ def gusset_bracket():
     return base.fuse(wall).fuse(gusset).removeSplitter()
 
 
+def sheet_profile(steps, radius, thickness, width):
+    """A bent sheet: a thick 2D profile in the xy plane extruded along z by `width`.
+
+    `steps` walks side A of the sheet from the origin along +x: a number is a straight of that
+    length, a pair ("bend", degrees) turns by that angle (positive to the left, towards side B,
+    which lies `thickness` to the left of side A). Every bend has inner radius `radius`; side A
+    and side B are concentric arcs of radii `radius` and `radius + thickness` about one centre.
+    The straights have the same length on both sides, so the flat length at K is
+    sum(straights) + sum(radians * (radius + K * thickness)).
+    """
+    vector = FreeCAD.Vector
+    point, heading = (0.0, 0.0), 0.0
+    side_a, side_b = [], []
+
+    def left(angle):
+        return (-math.sin(angle), math.cos(angle))
+
+    def at(p, angle, offset):
+        n = left(angle)
+        return vector(p[0] + offset * n[0], p[1] + offset * n[1], 0)
+
+    for step in steps:
+        if isinstance(step, tuple):
+            turn = math.radians(step[1])
+            n = left(heading)
+            if turn > 0:
+                radius_a, radius_b, sign = radius + thickness, radius, 1.0
+            else:
+                radius_a, radius_b, sign = radius, radius + thickness, -1.0
+            centre = (point[0] + sign * radius_a * n[0], point[1] + sign * radius_a * n[1])
+
+            def on_arc(r, angle):
+                # The point of the arc of radius r about the centre where the heading is `angle`.
+                m = left(angle)
+                return vector(centre[0] - sign * r * m[0], centre[1] - sign * r * m[1], 0)
+
+            end = heading + turn
+            middle = heading + turn / 2
+            side_a.append(Part.Arc(on_arc(radius_a, heading), on_arc(radius_a, middle),
+                                   on_arc(radius_a, end)).toShape())
+            side_b.append(Part.Arc(on_arc(radius_b, heading), on_arc(radius_b, middle),
+                                   on_arc(radius_b, end)).toShape())
+            last = on_arc(radius_a, end)
+            point, heading = (last.x, last.y), end
+        else:
+            start = point
+            point = (point[0] + step * math.cos(heading), point[1] + step * math.sin(heading))
+            side_a.append(Part.LineSegment(at(start, heading, 0), at(point, heading, 0)).toShape())
+            side_b.append(Part.LineSegment(at(start, heading, thickness),
+                                           at(point, heading, thickness)).toShape())
+    end_cap = Part.LineSegment(side_a[-1].Vertexes[-1].Point, side_b[-1].Vertexes[-1].Point)
+    start_cap = Part.LineSegment(side_b[0].Vertexes[0].Point, side_a[0].Vertexes[0].Point)
+    edges = side_a + [end_cap.toShape()] + [e.reversed() for e in reversed(side_b)] + \
+        [start_cap.toShape()]
+    face = Part.Face(Part.Wire(Part.__sortEdges__(edges)))
+    return face.extrude(vector(0, 0, width))
+
+
+def sheet_l_hole():
+    # L: legs 50 and 30 mm, 90 degree bend, R 2, t 2, 40 wide; a 10 mm hole through the 50 leg.
+    solid = sheet_profile([50.0, ("bend", 90.0), 30.0], 2.0, 2.0, 40.0)
+    hole = Part.makeCylinder(5.0, 10.0, FreeCAD.Vector(25.0, -4.0, 20.0), FreeCAD.Vector(0, 1, 0))
+    return solid.cut(hole).removeSplitter()
+
+
+def sheet_u():
+    # U: legs 40, 60, 40 mm, two 90 degree bends the same way, R 3, t 1.5, 30 wide.
+    return sheet_profile([40.0, ("bend", 90.0), 60.0, ("bend", 90.0), 40.0], 3.0, 1.5, 30.0)
+
+
+def sheet_z():
+    # Z: legs 30, 40, 30 mm, bends of +90 and -90 degrees, R 2, t 2, 25 wide.
+    return sheet_profile([30.0, ("bend", 90.0), 40.0, ("bend", -90.0), 30.0], 2.0, 2.0, 25.0)
+
+
+def sheet_readme_case():
+    # FreeCAD SheetMetal README test case: t 2, inner radius 1.64, 90 degrees, legs 48.12 mm
+    # (flange 51.76 mm outside), 30 wide.
+    return sheet_profile([48.12, ("bend", 90.0), 48.12], 1.64, 2.0, 30.0)
+
+
+def sheet_samples():
+    export(sheet_l_hole(), "sheet_l_hole_freecad.step")
+    export(sheet_u(), "sheet_u_freecad.step")
+    export(sheet_z(), "sheet_z_freecad.step")
+    export(sheet_readme_case(), "sheet_readme_case_freecad.step")
+
+
 def main():
-    if UNIT == "mm":
+    if SAMPLE_SET == "sheet":
+        sheet_samples()
+    elif UNIT == "mm":
         export(cone_frustum_side(), "cone_frustum_freecad.step")
         export(bspline_loft(), "bspline_loft_freecad.step")
         export(hemisphere(), "hemisphere_freecad.step")
@@ -164,6 +260,7 @@ def main():
         export(sphere_full(), "sphere_freecad.step")
         export(spheroid(), "spheroid_freecad.step")
         export(gusset_bracket(), "gusset_bracket_freecad.step")
+        sheet_samples()
         environment = dict(os.environ, FLATCUT_SAMPLE_UNIT="in")
         subprocess.run([shutil.which("freecadcmd"), SCRIPT], env=environment, check=True)
     else:

@@ -10,6 +10,7 @@ use flatcut::flatten::{FlattenOptions, Solver};
 use flatcut::pattern::PatternOptions;
 use flatcut::pipeline::{PartOverrides, RunConfig, RunOptions};
 use flatcut::progress::Progress;
+use flatcut::sheet::SheetOptions;
 use flatcut::units::Units;
 
 use super::job::execute;
@@ -80,6 +81,11 @@ pub struct PartArgs {
     /// Sheet thickness of the parts in mm, over what their files say.
     #[arg(long, value_name = "MM")]
     thickness: Option<f64>,
+    /// K-factor of the bends of STEP solids recognised as sheet metal: where the neutral fibre
+    /// lies, as a fraction of the thickness from the inside of the bend (bend allowance
+    /// θ · (R + K · t)).
+    #[arg(long, value_name = "K", default_value_t = SheetOptions::default().k_factor)]
+    k_factor: f64,
 }
 
 impl FlattenArgs {
@@ -127,6 +133,9 @@ impl PartArgs {
                 quantity: self.quantity,
                 material: self.material.clone(),
                 thickness_mm: self.thickness,
+            },
+            sheet: SheetOptions {
+                k_factor: self.k_factor,
             },
         };
         Ok(RunConfig {

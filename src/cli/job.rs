@@ -38,7 +38,20 @@ pub fn execute(
             part.seams.len(),
             part.cuts.len(),
             part.total_cut_length,
-            if part.rejected.is_empty() {
+            if let Some(sheet) = part
+                .sheet_metal
+                .as_ref()
+                .filter(|_| part.rejected.is_empty())
+            {
+                format!(
+                    "sheet metal t {} mm unfolded exactly, {} bend(s) at K {}, flat {:.3} x {:.3}",
+                    sheet.thickness,
+                    sheet.bends.len(),
+                    sheet.k_factor,
+                    sheet.flat_width,
+                    sheet.flat_height
+                )
+            } else if part.rejected.is_empty() {
                 "within tolerance".to_string()
             } else {
                 format!(

@@ -13,6 +13,7 @@ use super::dxf_options::{DxfOptions, DxfVersion};
 use super::dxf_repair::repair;
 use super::errors::ExportError;
 use crate::pattern::{BulgeVertex, PartContours, PartDrawing, part_contours, polyline_bounds};
+use crate::sheet::BendDirection;
 use crate::units::Units;
 use dxf::entities::{Entity, EntityType, Line, LwPolyline, Polyline, Text, Vertex};
 use dxf::enums::{AcadVersion, DrawingUnits, Units as DxfUnits};
@@ -35,16 +36,24 @@ pub mod layers {
     pub const MARKS: &str = "MARKS";
     /// The sheet outline, in sheet files. Grey, continuous; not cut.
     pub const SHEET: &str = "SHEET";
-    /// Name of the dashed line type of the fold and sew layers (defined in every file).
+    /// Bend lines of sheet-metal parts folding up (towards the viewer): drawn, never cut.
+    /// Green, dashed; the bend's note is on [`MARKS`].
+    pub const BEND_UP: &str = "BEND_UP";
+    /// Bend lines of sheet-metal parts folding down (away from the viewer): drawn, never cut.
+    /// Cyan, dashed; the bend's note is on [`MARKS`].
+    pub const BEND_DOWN: &str = "BEND_DOWN";
+    /// Name of the dashed line type of the fold, sew and bend layers (defined in every file).
     pub const DASHED: &str = "DASHED";
     /// Every layer flatcut defines: name, colour index, line type.
-    pub const ALL: [(&str, u8, &str); 6] = [
+    pub const ALL: [(&str, u8, &str); 8] = [
         (CUT_OUTER, 1, "CONTINUOUS"),
         (CUT_INNER, 5, "CONTINUOUS"),
         (FOLD, 3, DASHED),
         (SEW, 6, DASHED),
         (MARKS, 2, "CONTINUOUS"),
         (SHEET, 8, "CONTINUOUS"),
+        (BEND_UP, 3, DASHED),
+        (BEND_DOWN, 4, DASHED),
     ];
 }
 
@@ -54,6 +63,9 @@ const LABEL_HEIGHT_FRACTION: f64 = 0.05;
 
 /// Smallest and largest label text height, in mm.
 const LABEL_HEIGHT_RANGE_MM: (f64, f64) = (2.0, 10.0);
+
+/// Height of a bend's note as a fraction of the label's.
+const BEND_NOTE_HEIGHT_FRACTION: f64 = 0.5;
 
 /// Width of one label character as a fraction of the text height (for centring the label).
 const LABEL_CHARACTER_WIDTH: f64 = 0.6;
@@ -231,6 +243,7 @@ fn add_part(
     for fold_line in &contours.fold_lines {
         add_polyline(document, layers::FOLD, fold_line, false, version);
     }
+    add_bends(document, drawing, &contours.outer);
     if let Some(([tail, head], arrowhead)) = drawing.grain_arrow() {
         let line = Line::new(point(tail), point(head));
         add_entity(document, layers::MARKS, EntityType::Line(line));
@@ -238,6 +251,34 @@ fn add_part(
         add_polyline(document, layers::MARKS, &arrowhead, false, version);
     }
     add_label(document, drawing, &contours.outer);
+}
+
+/// Bend lines (a LINE on `BEND_UP` or `BEND_DOWN`) and their notes (`UP 90%%d R2`, TEXT on
+/// `MARKS`, along the line, beside its middle), at half the label's height.
+fn add_bends(document: &mut Drawing, drawing: &PartDrawing, outer: &[BulgeVertex]) {
+    let height = label_height(drawing, outer) * BEND_NOTE_HEIGHT_FRACTION;
+    for bend in &drawing.bends {
+        let [start, end] = bend.line;
+        let layer = match bend.direction {
+            BendDirection::Up => layers::BEND_UP,
+            BendDirection::Down => layers::BEND_DOWN,
+        };
+        let line = Line::new(point(start), point(end));
+        add_entity(document, layer, EntityType::Line(line));
+        let along = (end - start).normalize_or_zero();
+        // `%%d` is the degree sign of DXF text (the file's code page may not have `°`).
+        let value = escaped_text(&bend.note()).replace('°', "%%d");
+        let width = value.chars().count() as f64 * height * LABEL_CHARACTER_WIDTH;
+        let location = (start + end) * 0.5 - along * (width * 0.5) + along.perp() * (0.5 * height);
+        let text = Text {
+            location: point(location),
+            text_height: height,
+            rotation: along.y.atan2(along.x).to_degrees(),
+            value,
+            ..Default::default()
+        };
+        add_entity(document, layers::MARKS, EntityType::Text(text));
+    }
 }
 
 /// A polyline of bulged vertices: LWPOLYLINE in R2000, POLYLINE and VERTEX entities in R12.
@@ -285,11 +326,7 @@ fn add_label(document: &mut Drawing, drawing: &PartDrawing, outer: &[BulgeVertex
     let Some((low, high)) = polyline_bounds(outer, true) else {
         return;
     };
-    let size = high - low;
-    let unit = drawing.units.millimetres();
-    let (smallest, largest) = LABEL_HEIGHT_RANGE_MM;
-    let height =
-        (size.min_element() * LABEL_HEIGHT_FRACTION).clamp(smallest / unit, largest / unit);
+    let height = label_height(drawing, outer);
     let value = label_text(drawing);
     let width = value.chars().count() as f64 * height * LABEL_CHARACTER_WIDTH;
     let deep = drawing.label_anchor().unwrap_or((low + high) * 0.5);
@@ -308,15 +345,29 @@ fn add_label(document: &mut Drawing, drawing: &PartDrawing, outer: &[BulgeVertex
     add_entity(document, layers::MARKS, EntityType::Text(text));
 }
 
-/// "name xQUANTITY material", written so that TEXT shows it literally: control characters (which
-/// would break the file) become spaces, `%` is written `%%%` (else `%%c`, `%%d`, ... are symbols)
-/// and `^` is written `^ ` (else `^J`, ... are control codes).
+/// The label's text height: a fraction of the part's smaller side, clamped to
+/// [`LABEL_HEIGHT_RANGE_MM`] (the smallest height for a part with no outline).
+fn label_height(drawing: &PartDrawing, outer: &[BulgeVertex]) -> f64 {
+    let unit = drawing.units.millimetres();
+    let (smallest, largest) = LABEL_HEIGHT_RANGE_MM;
+    let side = polyline_bounds(outer, true).map_or(0.0, |(low, high)| (high - low).min_element());
+    (side * LABEL_HEIGHT_FRACTION).clamp(smallest / unit, largest / unit)
+}
+
+/// "name xQUANTITY material", written as TEXT shows it literally ([`escaped_text`]).
 fn label_text(drawing: &PartDrawing) -> String {
     let mut label = format!("{} x{}", drawing.name, drawing.quantity);
     if let Some(material) = &drawing.material {
         label.push(' ');
         label.push_str(material);
     }
+    escaped_text(&label)
+}
+
+/// Text written so that TEXT shows it literally: control characters (which would break the
+/// file) become spaces, `%` is written `%%%` (else `%%c`, `%%d`, ... are symbols) and `^` is
+/// written `^ ` (else `^J`, ... are control codes).
+fn escaped_text(label: &str) -> String {
     let mut escaped = String::with_capacity(label.len());
     for character in label.chars() {
         match character {

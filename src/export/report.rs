@@ -17,6 +17,7 @@ use crate::cut::{Cut, CutFigures, CutOptions, CutStop, Seam, SeamKind};
 use crate::flatten::{FlattenOptions, Solver, StopReason};
 use crate::nest::{NestLayout, Rotations, Stock};
 use crate::pattern::PatternOptions;
+use crate::sheet::{BendDirection, BendLine};
 use crate::tessellate::TessellateOptions;
 use crate::units::Units;
 
@@ -154,6 +155,57 @@ pub struct PartReport {
     /// `<part>.REJECTED.dxf`); left out of the JSON when the part is accepted.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub rejected: Vec<String>,
+    /// For a STEP solid unfolded as sheet metal: thickness, K-factor, bends and flat size; left
+    /// out for any other part.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sheet_metal: Option<SheetMetalReport>,
+}
+
+/// A sheet-metal part's unfold. Lengths in mm, angles in degrees.
+#[derive(Debug, Clone, Serialize)]
+pub struct SheetMetalReport {
+    /// The sheet's thickness.
+    pub thickness: f64,
+    /// The K-factor the bends were unrolled with.
+    pub k_factor: f64,
+    /// The face the unfold started from: the largest planar face, whose side is drawn.
+    pub base_face: String,
+    /// Every bend.
+    pub bends: Vec<BendReport>,
+    /// The flat pattern's extent along x (its longer side).
+    pub flat_width: f64,
+    /// The flat pattern's extent along y.
+    pub flat_height: f64,
+    /// The flat pattern's area: the outer contour's less its holes'.
+    pub flat_area: f64,
+}
+
+/// One bend of a sheet-metal part.
+#[derive(Debug, Clone, Serialize)]
+pub struct BendReport {
+    /// How far the flange turns, degrees.
+    pub angle: f64,
+    /// Inner radius.
+    pub inner_radius: f64,
+    /// `up` or `down`, seen on the flat pattern as drawn.
+    pub direction: BendDirection,
+    /// Bend allowance θ · (R + K · t): the flat width of the bend zone.
+    pub allowance: f64,
+    /// Length of the bend line.
+    pub length: f64,
+}
+
+impl BendReport {
+    /// The report of a bend line.
+    pub fn new(bend: &BendLine) -> Self {
+        Self {
+            angle: bend.angle_degrees,
+            inner_radius: bend.inner_radius,
+            direction: bend.direction,
+            allowance: bend.allowance,
+            length: bend.length(),
+        }
+    }
 }
 
 /// One nested sheet, or the used part of a roll. Lengths in mm.

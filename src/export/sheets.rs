@@ -56,6 +56,11 @@ fn placed(drawing: &PartDrawing, placement: &Placement) -> PartDrawing {
             .map(|line| line.iter().map(|&p| point(p)).collect())
             .collect(),
         grain: drawing.grain.map(|[tail, head]| [point(tail), point(head)]),
+        bends: drawing
+            .bends
+            .iter()
+            .map(|bend| bend.placed(point, placement.mirrored))
+            .collect(),
         ..drawing.clone()
     }
 }

@@ -51,6 +51,9 @@ pub enum StopReason {
     TimeLimit,
     /// Every further step would have flipped a triangle (the fast solver's orientation guard).
     OrientationBlocked,
+    /// Not relaxed at all: a sheet-metal part unfolded exactly on its B-rep
+    /// ([`crate::sheet`]).
+    ExactUnfold,
 }
 
 /// Parameters of the explicit relaxation.

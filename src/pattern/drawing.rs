@@ -6,6 +6,7 @@ use glam::DVec2;
 use serde::{Deserialize, Serialize};
 
 use crate::geometry::deep_interior_point;
+use crate::sheet::BendLine;
 use crate::units::Units;
 
 /// One part's flat pattern, at 1:1 in `units`: nominal geometry (the CAM adds kerf).
@@ -28,6 +29,10 @@ pub struct PartDrawing {
     pub fold_lines: Vec<Vec<DVec2>>,
     /// Grain line, from tail to head, when the part has a grain direction.
     pub grain: Option<[DVec2; 2]>,
+    /// Bend lines of a sheet-metal part (drawn on the bend layers, never cut), with their
+    /// notes; empty for any other part (and then left out of a pattern file).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub bends: Vec<BendLine>,
 }
 
 /// Grain arrowhead length as a fraction of the grain line, capped at [`ARROW_MAX_LENGTH_MM`].

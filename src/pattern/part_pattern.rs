@@ -90,6 +90,7 @@ pub fn part_pattern(source: &PatternSource<'_>) -> Pattern {
         holes: outline.holes,
         fold_lines: fold_polylines(model, positions),
         grain,
+        bends: Vec::new(),
     };
     let cut_lines = source
         .cut_edges

@@ -111,6 +111,7 @@ impl PatternFile {
 #[cfg(test)]
 mod tests {
     use crate::pattern::pattern_file::*;
+    use crate::sheet::{BendDirection, BendLine};
     use crate::units::Units;
     use glam::DVec2;
     use proptest::prelude::*;
@@ -127,6 +128,13 @@ mod tests {
                 holes: vec![vec![DVec2::new(d, c), DVec2::new(b, a), DVec2::new(a, d)]],
                 fold_lines: vec![vec![DVec2::new(a, c), DVec2::new(b, d)]],
                 grain: Some([DVec2::new(a, a), DVec2::new(d, d)]),
+                bends: vec![BendLine {
+                    line: [DVec2::new(a, d), DVec2::new(c, b)],
+                    direction: BendDirection::Down,
+                    angle_degrees: c,
+                    inner_radius: b,
+                    allowance: d,
+                }],
             },
             grain_degrees: Some(c),
             thickness_mm: Some(b),

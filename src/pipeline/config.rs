@@ -14,6 +14,7 @@ use crate::export::energy_png::EnergyPngOptions;
 use crate::flatten::FlattenOptions;
 use crate::nest::{DEFAULT_SEED, MAXIMUM_STOCK_MM, NestOptions, Rotations, Stock};
 use crate::pattern::PatternOptions;
+use crate::sheet::SheetOptions;
 use crate::tessellate::TessellateOptions;
 use crate::units::Units;
 
@@ -32,6 +33,10 @@ pub struct RunOptions {
     /// only when one is given).
     #[serde(default, skip_serializing_if = "PartOverrides::is_empty")]
     pub overrides: PartOverrides,
+    /// How STEP solids recognised as sheet metal are unfolded (echoed only when not the
+    /// default).
+    #[serde(default, skip_serializing_if = "SheetOptions::is_default")]
+    pub sheet: SheetOptions,
 }
 
 /// What the command line or a batch manifest says of a part, over what its file says.
@@ -249,6 +254,14 @@ impl RunConfig {
                 "--tolerance",
                 tolerance.to_string(),
                 format!("give a fraction above 0 and at most {MAXIMUM_TOLERANCE} (0.01 is 1 %)"),
+            );
+        }
+        let k_factor = self.options.sheet.k_factor;
+        if !self.options.sheet.is_valid() {
+            return invalid(
+                "--k-factor",
+                figure(k_factor),
+                "give the neutral fibre's place as a fraction of the thickness, 0 to 1".to_owned(),
             );
         }
         self.pattern.validate()?;

@@ -1,14 +1,16 @@
 //! Flattening one loaded part: seams, crest-line cuts and re-flattening until it is within
-//! tolerance, the pattern turned to its grain, and the part's pattern made from it.
+//! tolerance, the pattern turned to its grain, and the part's pattern made from it. A
+//! sheet-metal part, unfolded exactly when it was loaded, only gets its pattern made.
 
-use crate::cut::cut_and_flatten;
+use crate::cut::{CutStop, cut_and_flatten};
 use crate::error::Error;
 use crate::flatten::orient::orient;
+use crate::flatten::{Accuracy, FlattenStats, Flattened, SpringSystem, StopReason};
 use crate::pattern::{FlatShape, PatternSource, part_pattern};
 use crate::progress::Progress;
 
 use super::config::RunOptions;
-use super::load::PartJob;
+use super::load::{PartJob, SheetPart};
 use super::part_result::PartResult;
 
 /// Flattens one part, with seams and crest-line cuts until it is within tolerance or the cut
@@ -18,6 +20,9 @@ pub fn flatten_part(
     options: &RunOptions,
     progress: &dyn Progress,
 ) -> Result<PartResult, Error> {
+    if let Some(sheet) = job.sheet.clone() {
+        return Ok(unfolded_part(job, &sheet, options));
+    }
     let started = std::time::Instant::now();
     let mut result = cut_and_flatten(
         &job.model,
@@ -71,4 +76,53 @@ pub fn flatten_part(
         cut_edges: result.cut_edges,
         pattern,
     })
+}
+
+/// The result of a sheet-metal part: its exact unfold as the pattern (no seam, no cut), its
+/// figures measured against the skin (the bends differ from it by their allowance, by design),
+/// and its bend lines on the drawing.
+fn unfolded_part(job: PartJob, sheet: &SheetPart, options: &RunOptions) -> PartResult {
+    let started = std::time::Instant::now();
+    let positions = sheet.flat.clone();
+    let accuracy = Accuracy::measure(&job.model, &positions);
+    let springs = SpringSystem::new(
+        &job.model,
+        job.stiffness.factors(),
+        options.flatten.spring_constant,
+    );
+    let mut pattern = part_pattern(&PatternSource {
+        name: &job.name,
+        units: job.units,
+        quantity: job.quantity,
+        material: job.attributes.material.as_deref(),
+        grain: None,
+        flat: FlatShape {
+            model: &job.model,
+            stiffness: &job.stiffness,
+            positions: &positions,
+        },
+        uncut: None,
+        cut_edges: &[],
+        spring_constant: options.flatten.spring_constant,
+    });
+    pattern.drawing.bends = sheet.bends.clone();
+    let stats = FlattenStats {
+        accuracy,
+        initial_accuracy: accuracy,
+        energy: springs.energy(&positions),
+        iterations: 0,
+        stop_reason: StopReason::ExactUnfold,
+        seconds: started.elapsed().as_secs_f64(),
+    };
+    PartResult {
+        original_vertex: (0..job.model.vertex_count() as u32).collect(),
+        job,
+        flattened: Flattened { positions, stats },
+        seams: Vec::new(),
+        cuts: Vec::new(),
+        cut_stop: CutStop::ToleranceMet,
+        uncut: None,
+        cut_edges: Vec::new(),
+        pattern,
+    }
 }

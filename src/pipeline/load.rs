@@ -1,7 +1,11 @@
 //! Loading one input: ingest, tessellate (part files), validate (one part per connected
-//! component), stiffness (fold lines, regions).
+//! component), stiffness (fold lines, regions). A STEP solid recognised as sheet metal is
+//! unfolded here, exactly (see [`crate::sheet`]): its part is its chosen skin with the flat
+//! pattern already made.
 
 use std::path::{Path, PathBuf};
+
+use glam::DVec2;
 
 use crate::cad::{
     Brep, ParameterRegion, PartAttributes, PartModel, RegionShape, SurfaceDomain, TriangleSoup,
@@ -11,6 +15,9 @@ use crate::error::Error;
 use crate::flatten::Stiffness;
 use crate::ingest::{CutSidecar, Input, read_cut_sidecar, read_input};
 use crate::mesh::{FacetModel, validate};
+use crate::sheet::{
+    BendLine, NotASheet, SHEET_CHORD_MM, SheetUnfold, ThinSolid, recognise_shell, unfold_skin,
+};
 pub use crate::tessellate::TessellationFigures;
 use crate::tessellate::{
     TessellateOptions, Tessellation, tessellate_brep, tessellate_part as tessellate_cad,
@@ -45,6 +52,24 @@ pub struct PartJob {
     pub constraints: CutConstraints,
     /// Repairs made to the input, as messages.
     pub warnings: Vec<String>,
+    /// The exact unfold, when the part is a sheet-metal solid (its model is then the chosen
+    /// skin).
+    pub sheet: Option<SheetPart>,
+}
+
+/// A sheet-metal part's exact unfold, made when it is loaded.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SheetPart {
+    /// The flat position of each vertex of the part's model.
+    pub flat: Vec<DVec2>,
+    /// The bends, on the flat pattern.
+    pub bends: Vec<BendLine>,
+    /// The sheet's thickness, mm.
+    pub thickness: f64,
+    /// The K-factor the bends were unrolled with.
+    pub k_factor: f64,
+    /// The face the unfold started from, described (`ADVANCED_FACE #17 on PLANE (#31)`).
+    pub base_face: String,
 }
 
 /// Reads an input file (mesh, part file or STEP file) and splits it into parts, one per
@@ -74,9 +99,32 @@ fn read_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> 
         }
         Input::Step(brep) => {
             let tessellation = tessellate_step(path, &brep, &options.tessellate)?;
-            let mut template = template(brep.name, Units::Millimetres);
+            let mut template = template(brep.name.clone(), Units::Millimetres);
             template.tessellation = Some(tessellation.figures);
-            split_parts(path, tessellation.soup(), template, |_, _, _| {})
+            let not_a_sheet = match thin_solid(&brep, tessellation.soup()) {
+                Ok(solid) => {
+                    let fine =
+                        sheet_tessellation(path, &brep, options, tessellation.figures.chord)?;
+                    let unfold = unfold_skin(&solid, fine.soup(), &options.sheet);
+                    let base_face = brep.shells[0].describe_face(solid.base_face);
+                    let mut header = template.clone();
+                    header.tessellation = Some(fine.figures);
+                    if let Some(job) = sheet_job(path, unfold, base_face, header)? {
+                        return Ok(vec![job]);
+                    }
+                    Some("its skin is not one piece".to_owned())
+                }
+                Err(reason) => reason,
+            };
+            let mut jobs = split_parts(path, tessellation.soup(), template, |_, _, _| {})?;
+            if let Some(reason) = not_a_sheet {
+                for job in &mut jobs {
+                    job.warnings.push(format!(
+                        "not unfolded as sheet metal ({reason}): flattened as a surface"
+                    ));
+                }
+            }
+            Ok(jobs)
         }
         Input::Part(part) => load_part_file(path, &part, &options.tessellate),
     }
@@ -117,6 +165,79 @@ pub fn tessellate_step(
         path: path.to_path_buf(),
         defect,
     })
+}
+
+/// A STEP file of one solid recognised as sheet metal; otherwise why not, when it is a solid of
+/// planes and cylinders only (`None` for anything else: several shells, other surfaces).
+fn thin_solid(brep: &Brep, soup: &TriangleSoup) -> Result<ThinSolid, Option<String>> {
+    let [shell] = brep.shells.as_slice() else {
+        return Err(None);
+    };
+    recognise_shell(shell, soup).map_err(|not_a_sheet| match not_a_sheet {
+        NotASheet::OtherSurfaces(_) => None,
+        NotASheet::NoConstantThickness(reason) => Some(reason),
+    })
+}
+
+/// The tessellation a sheet-metal solid is unfolded from: its chord at most [`SHEET_CHORD_MM`]
+/// (`chord` is the one the file was first tessellated with).
+fn sheet_tessellation(
+    path: &Path,
+    brep: &Brep,
+    options: &RunOptions,
+    chord: f64,
+) -> Result<Tessellation, Error> {
+    let fine = TessellateOptions {
+        chord: Some(chord.min(SHEET_CHORD_MM)),
+        ..options.tessellate
+    };
+    tessellate_step(path, brep, &fine)
+}
+
+/// The part of an unfolded sheet-metal solid: its skin validated into one facet model, the flat
+/// positions carried to the model's vertices, the thickness from the solid; `None` when the
+/// skin is not one connected piece.
+fn sheet_job(
+    path: &Path,
+    unfold: SheetUnfold,
+    base_face: String,
+    mut header: PartHeader,
+) -> Result<Option<PartJob>, Error> {
+    let validated = validate(&unfold.skin).map_err(|defects| Error::Mesh {
+        path: path.to_path_buf(),
+        defects,
+    })?;
+    let ([model], [soup_vertices]) = (
+        validated.components.as_slice(),
+        validated.soup_vertices.as_slice(),
+    ) else {
+        return Ok(None);
+    };
+    header.attributes.thickness = Some(unfold.thickness);
+    let flat = soup_vertices
+        .iter()
+        .map(|&vertex| unfold.flat[vertex as usize])
+        .collect();
+    Ok(Some(PartJob {
+        name: header.name,
+        source: path.to_path_buf(),
+        units: header.units,
+        quantity: header.quantity,
+        attributes: header.attributes,
+        fold_line_count: 0,
+        tessellation: header.tessellation,
+        stiffness: Stiffness::uniform(model),
+        constraints: CutConstraints::default(),
+        model: model.clone(),
+        warnings: validated.warnings.iter().map(ToString::to_string).collect(),
+        sheet: Some(SheetPart {
+            flat,
+            bends: unfold.bends,
+            thickness: unfold.thickness,
+            k_factor: unfold.k_factor,
+            base_face,
+        }),
+    }))
 }
 
 /// What every part of one input file shares.
@@ -245,6 +366,7 @@ fn split_parts(
                 constraints: constraints.clone(),
                 model,
                 warnings: warnings.clone(),
+                sheet: None,
             }
         })
         .collect())

@@ -26,7 +26,9 @@ pub use config::{
 };
 pub use facet_model::{FacetModelOutput, FacetSource, facet_model, write_facet_model};
 pub use flatten_part::flatten_part;
-pub use load::{PartJob, TessellationFigures, load_parts, tessellate_part, tessellate_step};
+pub use load::{
+    PartJob, SheetPart, TessellationFigures, load_parts, tessellate_part, tessellate_step,
+};
 pub use output_folder::{
     InterruptHandle, MANIFEST_FILE, OutputFolder, check_inputs_outside, complete_run_present,
     remove_previous_run,

@@ -46,7 +46,30 @@ impl PartResult {
                 .thickness
                 .map(|thickness| thickness * job.units.millimetres()),
             options: *options,
-            rejected: !rejection_reasons(&self.flattened.stats.accuracy, tolerance).is_empty(),
+            rejected: !self.rejection_reasons(tolerance).is_empty(),
+        }
+    }
+
+    /// Every reason to reject this part at `tolerance` ([`rejection_reasons`]). A sheet-metal
+    /// part's E_S and E_C compare its flat pattern with its skin, whose bends differ from the
+    /// flat by their allowance by design: only flipped triangles and overlap reject it.
+    pub fn rejection_reasons(&self, tolerance: f64) -> Vec<String> {
+        let tolerance = if self.job.sheet.is_some() {
+            f64::INFINITY
+        } else {
+            tolerance
+        };
+        rejection_reasons(&self.flattened.stats.accuracy, tolerance)
+    }
+
+    /// Whether the part meets `tolerance`: E_S and E_C within it (any error for a sheet-metal
+    /// part, see [`Self::rejection_reasons`]) and no overlap.
+    pub fn tolerance_met(&self, tolerance: f64) -> bool {
+        let accuracy = &self.flattened.stats.accuracy;
+        if self.job.sheet.is_some() {
+            !accuracy.overlap
+        } else {
+            accuracy.within(tolerance)
         }
     }
 }

@@ -1,10 +1,13 @@
 //! The report's values made from a run: every option of the run, and one entry per part.
 
+use glam::DVec2;
+
 use crate::export::report::{
-    CutReport, FoldLineReport, NestingReport, PartReport, ReportOptions, SeamReport,
-    TessellationReport,
+    BendReport, CutReport, FoldLineReport, NestingReport, PartReport, ReportOptions, SeamReport,
+    SheetMetalReport, TessellationReport,
 };
 use crate::flatten::fold_lines::fold_line_lengths;
+use crate::geometry::signed_area;
 
 use crate::nest::Stock;
 
@@ -62,7 +65,7 @@ pub fn part_report(result: &PartResult, config: &RunConfig) -> PartReport {
         iterations: stats.iterations,
         stop_reason: stats.stop_reason,
         tolerance: flatten.tolerance,
-        tolerance_met: accuracy.within(flatten.tolerance),
+        tolerance_met: result.tolerance_met(flatten.tolerance),
         seconds: if config.timings { stats.seconds } else { 0.0 },
         solver: flatten.solver,
         energy: stats.energy,
@@ -89,6 +92,34 @@ pub fn part_report(result: &PartResult, config: &RunConfig) -> PartReport {
             minimum_angle: figures.minimum_angle,
         }),
         warnings: job.warnings.clone(),
-        rejected: super::rejection::rejection_reasons(&accuracy, flatten.tolerance),
+        rejected: result.rejection_reasons(flatten.tolerance),
+        sheet_metal: sheet_metal_report(result),
     }
+}
+
+/// The sheet-metal figures of a part unfolded as sheet metal: its bends and its flat size from
+/// the drawing's contours.
+fn sheet_metal_report(result: &PartResult) -> Option<SheetMetalReport> {
+    let sheet = result.job.sheet.as_ref()?;
+    let drawing = &result.pattern.drawing;
+    let (low, high) = drawing
+        .outer
+        .iter()
+        .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(low, high), &p| {
+            (low.min(p), high.max(p))
+        });
+    let holes: f64 = drawing
+        .holes
+        .iter()
+        .map(|hole| signed_area(hole).abs())
+        .sum();
+    Some(SheetMetalReport {
+        thickness: sheet.thickness,
+        k_factor: sheet.k_factor,
+        base_face: sheet.base_face.clone(),
+        bends: drawing.bends.iter().map(BendReport::new).collect(),
+        flat_width: high.x - low.x,
+        flat_height: high.y - low.y,
+        flat_area: signed_area(&drawing.outer).abs() - holes,
+    })
 }

@@ -1,5 +1,5 @@
 //! The architecture, checked from the code's own `use` lines: the stages run one way
-//! (`cad → ingest → tessellate → mesh → flatten → cut → pattern → nest → export → pipeline →
+//! (`cad → ingest → tessellate → mesh → sheet → flatten → cut → pattern → nest → export → pipeline →
 //! batch`, over the shared `geometry`, `units` and `progress`), each module importing only
 //! modules to its left or inside itself, and no file-level import cycle anywhere (in particular,
 //! no two files importing each other). A folder's `mod.rs` is its facade: it declares and re-exports its files, and its
@@ -21,16 +21,17 @@ const STAGES: &[(&str, usize)] = &[
     ("ingest", 2),
     ("tessellate", 3),
     ("mesh", 4),
-    ("flatten", 5),
-    ("cut", 6),
-    ("pattern", 7),
-    ("nest", 8),
-    ("export", 9),
-    ("error", 10),
-    ("pipeline", 11),
-    ("batch", 12),
-    ("cli", 13),
-    ("main", 13),
+    ("sheet", 5),
+    ("flatten", 6),
+    ("cut", 7),
+    ("pattern", 8),
+    ("nest", 9),
+    ("export", 10),
+    ("error", 11),
+    ("pipeline", 12),
+    ("batch", 13),
+    ("cli", 14),
+    ("main", 14),
 ];
 
 /// A module path inside the crate: `["cut", "seam"]` for `src/cut/seam.rs`.

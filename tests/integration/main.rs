@@ -9,4 +9,5 @@ mod flatten;
 mod golden;
 mod nesting;
 mod outputs;
+mod sheet_metal;
 mod util;

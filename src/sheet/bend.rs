@@ -1,0 +1,115 @@
+//! A bend as the flat pattern carries it: its centre line on the flat, the way it folds, its
+//! angle, inner radius and bend allowance, and the note a press-brake operator reads.
+
+use glam::DVec2;
+use serde::{Deserialize, Serialize};
+
+/// Which way a bend folds, seen on the flat pattern from the side drawn (the chosen skin).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BendDirection {
+    /// Towards the viewer: the drawn skin is on the inside of the bend.
+    Up,
+    /// Away from the viewer: the drawn skin is on the outside of the bend.
+    Down,
+}
+
+impl BendDirection {
+    /// `UP` or `DOWN`, as the note writes it.
+    pub fn word(self) -> &'static str {
+        match self {
+            Self::Up => "UP",
+            Self::Down => "DOWN",
+        }
+    }
+
+    /// The direction seen from the other side (a mirrored pattern).
+    pub fn mirrored(self) -> Self {
+        match self {
+            Self::Up => Self::Down,
+            Self::Down => Self::Up,
+        }
+    }
+}
+
+/// The bend allowance `BA = θ · (R_inner + K · t)`: the flat length of a bend of `angle`
+/// radians, inner radius `inner_radius` and thickness `thickness`, at K-factor `k_factor`.
+pub fn bend_allowance(angle: f64, inner_radius: f64, k_factor: f64, thickness: f64) -> f64 {
+    angle * (inner_radius + k_factor * thickness)
+}
+
+/// One bend of a flat pattern, in the drawing's units.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct BendLine {
+    /// The bend's centre line on the flat pattern (the middle of the bend zone), end to end.
+    pub line: [DVec2; 2],
+    /// Which way it folds.
+    pub direction: BendDirection,
+    /// The bend angle (how far the flange turns), degrees.
+    pub angle_degrees: f64,
+    /// The inner radius.
+    pub inner_radius: f64,
+    /// The bend allowance: the flat width of the bend zone.
+    pub allowance: f64,
+}
+
+impl BendLine {
+    /// The note drawn beside the bend line: `UP 90° R2`, the angle and radius rounded to 0.01.
+    pub fn note(&self) -> String {
+        format!(
+            "{} {}° R{}",
+            self.direction.word(),
+            short_number(self.angle_degrees),
+            short_number(self.inner_radius)
+        )
+    }
+
+    /// The bend line's length.
+    pub fn length(&self) -> f64 {
+        self.line[0].distance(self.line[1])
+    }
+
+    /// The same bend with its line moved by `map` (a placement on a sheet) and, when the
+    /// placement mirrors the pattern, folding the other way.
+    pub fn placed(&self, map: impl Fn(DVec2) -> DVec2, mirrored: bool) -> Self {
+        Self {
+            line: self.line.map(map),
+            direction: if mirrored {
+                self.direction.mirrored()
+            } else {
+                self.direction
+            },
+            ..*self
+        }
+    }
+}
+
+/// A number rounded to 0.01 without trailing zeros: `90`, `2.4`, `1.64`.
+fn short_number(value: f64) -> String {
+    let text = format!("{value:.2}");
+    text.trim_end_matches('0').trim_end_matches('.').to_owned()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_note_names_direction_angle_and_radius() {
+        let bend = BendLine {
+            line: [DVec2::ZERO, DVec2::new(0.0, 30.0)],
+            direction: BendDirection::Up,
+            angle_degrees: 90.000000001,
+            inner_radius: 2.4,
+            allowance: 4.0,
+        };
+        assert_eq!(bend.note(), "UP 90° R2.4");
+        assert_eq!(bend.length(), 30.0);
+    }
+
+    #[test]
+    fn the_allowance_is_the_neutral_arc() {
+        let allowance = bend_allowance(std::f64::consts::FRAC_PI_2, 1.64, 0.38, 2.0);
+        assert!((allowance - std::f64::consts::FRAC_PI_2 * 2.4).abs() < 1e-12);
+    }
+}

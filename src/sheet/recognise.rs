@@ -1,0 +1,222 @@
+//! Thin-solid recognition on a B-rep shell: is it a sheet of one thickness, and which faces are
+//! its chosen skin.
+//!
+//! A sheet-metal solid has two skins at thickness `t` (parallel planes at distance `t`, coaxial
+//! cylinders of radii `R` and `R + t`) joined by narrow edge faces (walls) that touch both skins.
+//! The chosen skin is the side of the largest planar face: that face and every face reached from
+//! it across edges where the surface continues smoothly (a flange into its bend, a bend into the
+//! next flange). The thickness is the distance from the largest planar face to the nearest
+//! parallel plane that shares a wall with it, and it must hold for every face of the skin.
+
+use super::surfaces::{SheetSurface, same_length};
+use crate::cad::BrepShell;
+
+/// A sheet's thickness may be at most this fraction of the square root of its largest planar
+/// face's area: a thicker solid is a block, not a sheet.
+pub const MAXIMUM_THICKNESS_RATIO: f64 = 0.2;
+
+/// A shell recognised as a sheet of one thickness.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ThinSolid {
+    /// The sheet's thickness, mm.
+    pub thickness: f64,
+    /// The largest planar face: where the unfold starts, fixed in place.
+    pub base_face: usize,
+    /// The faces of the chosen skin (the base face's side), base face first.
+    pub skin: Vec<usize>,
+    /// Every face's surface, in the shell's face order.
+    pub surfaces: Vec<SheetSurface>,
+    /// For each face of `skin` (same order), one face of the other skin opposite it.
+    pub partners: Vec<usize>,
+    /// Faces that share an edge, per face.
+    pub neighbours: Vec<Vec<usize>>,
+}
+
+/// Why a shell is not a sheet of one thickness.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum NotASheet {
+    /// The shell is not a solid of planes and cylinders only (a sphere, a cone, a spline), so
+    /// it is not unfolded as sheet metal.
+    OtherSurfaces(String),
+    /// Planes and cylinders, but not two skins at one thickness joined by walls.
+    NoConstantThickness(String),
+}
+
+impl NotASheet {
+    /// The reason, in words.
+    pub fn reason(&self) -> &str {
+        match self {
+            Self::OtherSurfaces(reason) | Self::NoConstantThickness(reason) => reason,
+        }
+    }
+}
+
+/// Recognises a shell as a thin solid; `face_areas` are the faces' areas (mm²), in the shell's
+/// face order.
+pub fn recognise(shell: &BrepShell, face_areas: &[f64]) -> Result<ThinSolid, NotASheet> {
+    let surfaces = sheet_surfaces(shell)?;
+    let neighbours = face_neighbours(shell);
+    let base_face = largest_plane(&surfaces, face_areas)
+        .ok_or_else(|| NotASheet::NoConstantThickness("the solid has no planar face".to_owned()))?;
+    let thickness = nearest_opposite_plane(&surfaces, &neighbours, base_face).ok_or_else(|| {
+        NotASheet::NoConstantThickness(format!(
+            "the largest planar face ({}) has no parallel face across a wall",
+            shell.describe_face(base_face)
+        ))
+    })?;
+    if thickness > MAXIMUM_THICKNESS_RATIO * face_areas[base_face].sqrt() {
+        return Err(NotASheet::NoConstantThickness(format!(
+            "thickness {thickness:.3} mm is too large for a sheet of this size"
+        )));
+    }
+    let skin = smooth_region(&surfaces, &neighbours, base_face);
+    let partners = skin
+        .iter()
+        .map(|&face| {
+            opposite_faces(&surfaces, &neighbours, face, thickness)
+                .find(|other| !skin.contains(other))
+                .ok_or_else(|| {
+                    NotASheet::NoConstantThickness(format!(
+                        "{} has no opposite face at thickness {thickness:.4} mm",
+                        shell.describe_face(face)
+                    ))
+                })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let solid = ThinSolid {
+        thickness,
+        base_face,
+        skin,
+        surfaces,
+        partners,
+        neighbours,
+    };
+    check_walls(shell, &solid)?;
+    Ok(solid)
+}
+
+/// Every face's surface, or why the shell is not made of planes and cylinders.
+fn sheet_surfaces(shell: &BrepShell) -> Result<Vec<SheetSurface>, NotASheet> {
+    (0..shell.shell.faces.len())
+        .map(|face| {
+            SheetSurface::of(shell.surface_geometry(face)).ok_or_else(|| {
+                NotASheet::OtherSurfaces(format!(
+                    "{} is neither a plane nor a cylinder",
+                    shell.describe_face(face)
+                ))
+            })
+        })
+        .collect()
+}
+
+/// Faces sharing an edge with each face, ascending.
+fn face_neighbours(shell: &BrepShell) -> Vec<Vec<usize>> {
+    let mut neighbours = vec![Vec::new(); shell.shell.faces.len()];
+    for ([a, b], _) in shell.adjacent_faces() {
+        neighbours[a].push(b);
+        neighbours[b].push(a);
+    }
+    for list in &mut neighbours {
+        list.sort_unstable();
+        list.dedup();
+    }
+    neighbours
+}
+
+/// The planar face of largest area (the first of equal ones).
+fn largest_plane(surfaces: &[SheetSurface], face_areas: &[f64]) -> Option<usize> {
+    let planes = (0..surfaces.len()).filter(|&f| matches!(surfaces[f], SheetSurface::Plane { .. }));
+    planes.fold(None, |best: Option<usize>, face| match best {
+        Some(best) if face_areas[best] >= face_areas[face] => Some(best),
+        _ => Some(face),
+    })
+}
+
+/// Whether two faces touch a common third face.
+fn share_a_wall(neighbours: &[Vec<usize>], a: usize, b: usize) -> bool {
+    neighbours[a]
+        .iter()
+        .any(|wall| neighbours[b].contains(wall))
+}
+
+/// The distance from `face` (a plane) to the nearest parallel plane sharing a wall with it.
+fn nearest_opposite_plane(
+    surfaces: &[SheetSurface],
+    neighbours: &[Vec<usize>],
+    face: usize,
+) -> Option<f64> {
+    (0..surfaces.len())
+        .filter(|&other| other != face && share_a_wall(neighbours, face, other))
+        .filter_map(|other| surfaces[face].opposite_distance(&surfaces[other]))
+        .filter(|&distance| distance > super::surfaces::LENGTH_TOLERANCE_MM)
+        .min_by(f64::total_cmp)
+}
+
+/// Faces opposite `face` at `thickness` that share a wall with it, ascending.
+fn opposite_faces<'a>(
+    surfaces: &'a [SheetSurface],
+    neighbours: &'a [Vec<usize>],
+    face: usize,
+    thickness: f64,
+) -> impl Iterator<Item = usize> + 'a {
+    (0..surfaces.len()).filter(move |&other| {
+        other != face
+            && surfaces[face]
+                .opposite_distance(&surfaces[other])
+                .is_some_and(|distance| same_length(distance, thickness))
+            && share_a_wall(neighbours, face, other)
+    })
+}
+
+/// The faces reached from `start` across edges where the surface continues smoothly, in
+/// breadth-first order.
+pub fn smooth_region(
+    surfaces: &[SheetSurface],
+    neighbours: &[Vec<usize>],
+    start: usize,
+) -> Vec<usize> {
+    let mut region = vec![start];
+    let mut next = 0;
+    while next < region.len() {
+        let face = region[next];
+        next += 1;
+        for &other in &neighbours[face] {
+            if !region.contains(&other) && surfaces[face].tangent_to(&surfaces[other]) {
+                region.push(other);
+            }
+        }
+    }
+    region
+}
+
+/// Checks that every face is on a skin or is a wall touching both skins: the faces opposite the
+/// chosen skin at the thickness form the other skin, everything else must join the two.
+fn check_walls(shell: &BrepShell, solid: &ThinSolid) -> Result<(), NotASheet> {
+    let faces = solid.surfaces.len();
+    let on_skin = |face: usize| solid.skin.contains(&face);
+    let other_skin: Vec<bool> = (0..faces)
+        .map(|face| {
+            !on_skin(face)
+                && solid.skin.iter().any(|&skin_face| {
+                    opposite_faces(
+                        &solid.surfaces,
+                        &solid.neighbours,
+                        skin_face,
+                        solid.thickness,
+                    )
+                    .any(|other| other == face)
+                })
+        })
+        .collect();
+    for face in (0..faces).filter(|&face| !on_skin(face) && !other_skin[face]) {
+        let touches_skin = solid.neighbours[face].iter().any(|&n| on_skin(n));
+        let touches_other = solid.neighbours[face].iter().any(|&n| other_skin[n]);
+        if !(touches_skin && touches_other) {
+            return Err(NotASheet::NoConstantThickness(format!(
+                "{} is neither on a skin nor a wall between the two skins",
+                shell.describe_face(face)
+            )));
+        }
+    }
+    Ok(())
+}

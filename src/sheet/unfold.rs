@@ -1,0 +1,349 @@
+//! The exact unfold of a thin solid's chosen skin, on the B-rep: the base flange fixed, every
+//! other flange placed rigidly, every bend unrolled at its neutral fibre (`R_inner + K · t`), so
+//! that the flat length across a bend is its bend allowance. The skin's triangles (from the
+//! tessellation) carry the unfold to the flat pattern: each vertex goes where its face's map puts
+//! it, so holes and cut-outs come out as the inner boundaries of the flat skin.
+
+use glam::{DVec2, DVec3};
+
+use super::bend::{BendDirection, BendLine, bend_allowance};
+use super::face_map::{BendMap, FaceMap, PlaneMap};
+use super::options::SheetOptions;
+use super::recognise::ThinSolid;
+use super::surfaces::SheetSurface;
+use crate::cad::TriangleSoup;
+use crate::geometry::long_side_of_smallest_rectangle;
+
+/// A thin solid's skin and its flat pattern.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SheetUnfold {
+    /// The sheet's thickness, mm.
+    pub thickness: f64,
+    /// The K-factor the bends were unrolled with.
+    pub k_factor: f64,
+    /// The face the unfold started from (the largest planar face), in the shell's face order.
+    pub base_face: usize,
+    /// The chosen skin's triangles, counter-clockwise seen from outside the solid, tagged with
+    /// their faces.
+    pub skin: TriangleSoup,
+    /// The flat position of every vertex of `skin`, seen from outside the skin, its smallest
+    /// bounding rectangle axis-aligned (longer side along x) and starting at the origin.
+    pub flat: Vec<DVec2>,
+    /// The bends, in the order the unfold met them, in the flat pattern's frame.
+    pub bends: Vec<BendLine>,
+}
+
+/// A bend met by the unfold: its map and whether the skin is on its inside.
+#[derive(Debug, Clone, Copy)]
+struct BendZone {
+    map: BendMap,
+    inner_radius: f64,
+    skin_inside: bool,
+}
+
+/// Unfolds the chosen skin of `solid`, whose triangles are those of `soup` tagged with the
+/// skin's faces (a soup's face source is the shell's face index).
+pub fn unfold_skin(solid: &ThinSolid, soup: &TriangleSoup, options: &SheetOptions) -> SheetUnfold {
+    let mut skin = skin_soup(solid, soup);
+    let face_vertices = vertices_by_face(&skin, solid.surfaces.len());
+    let (maps, zones) = face_maps(solid, &skin, &face_vertices, options.k_factor);
+    let flat = flat_positions(&skin, &maps);
+    if wound_clockwise(&skin, &flat) {
+        for triangle in &mut skin.triangles {
+            triangle.swap(1, 2);
+        }
+    }
+    let mut bends: Vec<BendLine> = zones
+        .iter()
+        .enumerate()
+        .map(|(index, zone)| {
+            bend_line(
+                zone,
+                bend_points(&skin, &maps, index),
+                solid.thickness,
+                options.k_factor,
+            )
+        })
+        .collect();
+    let mut flat = flat;
+    rest_position(&mut flat, &mut bends);
+    SheetUnfold {
+        thickness: solid.thickness,
+        k_factor: options.k_factor,
+        base_face: solid.base_face,
+        skin,
+        flat,
+        bends,
+    }
+}
+
+/// The triangles of `soup` on the skin's faces, with only the vertices they use.
+fn skin_soup(solid: &ThinSolid, soup: &TriangleSoup) -> TriangleSoup {
+    let mut on_skin = vec![false; solid.surfaces.len()];
+    for &face in &solid.skin {
+        on_skin[face] = true;
+    }
+    let mut index = vec![u32::MAX; soup.positions.len()];
+    let mut skin = TriangleSoup::default();
+    for (triangle, &face) in soup.triangles.iter().zip(&soup.face_sources) {
+        if !on_skin.get(face as usize).copied().unwrap_or(false) {
+            continue;
+        }
+        let corners = triangle.map(|vertex| {
+            let slot = &mut index[vertex as usize];
+            if *slot == u32::MAX {
+                *slot = skin.positions.len() as u32;
+                skin.positions.push(soup.positions[vertex as usize]);
+            }
+            *slot
+        });
+        skin.triangles.push(corners);
+        skin.face_sources.push(face);
+    }
+    skin
+}
+
+/// The vertices of each face's triangles, per face of the shell.
+fn vertices_by_face(skin: &TriangleSoup, faces: usize) -> Vec<Vec<u32>> {
+    let mut vertices = vec![Vec::new(); faces];
+    for (triangle, &face) in skin.triangles.iter().zip(&skin.face_sources) {
+        vertices[face as usize].extend_from_slice(triangle);
+    }
+    for list in &mut vertices {
+        list.sort_unstable();
+        list.dedup();
+    }
+    vertices
+}
+
+/// Every skin face's map to the flat pattern, reached from the base face across smooth edges,
+/// and the bends met on the way.
+fn face_maps(
+    solid: &ThinSolid,
+    skin: &TriangleSoup,
+    face_vertices: &[Vec<u32>],
+    k_factor: f64,
+) -> (Vec<Option<FaceMap>>, Vec<BendZone>) {
+    let mut maps: Vec<Option<FaceMap>> = vec![None; solid.surfaces.len()];
+    let mut zones = Vec::new();
+    maps[solid.base_face] = Some(FaceMap::Flange(base_map(solid)));
+    let mut queue = vec![solid.base_face];
+    let mut next = 0;
+    while next < queue.len() {
+        let face = queue[next];
+        next += 1;
+        let Some(map) = maps[face] else { continue };
+        for &other in &solid.neighbours[face] {
+            let on_skin = solid.skin.contains(&other);
+            if !on_skin
+                || maps[other].is_some()
+                || !solid.surfaces[face].tangent_to(&solid.surfaces[other])
+            {
+                continue;
+            }
+            let surface = solid.surfaces[other];
+            maps[other] = Some(match (map, surface) {
+                (FaceMap::Flange(plane), SheetSurface::Plane { .. }) => FaceMap::Flange(plane),
+                (FaceMap::Flange(plane), SheetSurface::Cylinder { .. }) => {
+                    let positions = face_vertices[other]
+                        .iter()
+                        .map(|&v| skin.positions[v as usize]);
+                    let zone = enter_bend(
+                        solid,
+                        &plane,
+                        &solid.surfaces[face],
+                        other,
+                        positions,
+                        k_factor,
+                    );
+                    zones.push(zone);
+                    FaceMap::Bend(zones.len() - 1, zone.map)
+                }
+                (FaceMap::Bend(_, bend), SheetSurface::Plane { .. }) => {
+                    FaceMap::Flange(bend.flange_at(bend.angle(tangent_point(&bend, &surface))))
+                }
+                (bend @ FaceMap::Bend(..), SheetSurface::Cylinder { .. }) => bend,
+            });
+            queue.push(other);
+        }
+    }
+    (maps, zones)
+}
+
+/// The base face's map: its plane seen from outside the skin (away from the other skin), any
+/// in-plane axes.
+fn base_map(solid: &ThinSolid) -> PlaneMap {
+    let SheetSurface::Plane { origin, normal } = solid.surfaces[solid.base_face] else {
+        unreachable!("the base face is the largest planar face");
+    };
+    let partner = solid.surfaces[solid.partners[0]];
+    let SheetSurface::Plane {
+        origin: partner_origin,
+        ..
+    } = partner
+    else {
+        unreachable!("a plane's opposite face is a plane");
+    };
+    let outward = if (origin - partner_origin).dot(normal) >= 0.0 {
+        normal
+    } else {
+        -normal
+    };
+    let first = outward.any_orthonormal_vector();
+    PlaneMap {
+        origin,
+        axes: [first, outward.cross(first)],
+        flat_origin: DVec2::ZERO,
+        flat_axes: [DVec2::X, DVec2::Y],
+    }
+}
+
+/// The bend a flange (`plane`, its surface `flange`) runs into at face `face` (a cylinder whose
+/// triangle vertices are `positions`): unrolled from the tangent line, turning the way the face
+/// lies.
+fn enter_bend(
+    solid: &ThinSolid,
+    plane: &PlaneMap,
+    flange: &SheetSurface,
+    face: usize,
+    positions: impl Iterator<Item = DVec3> + Clone,
+    k_factor: f64,
+) -> BendZone {
+    let SheetSurface::Cylinder {
+        origin,
+        axis,
+        radius,
+    } = solid.surfaces[face]
+    else {
+        unreachable!("a bend is a cylinder");
+    };
+    let SheetSurface::Plane {
+        origin: flange_origin,
+        normal,
+    } = *flange
+    else {
+        unreachable!("a bend is entered from a flange");
+    };
+    let start = -normal * (origin - flange_origin).dot(normal).signum();
+    let across = axis.cross(start);
+    let farthest = positions
+        .map(|p| (p - origin).dot(across))
+        .max_by(|a, b| a.abs().total_cmp(&b.abs()))
+        .unwrap_or(1.0);
+    let towards = if farthest >= 0.0 { across } else { -across };
+    let skin_position = solid.skin.iter().position(|&f| f == face).unwrap_or(0);
+    let partner_radius = match solid.surfaces[solid.partners[skin_position]] {
+        SheetSurface::Cylinder { radius, .. } => radius,
+        SheetSurface::Plane { .. } => radius,
+    };
+    let skin_inside = radius < partner_radius;
+    let inner_radius = radius.min(partner_radius);
+    BendZone {
+        map: BendMap {
+            axis_origin: origin,
+            axis,
+            start,
+            towards,
+            skin_radius: radius,
+            neutral_radius: inner_radius + k_factor * solid.thickness,
+            flat_origin: plane.point(origin + start * radius),
+            flat_axis: plane.direction(axis),
+            flat_across: plane.direction(towards),
+        },
+        inner_radius,
+        skin_inside,
+    }
+}
+
+/// The point where a plane tangent to a bend touches it (on the radial line at `a = 0`).
+fn tangent_point(bend: &BendMap, plane: &SheetSurface) -> DVec3 {
+    let SheetSurface::Plane { origin, normal } = *plane else {
+        unreachable!("only a plane touches a bend along a line");
+    };
+    let distance = (bend.axis_origin - origin).dot(normal);
+    bend.axis_origin - normal * distance
+}
+
+/// Every skin vertex's flat position, from the first face that uses it.
+fn flat_positions(skin: &TriangleSoup, maps: &[Option<FaceMap>]) -> Vec<DVec2> {
+    let mut flat = vec![None; skin.positions.len()];
+    for (triangle, &face) in skin.triangles.iter().zip(&skin.face_sources) {
+        let Some(map) = maps[face as usize] else {
+            continue;
+        };
+        for &vertex in triangle {
+            let slot = &mut flat[vertex as usize];
+            if slot.is_none() {
+                *slot = Some(map.point(skin.positions[vertex as usize]));
+            }
+        }
+    }
+    flat.into_iter().map(|p| p.unwrap_or(DVec2::ZERO)).collect()
+}
+
+/// Whether the skin's triangles turn clockwise on the flat pattern (the shell lists its faces
+/// seen from inside).
+fn wound_clockwise(skin: &TriangleSoup, flat: &[DVec2]) -> bool {
+    let signed: f64 = skin
+        .triangles
+        .iter()
+        .map(|&[a, b, c]| {
+            let [a, b, c] = [a, b, c].map(|v| flat[v as usize]);
+            (b - a).perp_dot(c - a)
+        })
+        .sum();
+    signed < 0.0
+}
+
+/// The 3D positions of the vertices of bend `bend`'s faces.
+fn bend_points(skin: &TriangleSoup, maps: &[Option<FaceMap>], bend: usize) -> Vec<DVec3> {
+    skin.triangles
+        .iter()
+        .zip(&skin.face_sources)
+        .filter(|&(_, &face)| matches!(maps[face as usize], Some(FaceMap::Bend(index, _)) if index == bend))
+        .flat_map(|(triangle, _)| triangle.map(|v| skin.positions[v as usize]))
+        .collect()
+}
+
+/// A bend's line on the flat pattern (its centre, from end to end along the axis), angle, inner
+/// radius and allowance.
+fn bend_line(zone: &BendZone, points: Vec<DVec3>, thickness: f64, k_factor: f64) -> BendLine {
+    let map = &zone.map;
+    let angle = points.iter().map(|&p| map.angle(p)).fold(0.0, f64::max);
+    let (low, high) = points
+        .iter()
+        .map(|&p| map.axial(p))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), a| {
+            (low.min(a), high.max(a))
+        });
+    let inner_radius = zone.inner_radius;
+    BendLine {
+        line: [map.flat(low, angle / 2.0), map.flat(high, angle / 2.0)],
+        direction: if zone.skin_inside {
+            BendDirection::Up
+        } else {
+            BendDirection::Down
+        },
+        angle_degrees: angle.to_degrees(),
+        inner_radius,
+        allowance: bend_allowance(angle, inner_radius, k_factor, thickness),
+    }
+}
+
+/// Turns the pattern (and its bend lines) so that its smallest bounding rectangle is
+/// axis-aligned with the longer side along x, and moves it to start at the origin.
+fn rest_position(flat: &mut [DVec2], bends: &mut [BendLine]) {
+    let turn = long_side_of_smallest_rectangle(flat)
+        .map_or(DVec2::X, |direction| DVec2::new(direction.x, -direction.y));
+    let low = flat
+        .iter()
+        .map(|&p| turn.rotate(p))
+        .fold(DVec2::INFINITY, DVec2::min);
+    let place = |p: DVec2| turn.rotate(p) - low;
+    for p in flat.iter_mut() {
+        *p = place(*p);
+    }
+    for bend in bends.iter_mut() {
+        bend.line = bend.line.map(place);
+    }
+}
