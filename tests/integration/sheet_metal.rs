@@ -6,9 +6,8 @@
 
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::Path;
-use std::process::Command;
 
-use crate::util::{flatten_into, read_report, sample, stderr};
+use crate::util::{assert_ezdxf_accepts, flatten_into, read_report, sample, stderr};
 
 /// The flat size must match the analytic one this closely, mm.
 const FLAT_TOLERANCE_MM: f64 = 1e-3;
@@ -100,32 +99,10 @@ fn unfold(name: &str, k_factor: f64) -> (serde_json::Value, Vec<Entity>) {
     (part, dxf_entities(&dxf))
 }
 
-/// Runs `tests/dxf_check.py` (ezdxf's audit, the bend layers defined, no SPLINE or open
-/// polyline on a cut layer) on `file`, when ezdxf is installed (under CI it must be).
+/// Checks `file` with ezdxf ([`assert_ezdxf_accepts`]): its audit, the bend layers defined, no
+/// SPLINE or open polyline on a cut layer.
 fn check_with_ezdxf(file: &Path) {
-    let available = Command::new("python3")
-        .args(["-c", "import ezdxf"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !available {
-        assert!(std::env::var_os("CI").is_none(), "CI needs ezdxf");
-        eprintln!("SKIPPED: ezdxf is not installed (pip install -r requirements-test.txt)");
-        return;
-    }
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/dxf_check.py");
-    let output = Command::new("python3")
-        .arg(&script)
-        .arg(file)
-        .args(["--no-fixes", "--layer", "BEND_UP", "--layer", "BEND_DOWN"])
-        .output()
-        .expect("python3 runs");
-    assert!(
-        output.status.success(),
-        "{}: {}{}",
-        file.display(),
-        String::from_utf8_lossy(&output.stdout),
-        stderr(&output)
-    );
+    assert_ezdxf_accepts(file, &["--layer", "BEND_UP", "--layer", "BEND_DOWN"]);
 }
 
 fn number(value: &serde_json::Value) -> f64 {

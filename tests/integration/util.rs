@@ -32,6 +32,39 @@ pub fn flatten_into(input: &Path, directory: &Path, extra: &[&str]) -> Output {
     flatcut(&arguments)
 }
 
+/// Runs `tests/dxf_check.py FILE --no-fixes EXTRA...` (ezdxf reads the file and audits it; see
+/// the script for what `EXTRA` can ask) and asserts it passes. Skipped when ezdxf is not
+/// installed, except under CI, which needs it (`pip install -r requirements-test.txt`).
+pub fn assert_ezdxf_accepts(file: &Path, extra: &[&str]) {
+    let available = std::process::Command::new("python3")
+        .args(["-c", "import ezdxf"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !available {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "CI needs ezdxf: pip install -r requirements-test.txt"
+        );
+        eprintln!("SKIPPED: ezdxf is not installed (pip install -r requirements-test.txt)");
+        return;
+    }
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/dxf_check.py");
+    let output = std::process::Command::new("python3")
+        .arg(&script)
+        .arg(file)
+        .arg("--no-fixes")
+        .args(extra)
+        .output()
+        .expect("python3 runs");
+    assert!(
+        output.status.success(),
+        "{}: {}{}",
+        file.display(),
+        String::from_utf8_lossy(&output.stdout),
+        stderr(&output)
+    );
+}
+
 /// The standard error of a run, as text.
 pub fn stderr(output: &Output) -> String {
     String::from_utf8_lossy(&output.stderr).into_owned()
