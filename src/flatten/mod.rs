@@ -19,6 +19,7 @@ mod flattened;
 pub mod fold_lines;
 pub mod grain;
 pub mod init_flatten;
+pub mod injective;
 pub mod isolines;
 mod options;
 pub mod orient;

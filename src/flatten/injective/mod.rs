@@ -1,0 +1,34 @@
+//! The flip-free flattening of a disk: a pattern with every triangle positively oriented, by
+//! construction.
+//!
+//! The fast solver never flips a triangle that is positive in its start, but it keeps the flips
+//! of a start that has them (phase one folds strongly curved parts). This module builds a pattern
+//! without any:
+//! 1. an injective start, the Tutte embedding of the disk with its boundary on a circle by arc
+//!    length and clamped cotangent weights ([`tutte_embedding`]);
+//! 2. the paper's spring energy (with the part's per-edge constants, fold stiffness included)
+//!    plus an orientation barrier per triangle ([`barrier`]: zero above a tenth of the rest area,
+//!    infinite at zero area), minimised by projected Newton: each spring's Hessian projected to be
+//!    positive semi-definite, the barrier's Gauss-Newton part, one sparse Cholesky factorisation
+//!    per iteration on a pattern analysed once;
+//! 3. every step capped by the largest step that keeps all triangles positively oriented
+//!    ([`max_flip_free_step`], Smith and Schaefer 2015), then shortened until the objective falls
+//!    enough (Armijo): no iterate can flip a triangle.
+//!
+//! See `docs/injective.md`.
+
+mod barrier;
+mod errors;
+mod solver;
+mod sparse;
+mod step;
+mod tutte;
+
+pub use barrier::{Barrier, ORIENTATION_BARRIER, SHAPING_BARRIER};
+pub use errors::InjectiveError;
+pub use solver::{
+    FLIP_FREE_FRACTION, InjectiveOutcome, MAX_NEWTON_ITERATIONS, NEWTON_DECREMENT_TOLERANCE,
+    NEWTON_ENERGY_TOLERANCE, NEWTON_WINDOW, flip_free_flatten, flip_free_solve,
+};
+pub use step::{max_flip_free_step, smallest_positive_root, triangle_flip_step};
+pub use tutte::{SMALLEST_WEIGHT, tutte_embedding};
