@@ -341,9 +341,9 @@ fn pays(after: &Accuracy, before: &Accuracy, tolerance: f64) -> bool {
 }
 
 /// True if `candidate` is a better pattern than `current`: it does not overlap while `current`
-/// does; or both overlap and it has fewer flipped triangles (on an opened torus the cuts then
-/// go where they unflip the pattern: 0 flipped instead of 3 after eight cuts); or its larger
-/// error is lower.
+/// does; or both overlap and it has fewer flipped triangles (among the opened variants of a
+/// closed part; the cut loop itself takes no pattern with a flipped triangle, see [`judge`]); or
+/// its larger error is lower.
 pub(super) fn is_better(candidate: &Accuracy, current: &Accuracy) -> bool {
     match (candidate.overlap, current.overlap) {
         (false, true) => true,

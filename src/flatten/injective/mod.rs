@@ -7,10 +7,13 @@
 //! 1. an injective start, the Tutte embedding of the disk with its boundary on a circle by arc
 //!    length and clamped cotangent weights ([`tutte_embedding`]);
 //! 2. the paper's spring energy (with the part's per-edge constants, fold stiffness included)
-//!    plus an orientation barrier per triangle ([`barrier`]: zero above a tenth of the rest area,
-//!    infinite at zero area), minimised by projected Newton: each spring's Hessian projected to be
-//!    positive semi-definite, the barrier's Gauss-Newton part, one sparse Cholesky factorisation
-//!    per iteration on a pattern analysed once;
+//!    plus a barrier per triangle on its area ratio ([`Barrier`]: zero above a threshold,
+//!    infinite at zero area), minimised by projected Newton in two stages, the
+//!    [`SHAPING_BARRIER`] (every compressed triangle, so the pattern unfolds from the Tutte start
+//!    instead of collapsing into slivers) and then the [`ORIENTATION_BARRIER`] (below a tenth of
+//!    the rest area only): each spring's Hessian projected to be positive semi-definite, the
+//!    barrier's Gauss-Newton part, one sparse Cholesky factorisation per iteration on a pattern
+//!    analysed once;
 //! 3. every step capped by the largest step that keeps all triangles positively oriented
 //!    ([`max_flip_free_step`], Smith and Schaefer 2015), then shortened until the objective falls
 //!    enough (Armijo): no iterate can flip a triangle.
