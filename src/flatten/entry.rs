@@ -128,12 +128,12 @@ fn relax(
 ///
 /// The fast solver never flips a triangle that is positive in its start, but it keeps the flips
 /// of a start that has them (phase one folds strongly curved parts). When its pattern has a
-/// flipped triangle and the model is a disk, the pattern is made again by the flip-free
+/// flipped triangle and the model has a boundary, the pattern is made again by the flip-free
 /// flattening ([`flip_free_flatten`]: a Tutte embedding, then the spring energy with a barrier on
 /// triangle orientation, minimised by projected Newton with flip-free steps, at most the fast
 /// solver's iteration budget per stage), which has none; the iterations then count both solvers'.
 /// A pattern without flipped triangles is kept as it is, so good results do not change. When the
-/// flip-free flattening cannot run (not a disk, a system that does not factor) the fast solver's
+/// flip-free flattening cannot run (a closed model, a system that does not factor) the fast solver's
 /// pattern stays, flips and all, and the part is judged by it.
 fn minimise(
     model: &FacetModel,

@@ -26,7 +26,19 @@ pub(crate) fn sample(name: &str) -> FacetModel {
 /// `reach` (a disk whose curvature no flat pattern can hold without folding when grown
 /// triangle by triangle), `rings` rings of `sectors` quads, a fan at the north pole.
 pub(crate) fn deep_bowl(reach: f64, rings: u32, sectors: u32) -> FacetModel {
-    let mut positions = vec![DVec3::new(0.0, 0.0, 50.0)];
+    bowl(reach, rings, sectors, true)
+}
+
+/// [`deep_bowl`] without its north pole and fan: a second boundary loop (a hole).
+pub(crate) fn deep_bowl_with_hole(reach: f64, rings: u32, sectors: u32) -> FacetModel {
+    bowl(reach, rings, sectors, false)
+}
+
+fn bowl(reach: f64, rings: u32, sectors: u32, pole: bool) -> FacetModel {
+    let mut positions = Vec::new();
+    if pole {
+        positions.push(DVec3::new(0.0, 0.0, 50.0));
+    }
     for ring in 1..=rings {
         let polar = reach * ring as f64 / rings as f64;
         for sector in 0..sectors {
@@ -40,10 +52,13 @@ pub(crate) fn deep_bowl(reach: f64, rings: u32, sectors: u32) -> FacetModel {
             );
         }
     }
-    let vertex = |ring: u32, sector: u32| 1 + (ring - 1) * sectors + sector % sectors;
+    let first = u32::from(pole);
+    let vertex = |ring: u32, sector: u32| first + (ring - 1) * sectors + sector % sectors;
     let mut triangles = Vec::new();
-    for sector in 0..sectors {
-        triangles.push([0, vertex(1, sector), vertex(1, sector + 1)]);
+    if pole {
+        for sector in 0..sectors {
+            triangles.push([0, vertex(1, sector), vertex(1, sector + 1)]);
+        }
     }
     for ring in 1..rings {
         for sector in 0..sectors {

@@ -4,12 +4,9 @@
 /// [`flip_free_solve`](super::solver::flip_free_solve).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum InjectiveError {
-    /// The model is not a disk: the Tutte start needs exactly one boundary loop.
-    #[error("a flip-free start needs a disk (one boundary loop); the part has {loops}")]
-    NotADisk {
-        /// Its number of boundary loops.
-        loops: usize,
-    },
+    /// The model is closed: the Tutte start needs a boundary loop to place on a circle.
+    #[error("a flip-free start needs a boundary; the part is closed")]
+    Closed,
     /// The start has flipped or degenerate triangles: the barrier is infinite there.
     #[error("the start of a flip-free minimisation has {flipped} flipped triangles")]
     StartNotInjective {

@@ -1,11 +1,12 @@
-//! The flip-free flattening of a disk: a pattern with every triangle positively oriented, by
-//! construction.
+//! The flip-free flattening of a part with a boundary: a pattern with every triangle positively
+//! oriented, by construction.
 //!
 //! The fast solver never flips a triangle that is positive in its start, but it keeps the flips
 //! of a start that has them (phase one folds strongly curved parts). This module builds a pattern
 //! without any:
-//! 1. an injective start, the Tutte embedding of the disk with its boundary on a circle by arc
-//!    length and clamped cotangent weights ([`tutte_embedding`]);
+//! 1. an injective start, the Tutte embedding with the longest boundary loop on a circle by arc
+//!    length, clamped cotangent weights, and each other loop (a hole) filled by a virtual fan for
+//!    the start only ([`tutte_embedding`]);
 //! 2. the paper's spring energy (with the part's per-edge constants, fold stiffness included)
 //!    plus a barrier per triangle on its area ratio ([`Barrier`]: zero above a threshold,
 //!    infinite at zero area), minimised by projected Newton in two stages, the

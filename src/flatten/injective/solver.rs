@@ -56,7 +56,7 @@ pub struct InjectiveOutcome {
     pub energy: f64,
 }
 
-/// The flip-free flattening of a disk: its Tutte embedding ([`tutte_embedding`]) minimised by
+/// The flip-free flattening of a part with a boundary: its Tutte embedding ([`tutte_embedding`]) minimised by
 /// [`flip_free_solve`] in two stages of at most `max_iterations` Newton iterations each, with the
 /// [`SHAPING_BARRIER`] (the Tutte start is far too small in places: the pattern unfolds without
 /// collapsing triangles) and then the [`ORIENTATION_BARRIER`] (the spring energy's own minimum,
@@ -427,7 +427,7 @@ mod tests {
     use crate::flatten::init_flatten::{InitRelease, NEIGHBOURHOOD_SWEEPS, init_flatten};
     use crate::flatten::injective::solver::*;
     use crate::flatten::injective::tutte::tutte_embedding;
-    use crate::flatten::samples::deep_bowl;
+    use crate::flatten::samples::{deep_bowl, deep_bowl_with_hole};
     use crate::flatten::springs::PAPER_SPRING_CONSTANT;
     use crate::progress::NoProgress;
 
@@ -451,7 +451,7 @@ mod tests {
         let plain_flipped = flipped_triangles(&model, &plain);
         assert!(plain_flipped > 0, "the plain solver must fold this bowl");
 
-        let start = tutte_embedding(&model).expect("a disk");
+        let start = tutte_embedding(&model).expect("a boundary");
         assert_eq!(flipped_triangles(&model, &start), 0, "the Tutte start");
         let (pattern, outcome) =
             flip_free_flatten(&model, &springs, MAX_NEWTON_ITERATIONS).expect("flattens");
@@ -471,7 +471,7 @@ mod tests {
     fn each_stage_lowers_its_objective_and_no_iterate_flips() {
         let model = deep_bowl(0.8 * PI, 10, 32);
         let springs = springs(&model);
-        let mut positions = tutte_embedding(&model).expect("a disk");
+        let mut positions = tutte_embedding(&model).expect("a boundary");
         let mut energy = springs.energy(&positions);
         // One Newton iteration at a time: every iterate is checked.
         for barrier in [SHAPING_BARRIER, ORIENTATION_BARRIER] {
@@ -486,14 +486,14 @@ mod tests {
                 energy = outcome.energy;
             }
         }
-        assert!(energy < springs.energy(&tutte_embedding(&model).expect("a disk")));
+        assert!(energy < springs.energy(&tutte_embedding(&model).expect("a boundary")));
     }
 
     #[test]
     fn a_flipped_start_is_refused() {
         let model = deep_bowl(0.5 * PI, 4, 12);
         let springs = springs(&model);
-        let mut positions = tutte_embedding(&model).expect("a disk");
+        let mut positions = tutte_embedding(&model).expect("a boundary");
         for p in &mut positions {
             p.x = -p.x;
         }
@@ -504,5 +504,18 @@ mod tests {
                 flipped: model.triangle_count()
             })
         );
+    }
+
+    #[test]
+    fn a_part_with_a_hole_starts_and_ends_without_flips() {
+        let model = deep_bowl_with_hole(0.85 * PI, 16, 48);
+        assert_eq!(model.boundary_loops().len(), 2);
+        let springs = springs(&model);
+        let start = tutte_embedding(&model).expect("a boundary");
+        assert_eq!(flipped_triangles(&model, &start), 0, "the Tutte start");
+        let (pattern, outcome) =
+            flip_free_flatten(&model, &springs, MAX_NEWTON_ITERATIONS).expect("flattens");
+        assert_eq!(flipped_triangles(&model, &pattern), 0, "{outcome:?}");
+        assert!(outcome.energy < springs.energy(&start), "{outcome:?}");
     }
 }

@@ -23,24 +23,34 @@ use crate::mesh::FacetModel;
 /// The smallest cotangent weight, as a fraction of the mean absolute weight.
 pub const SMALLEST_WEIGHT: f64 = 0.01;
 
-/// The Tutte embedding of a disk `model`: one flat position per vertex, every triangle positively
-/// oriented (up to round-off on degenerate input).
+/// The Tutte embedding of `model`: one flat position per vertex, every triangle positively
+/// oriented (up to round-off on degenerate input). The boundary loop of largest perimeter goes on
+/// the circle; every other loop (a hole) is filled, for this start only, by a fan of triangles
+/// around a virtual vertex joined to each of its vertices with the mean weight, which makes the
+/// part a disk whose embedding holds the model's. An error for a closed model.
 pub fn tutte_embedding(model: &FacetModel) -> Result<Vec<DVec2>, InjectiveError> {
-    let [boundary] = model.boundary_loops() else {
-        return Err(InjectiveError::NotADisk {
-            loops: model.boundary_loops().len(),
-        });
-    };
-    let mut positions = vec![DVec2::ZERO; model.vertex_count()];
+    let loops = model.boundary_loops();
     let rest = model.rest_lengths();
     let edge_length = |a: u32, b: u32| model.find_edge(a, b).map_or(0.0, |e| rest[e]);
-    let perimeter: f64 = (0..boundary.len())
-        .map(|i| edge_length(boundary[i], boundary[(i + 1) % boundary.len()]))
-        .sum();
+    let perimeter = |ring: &[u32]| -> f64 {
+        (0..ring.len())
+            .map(|i| edge_length(ring[i], ring[(i + 1) % ring.len()]))
+            .sum()
+    };
+    let outer = (0..loops.len())
+        .max_by(|&i, &j| {
+            perimeter(&loops[i])
+                .total_cmp(&perimeter(&loops[j]))
+                .then(j.cmp(&i))
+        })
+        .ok_or(InjectiveError::Closed)?;
+    let boundary = &loops[outer];
+    let mut positions = vec![DVec2::ZERO; model.vertex_count()];
+    let total_length = perimeter(boundary);
     let radius = (model.area() / PI).sqrt();
     let mut travelled = 0.0;
     for (i, &v) in boundary.iter().enumerate() {
-        let angle = 2.0 * PI * travelled / perimeter;
+        let angle = 2.0 * PI * travelled / total_length;
         positions[v as usize] = DVec2::new(angle.cos(), angle.sin()) * radius;
         travelled += edge_length(v, boundary[(i + 1) % boundary.len()]);
     }
@@ -56,8 +66,14 @@ pub fn tutte_embedding(model: &FacetModel) -> Result<Vec<DVec2>, InjectiveError>
             interior += 1;
         }
     }
+    let holes: Vec<&[u32]> = loops
+        .iter()
+        .enumerate()
+        .filter(|&(i, _)| i != outer)
+        .map(|(_, ring)| ring.as_slice())
+        .collect();
     if interior > 0 {
-        solve_interior(model, &unknown, interior as usize, &mut positions)?;
+        solve_interior(model, &unknown, interior as usize, &holes, &mut positions)?;
     }
     let total: f64 = model
         .triangles()
@@ -104,17 +120,20 @@ fn edge_weights(model: &FacetModel) -> Vec<f64> {
 }
 
 /// Places the interior vertices (those with an `unknown` index) at the weighted means of their
-/// neighbours, the boundary ones being placed already.
+/// neighbours, the outer boundary being placed already; each hole's vertices are also joined to a
+/// virtual vertex of their own.
 fn solve_interior(
     model: &FacetModel,
     unknown: &[u32],
     interior: usize,
+    holes: &[&[u32]],
     positions: &mut [DVec2],
 ) -> Result<(), InjectiveError> {
     let weights = edge_weights(model);
-    let mut entries: Vec<(u32, u32)> = (0..interior as u32).map(|i| (i, i)).collect();
-    let mut values = vec![0.0; interior];
-    let mut right = vec![DVec2::ZERO; interior];
+    let unknowns = interior + holes.len();
+    let mut entries: Vec<(u32, u32)> = (0..unknowns as u32).map(|i| (i, i)).collect();
+    let mut values = vec![0.0; unknowns];
+    let mut right = vec![DVec2::ZERO; unknowns];
     for (&[a, b], &w) in model.edges().iter().zip(&weights) {
         let (ia, ib) = (unknown[a as usize], unknown[b as usize]);
         for (i, other) in [(ia, b), (ib, a)] {
@@ -130,9 +149,20 @@ fn solve_interior(
             values.push(-w);
         }
     }
-    let pattern = SparsePattern::new(interior, &entries)?;
+    let fan_weight = weights.iter().sum::<f64>() / weights.len().max(1) as f64;
+    for (h, hole) in holes.iter().enumerate() {
+        let centre = (interior + h) as u32;
+        for &v in *hole {
+            let i = unknown[v as usize];
+            values[i as usize] += fan_weight;
+            values[centre as usize] += fan_weight;
+            entries.push((centre, i));
+            values.push(-fan_weight);
+        }
+    }
+    let pattern = SparsePattern::new(unknowns, &entries)?;
     let factor = pattern.factor(&values)?;
-    let mut rhs = Mat::from_fn(interior, 2, |i, axis| right[i][axis]);
+    let mut rhs = Mat::from_fn(unknowns, 2, |i, axis| right[i][axis]);
     factor.solve_in_place(rhs.as_mut());
     for (v, &i) in unknown.iter().enumerate() {
         if i != u32::MAX {
