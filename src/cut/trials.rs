@@ -266,7 +266,10 @@ enum Overlap {
 }
 
 /// The trial of a cut model and its pattern, or `None` if it does not lower the error of the
-/// pattern `before`.
+/// pattern `before` or has a flipped triangle: the loop never takes a cut whose pattern is not
+/// injective (the first flattening of a disk has no flipped triangle, and the warm-started
+/// re-flattenings keep every triangle positive, so this refuses only what the solvers could
+/// not make valid).
 fn judge(
     improvement: Improvement,
     before: &Flattened,
@@ -274,6 +277,9 @@ fn judge(
     overlap: Overlap,
 ) -> Option<Trial> {
     let after = &improvement.flattened.stats;
+    if after.accuracy.flipped > 0 {
+        return None;
+    }
     let lower = match overlap {
         Overlap::Refused => pays(&after.accuracy, &before.stats.accuracy, tolerance),
         Overlap::Ignored => error(&after.accuracy) < error(&before.stats.accuracy),
@@ -335,9 +341,9 @@ fn pays(after: &Accuracy, before: &Accuracy, tolerance: f64) -> bool {
 }
 
 /// True if `candidate` is a better pattern than `current`: it does not overlap while `current`
-/// does; or both overlap and it has fewer flipped triangles (on an opened torus the cuts then
-/// go where they unflip the pattern: 0 flipped instead of 3 after eight cuts); or its larger
-/// error is lower.
+/// does; or both overlap and it has fewer flipped triangles (among the opened variants of a
+/// closed part; the cut loop itself takes no pattern with a flipped triangle, see [`judge`]); or
+/// its larger error is lower.
 pub(super) fn is_better(candidate: &Accuracy, current: &Accuracy) -> bool {
     match (candidate.overlap, current.overlap) {
         (false, true) => true,

@@ -5,12 +5,13 @@ use std::time::Instant;
 
 use glam::DVec2;
 
-use super::accuracy::Accuracy;
+use super::accuracy::{Accuracy, flipped_triangles};
 use super::energy_release::{EnergyRelease, ReleaseOutcome, ReleaseParameters, StopReason};
 use super::errors::FlattenError;
 use super::fast::fast_solve;
 use super::flattened::{FlattenStats, Flattened};
 use super::init_flatten::{InitRelease, NEIGHBOURHOOD_SWEEPS, init_flatten};
+use super::injective::flip_free_flatten;
 use super::options::{FlattenOptions, Solver};
 use super::orient::move_to_origin;
 use super::springs::SpringSystem;
@@ -124,21 +125,46 @@ fn relax(
 
 /// Phase two of the fast solver: the spring energy minimised by
 /// [`FastSolver`](super::fast::FastSolver); returns the iterations and why it stopped.
+///
+/// The fast solver never flips a triangle that is positive in its start, but it keeps the flips
+/// of a start that has them (phase one folds strongly curved parts). When its pattern has a
+/// flipped triangle and the model has a boundary, the pattern is made again by the flip-free
+/// flattening ([`flip_free_flatten`]: a Tutte embedding, then the spring energy with a barrier on
+/// triangle orientation, minimised by projected Newton with flip-free steps, at most the fast
+/// solver's iteration budget per stage), which has none; the iterations then count both solvers'.
+/// A pattern without flipped triangles is kept as it is, so good results do not change. When the
+/// flip-free flattening cannot run (a closed model, a system that does not factor) the fast solver's
+/// pattern stays, flips and all, and the part is judged by it.
 fn minimise(
     model: &FacetModel,
     springs: &SpringSystem,
-    positions: &mut [DVec2],
+    positions: &mut Vec<DVec2>,
     options: &FlattenOptions,
 ) -> Result<(usize, StopReason), FlattenError> {
-    let outcome = fast_solve(model, springs, positions, options.fast)?;
-    Ok((outcome.iterations, outcome.stop_reason))
+    let fast = fast_solve(model, springs, positions, options.fast)?;
+    if flipped_triangles(model, positions) == 0 {
+        return Ok((fast.iterations, fast.stop_reason));
+    }
+    Ok(
+        match flip_free_flatten(model, springs, options.fast.max_iterations) {
+            Ok((pattern, injective)) => {
+                *positions = pattern;
+                (
+                    fast.iterations + injective.iterations,
+                    injective.stop_reason,
+                )
+            }
+            Err(_) => (fast.iterations, fast.stop_reason),
+        },
+    )
 }
 
 #[cfg(test)]
 mod tests {
+    use crate::flatten::accuracy::Accuracy;
     use crate::flatten::entry::flatten;
     use crate::flatten::options::{FlattenOptions, Solver};
-    use crate::flatten::samples::sample;
+    use crate::flatten::samples::{deep_bowl, sample};
     use crate::flatten::stiffness::Stiffness;
     use crate::progress::NoProgress;
 
@@ -162,5 +188,19 @@ mod tests {
             );
             assert_eq!(fast.accuracy.flipped + paper.accuracy.flipped, 0, "{name}");
         }
+    }
+
+    #[test]
+    fn a_folded_fast_pattern_of_a_disk_is_made_again_without_flips() {
+        let model = deep_bowl(0.85 * std::f64::consts::PI, 16, 48);
+        let stiffness = Stiffness::uniform(&model);
+        let flattened =
+            flatten(&model, &stiffness, &FlattenOptions::default(), &NoProgress).expect("flattens");
+        let accuracy = Accuracy::measure(&model, &flattened.positions);
+        assert_eq!(accuracy.flipped, 0, "{:?}", flattened.stats);
+        assert!(
+            flattened.stats.initial_accuracy.flipped > 0,
+            "phase one folds the bowl"
+        );
     }
 }

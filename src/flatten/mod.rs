@@ -8,7 +8,9 @@
 //! - [`Solver::Fast`] (the default) builds the initial pattern with a neighbourhood release (near
 //!   linear) and minimises the energy with [`FastSolver`]: local-global iterations on the
 //!   prefactored spring Laplacian with Anderson acceleration and an orientation guard (see
-//!   [`fast`] and `docs/solver.md`).
+//!   [`fast`] and `docs/solver.md`). When its pattern has flipped triangles, the part is
+//!   flattened again without any by [`injective`] (a Tutte start, the same energy plus an
+//!   orientation barrier, projected Newton with flip-free steps; `docs/injective.md`).
 
 mod accuracy;
 pub mod energy_release;
@@ -19,6 +21,7 @@ mod flattened;
 pub mod fold_lines;
 pub mod grain;
 pub mod init_flatten;
+pub mod injective;
 pub mod isolines;
 mod options;
 pub mod orient;
