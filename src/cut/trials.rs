@@ -15,8 +15,8 @@ use super::options::{
 use super::paths::Adjacency;
 use super::state::CutState;
 use crate::flatten::{
-    Accuracy, FastOptions, FlattenOptions, Flattened, SpringSystem, StopReason, flatten,
-    flatten_from,
+    Accuracy, FastOptions, FlattenOptions, Flattened, SpringSystem, StopReason, flatten_from,
+    flatten_unrepaired,
 };
 use crate::progress::NoProgress;
 
@@ -299,7 +299,8 @@ fn judge(
 
 /// The pattern of a cut model, warm-started from the pattern before the cut (each copy starts
 /// where its original was). When the warm start cannot move (the solver's orientation guard
-/// blocks it), a cold flattening is tried too and the better pattern kept.
+/// blocks it), a cold flattening is tried too, without the flip-free repair, and kept when it is
+/// better and has no flipped triangle the warm one does not have.
 fn reflatten(
     next: &CutState,
     copied_vertex: &[u32],
@@ -314,12 +315,15 @@ fn reflatten(
     if warm.stats.stop_reason != StopReason::OrientationBlocked {
         return Ok(warm);
     }
-    let cold = flatten(&next.model, &next.stiffness, flatten_options, &NoProgress)?;
-    Ok(if is_better(&cold.stats.accuracy, &warm.stats.accuracy) {
-        cold
-    } else {
-        warm
-    })
+    let cold = flatten_unrepaired(&next.model, &next.stiffness, flatten_options, &NoProgress)?;
+    let valid = cold.stats.accuracy.flipped == 0 || warm.stats.accuracy.flipped > 0;
+    Ok(
+        if valid && is_better(&cold.stats.accuracy, &warm.stats.accuracy) {
+            cold
+        } else {
+            warm
+        },
+    )
 }
 
 /// The larger of `E_S` and `E_C`.

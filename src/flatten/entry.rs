@@ -26,6 +26,39 @@ pub fn flatten(
     options: &FlattenOptions,
     progress: &dyn Progress,
 ) -> Result<Flattened, FlattenError> {
+    flatten_cold(model, stiffness, options, progress, Repair::FlipFree)
+}
+
+/// [`flatten`] without the flip-free repair: the fast solver's pattern as it comes, flipped
+/// triangles and all. For a cold re-flattening tried beside a valid warm one, where a flipped
+/// result is discarded anyway and the repair (a Newton solve from a Tutte start) would be
+/// wasted.
+pub fn flatten_unrepaired(
+    model: &FacetModel,
+    stiffness: &Stiffness,
+    options: &FlattenOptions,
+    progress: &dyn Progress,
+) -> Result<Flattened, FlattenError> {
+    flatten_cold(model, stiffness, options, progress, Repair::None)
+}
+
+/// Whether a fast-solver pattern with flipped triangles is made again without any.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Repair {
+    /// By [`flip_free_flatten`].
+    FlipFree,
+    /// Not at all.
+    None,
+}
+
+/// Phase one, then [`finish`] with `repair`.
+fn flatten_cold(
+    model: &FacetModel,
+    stiffness: &Stiffness,
+    options: &FlattenOptions,
+    progress: &dyn Progress,
+    repair: Repair,
+) -> Result<Flattened, FlattenError> {
     let started = Instant::now();
     check_input(model, stiffness)?;
     let springs = SpringSystem::new(model, stiffness.factors(), options.spring_constant);
@@ -39,7 +72,7 @@ pub fn flatten(
         },
     };
     let positions = init_flatten(model, &springs, release, progress);
-    finish(model, &springs, positions, options, started)
+    finish(model, &springs, positions, options, repair, started)
 }
 
 /// Flattens a facet model from given flat positions (a warm start: phase one is skipped), for
@@ -60,7 +93,14 @@ pub fn flatten_from(
         });
     }
     let springs = SpringSystem::new(model, stiffness.factors(), options.spring_constant);
-    finish(model, &springs, initial.to_vec(), options, started)
+    finish(
+        model,
+        &springs,
+        initial.to_vec(),
+        options,
+        Repair::FlipFree,
+        started,
+    )
 }
 
 /// Refuses closed surfaces and stiffness maps of another model.
@@ -77,12 +117,14 @@ fn check_input(model: &FacetModel, stiffness: &Stiffness) -> Result<(), FlattenE
     Ok(())
 }
 
-/// Phase two from the initial pattern `positions`, then the figures.
+/// Phase two from the initial pattern `positions` (with `repair` of a flipped fast-solver
+/// pattern), then the figures.
 fn finish(
     model: &FacetModel,
     springs: &SpringSystem,
     mut positions: Vec<DVec2>,
     options: &FlattenOptions,
+    repair: Repair,
     started: Instant,
 ) -> Result<Flattened, FlattenError> {
     let initial_accuracy = Accuracy::measure(model, &positions);
@@ -91,7 +133,7 @@ fn finish(
             let outcome = relax(model, springs, &mut positions, options);
             (outcome.steps, outcome.stop_reason)
         }
-        Solver::Fast => minimise(model, springs, &mut positions, options)?,
+        Solver::Fast => minimise(model, springs, &mut positions, options, repair)?,
     };
     move_to_origin(&mut positions);
     let stats = FlattenStats {
@@ -140,9 +182,10 @@ fn minimise(
     springs: &SpringSystem,
     positions: &mut Vec<DVec2>,
     options: &FlattenOptions,
+    repair: Repair,
 ) -> Result<(usize, StopReason), FlattenError> {
     let fast = fast_solve(model, springs, positions, options.fast)?;
-    if flipped_triangles(model, positions) == 0 {
+    if repair == Repair::None || flipped_triangles(model, positions) == 0 {
         return Ok((fast.iterations, fast.stop_reason));
     }
     Ok(
