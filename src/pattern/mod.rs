@@ -36,4 +36,5 @@ pub use options::PatternOptions;
 pub use part_pattern::{FlatShape, Pattern, PatternSource, part_pattern};
 pub use pattern_file::{
     PATTERN_FILE_ENDING, PATTERN_FILE_FORMAT, PATTERN_FILE_VERSION, PatternFile, PatternFileError,
+    REJECTED_MARK,
 };

@@ -41,6 +41,21 @@ pub struct PatternFile {
     pub rejected: bool,
 }
 
+/// What follows the name of a rejected part on the sheets it is nested on.
+pub const REJECTED_MARK: &str = "REJECTED";
+
+impl PatternFile {
+    /// The drawing as it goes on a nested sheet: a rejected part's name followed by
+    /// [`REJECTED_MARK`], so that its label on the sheet's DXF and preview says so.
+    pub fn sheet_drawing(&self) -> PartDrawing {
+        let mut drawing = self.drawing.clone();
+        if self.rejected {
+            drawing.name = format!("{} {REJECTED_MARK}", drawing.name);
+        }
+        drawing
+    }
+}
+
 /// A pattern file as written: the format's name and version first.
 #[derive(Serialize)]
 struct Written<'a> {

@@ -89,7 +89,7 @@ pub fn write_outputs(
             let drawings: Vec<PartDrawing> = output
                 .patterns
                 .iter()
-                .map(|pattern| pattern.drawing.clone())
+                .map(|pattern| pattern.sheet_drawing())
                 .collect();
             write_sheets(directory, Path::new(SHEETS_FOLDER), &drawings, nested, &dxf)?
         }

@@ -400,7 +400,7 @@ pub fn write_pattern_nest(
         let drawings: Vec<PartDrawing> = group
             .patterns
             .iter()
-            .map(|sourced| sourced.pattern.drawing.clone())
+            .map(|sourced| sourced.pattern.sheet_drawing())
             .collect();
         let sheets = write_sheets(directory, &group.folder, &drawings, &group.nested, &dxf)?;
         groups.push(group_report(group, sheets));

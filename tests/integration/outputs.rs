@@ -196,3 +196,35 @@ fn a_rejected_part_is_marked_and_says_why() {
             .is_none()
     );
 }
+
+#[test]
+fn a_rejected_part_is_marked_on_the_sheet_too() {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let folder = directory.path();
+    let saddle = sample("saddle.obj");
+    let cone = sample("cone_frustum.obj");
+    let output = flatcut(&[
+        "run",
+        saddle.to_str().unwrap(),
+        cone.to_str().unwrap(),
+        "-o",
+        folder.to_str().unwrap(),
+        "--tolerance",
+        "0.0001",
+        "--sheet",
+        "1000x1000",
+        "--work",
+        "2000",
+        "--no-timings",
+    ]);
+    assert_eq!(output.status.code(), Some(3), "{}", stderr(&output));
+    let sheet = std::fs::read_to_string(folder.join("sheets/sheet-001.dxf")).expect("sheet DXF");
+    assert!(
+        sheet.contains("saddle REJECTED x1"),
+        "the rejected saddle's label says so"
+    );
+    assert!(
+        !sheet.contains("cone_frustum REJECTED"),
+        "only the rejected part is marked"
+    );
+}
