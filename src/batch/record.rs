@@ -37,6 +37,17 @@ pub enum PartStatus {
 }
 
 impl PartStatus {
+    /// The status as records, summaries and the command line write it (`over_tolerance`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Ok => "ok",
+            Self::OverTolerance => "over_tolerance",
+            Self::Refused => "refused",
+            Self::TimedOut => "timed_out",
+            Self::Failed => "failed",
+        }
+    }
+
     /// Whether a rerun with the same input and options would give the same: a timed-out or
     /// failed part is tried again.
     pub fn is_final(self) -> bool {
@@ -157,4 +168,23 @@ pub fn lock_exclusive(path: &Path) -> Result<File, BatchError> {
         .map_err(write_error)?;
     file.lock().map_err(write_error)?;
     Ok(file)
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::batch::record::*;
+
+    #[test]
+    fn a_status_is_named_as_records_write_it() {
+        for status in [
+            PartStatus::Ok,
+            PartStatus::OverTolerance,
+            PartStatus::Refused,
+            PartStatus::TimedOut,
+            PartStatus::Failed,
+        ] {
+            let written = serde_json::to_value(status).expect("serialises");
+            assert_eq!(written.as_str(), Some(status.name()));
+        }
+    }
 }

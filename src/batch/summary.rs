@@ -12,7 +12,7 @@ use serde::Serialize;
 use crate::export::{remove_stale_temporaries, write_atomically};
 
 use super::errors::BatchError;
-use super::record::{Fingerprint, PartRecord, PartStatus, PatternFigures, lock_exclusive};
+use super::record::{Fingerprint, PartRecord, PatternFigures, lock_exclusive};
 use super::task::{PARTS_FOLDER, PartTask};
 
 /// Name of the summary in the batch's output folder.
@@ -20,6 +20,9 @@ pub const SUMMARY_FILE: &str = "batch.json";
 
 /// Name of the lock file held while the summary is made and written.
 const SUMMARY_LOCK_FILE: &str = ".flatcut-batch.lock";
+
+/// The status of a part with no record matching its input and options yet.
+const PENDING: &str = "pending";
 
 /// Version of the summary's layout.
 pub const SUMMARY_VERSION: u32 = 1;
@@ -58,17 +61,6 @@ pub struct BatchSummary {
     pub parts: Vec<SummaryPart>,
 }
 
-/// The status as the summary writes it.
-fn status_name(status: Option<PartStatus>) -> String {
-    match status {
-        Some(status) => serde_json::to_value(status)
-            .ok()
-            .and_then(|value| value.as_str().map(str::to_owned))
-            .unwrap_or_default(),
-        None => "pending".to_string(),
-    }
-}
-
 impl BatchSummary {
     /// The summary of `tasks` from their records, a record counting only when it matches the
     /// task's fingerprint.
@@ -83,7 +75,10 @@ impl BatchSummary {
                     name: task.name.clone(),
                     input: task.input.clone(),
                     folder: format!("{PARTS_FOLDER}/{}", task.name),
-                    status: status_name(record.as_ref().map(|record| record.status)),
+                    status: record
+                        .as_ref()
+                        .map_or(PENDING, |record| record.status.name())
+                        .to_string(),
                     reason: record.as_ref().and_then(|record| record.reason.clone()),
                     patterns: record
                         .as_ref()

@@ -109,10 +109,7 @@ pub fn run(args: BatchArgs) -> anyhow::Result<Outcome> {
             } else {
                 format!("{seconds:.1} s")
             };
-            let status = serde_json::to_value(record.status)
-                .ok()
-                .and_then(|value| value.as_str().map(str::to_owned))
-                .unwrap_or_default();
+            let status = record.status.name();
             let reason = record
                 .reason
                 .as_ref()

@@ -184,15 +184,19 @@ mod tests {
         0.5 * (b - a).cross(c - a).z
     }
 
-    #[test]
-    fn a_collinear_boundary_triangle_is_flipped_into_its_neighbour() {
-        // Boundary samples 0, 1, 2 on the x axis (1 between), interior vertex 3 above them.
-        let positions = [
+    /// Boundary samples 0, 1, 2 on the x axis (1 between, nearer 0) and the vertex 3 above them.
+    fn samples_under_apex() -> [DVec3; 4] {
+        [
             DVec3::new(0.0, 0.0, 0.0),
             DVec3::new(0.4, 0.0, 0.0),
             DVec3::new(1.0, 0.0, 0.0),
             DVec3::new(0.5, 1.0, 0.0),
-        ];
+        ]
+    }
+
+    #[test]
+    fn a_collinear_boundary_triangle_is_flipped_into_its_neighbour() {
+        let positions = samples_under_apex();
         let mut triangles = vec![[2, 0, 1], [0, 2, 3]];
         let total: f64 = triangles.iter().map(|&t| area(&positions, t)).sum();
         remove_degenerate_triangles(&positions, &mut triangles);
@@ -209,12 +213,7 @@ mod tests {
     fn a_sliver_folded_over_boundary_samples_is_dropped() {
         // The face (0, 1, 3), (1, 2, 3) has the boundary 0 → 1 → 2; the sliver (0, 2, 1) lies
         // over those two sides, with its longest side 0-2 free.
-        let positions = [
-            DVec3::new(0.0, 0.0, 0.0),
-            DVec3::new(0.4, 0.0, 0.0),
-            DVec3::new(1.0, 0.0, 0.0),
-            DVec3::new(0.5, 1.0, 0.0),
-        ];
+        let positions = samples_under_apex();
         let mut triangles = vec![[0, 2, 1], [0, 1, 3], [1, 2, 3]];
         remove_degenerate_triangles(&positions, &mut triangles);
         assert_eq!(triangles, [[0, 1, 3], [1, 2, 3]]);
@@ -250,12 +249,7 @@ mod tests {
     fn a_zero_area_triangle_holding_a_vertex_alone_is_left() {
         // The sliver (0, 1, 2) is the only triangle at 1, a boundary sample: dropping it would
         // lose the sample and open a crack along the neighbouring face.
-        let positions = [
-            DVec3::new(0.0, 0.0, 0.0),
-            DVec3::new(0.4, 0.0, 0.0),
-            DVec3::new(1.0, 0.0, 0.0),
-            DVec3::new(0.5, 1.0, 0.0),
-        ];
+        let positions = samples_under_apex();
         let mut triangles = vec![[0, 1, 2], [0, 3, 2]];
         let before = triangles.clone();
         remove_degenerate_triangles(&positions, &mut triangles);

@@ -327,23 +327,33 @@ mod tests {
     use crate::nest::verify::tests::square;
     use crate::nest::verify::verify;
 
+    /// Nesting on a roll `width` wide, every other option the default.
+    fn roll(width: f64) -> NestOptions {
+        NestOptions {
+            stock: Stock::Roll { width },
+            ..NestOptions::default()
+        }
+    }
+
+    /// The four copies of the problem's first shape (a 10 mm square), copy `i` at `at(i)`.
+    fn four_squares(problem: &Problem, at: impl Fn(f64) -> DVec2) -> Vec<Part> {
+        (0..4)
+            .map(|copy| Part {
+                copy,
+                shape: problem.item_shapes[0][0],
+                translation: at(copy as f64),
+            })
+            .collect()
+    }
+
     /// Four 10 mm squares piled onto each other on a 21 mm roll 40 mm long: the separator must
     /// spread them into a layout the independent check accepts.
     #[test]
     fn the_separator_resolves_piled_squares_into_a_verified_layout() {
         let items = vec![square("square 10", 10.0, 4)];
-        let options = NestOptions {
-            stock: Stock::Roll { width: 21.0 },
-            ..NestOptions::default()
-        };
+        let options = roll(21.0);
         let problem = Problem::new(&items, &options).expect("valid problem");
-        let parts: Vec<Part> = (0..4)
-            .map(|copy| Part {
-                copy,
-                shape: problem.item_shapes[0][0],
-                translation: DVec2::new(1.0 + copy as f64, 1.0 + copy as f64),
-            })
-            .collect();
+        let parts = four_squares(&problem, |copy| DVec2::new(1.0 + copy, 1.0 + copy));
         let weights = vec![1.0; parts.len() * (parts.len() + 1)];
         let mut separator = Separator::new(&problem, parts, weights, 40.0);
         assert!(!separator.collisions().is_empty());
@@ -370,18 +380,9 @@ mod tests {
     #[test]
     fn compression_shortens_a_loose_layout() {
         let items = vec![square("square 10", 10.0, 4)];
-        let options = NestOptions {
-            stock: Stock::Roll { width: 20.5 },
-            ..NestOptions::default()
-        };
+        let options = roll(20.5);
         let problem = Problem::new(&items, &options).expect("valid problem");
-        let parts: Vec<Part> = (0..4)
-            .map(|copy| Part {
-                copy,
-                shape: problem.item_shapes[0][0],
-                translation: DVec2::new(0.1 + 12.0 * copy as f64, 0.1),
-            })
-            .collect();
+        let parts = four_squares(&problem, |copy| DVec2::new(0.1 + 12.0 * copy, 0.1));
         let start = problem.solution_of(&parts, 46.2);
         let (compressed, work) = problem.compress(&start, 2_000_000, &mut SplitMix64(1), |_| false);
         assert!(work > 0);
