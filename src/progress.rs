@@ -25,3 +25,26 @@ impl Progress for NoProgress {
     fn advance(&self, _done: u64) {}
     fn finish(&self) {}
 }
+
+/// When a long computation must stop: a part's time limit as an instant, checked by the solvers
+/// between iterations and by the cut loop between steps. A stage that stops there says so
+/// ([`crate::flatten::StopReason::TimeLimit`], [`crate::cut::CutStop::TimeLimit`]) and returns
+/// what it has. The default has no limit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Deadline(Option<std::time::Instant>);
+
+impl Deadline {
+    /// No limit.
+    pub const NONE: Self = Self(None);
+
+    /// `limit` from now.
+    pub fn after(limit: std::time::Duration) -> Self {
+        Self(std::time::Instant::now().checked_add(limit))
+    }
+
+    /// Whether the limit has passed.
+    pub fn passed(&self) -> bool {
+        self.0
+            .is_some_and(|instant| std::time::Instant::now() >= instant)
+    }
+}

@@ -27,7 +27,9 @@ pub use manifest::{
 pub use record::{
     Fingerprint, PART_LOCK_FILE, PartRecord, PartStatus, PatternFigures, RECORD_FILE,
 };
-pub use schedule::{BatchEvent, Scheduling, WORKER_SUBCOMMAND, run_tasks};
+pub use schedule::{
+    BatchEvent, KILL_GRACE, Scheduling, WORKER_SUBCOMMAND, default_kill_after, run_tasks,
+};
 pub use summary::{BatchSummary, SUMMARY_FILE, SUMMARY_VERSION, SummaryPart, write_summary};
 pub use task::{PARTS_FOLDER, PartTask, error_chain, run_part_task};
 

@@ -13,6 +13,7 @@ use std::time::{Duration, Instant};
 use super::errors::BatchError;
 use super::record::{Fingerprint, PartRecord, PartStatus};
 use super::task::PartTask;
+use crate::pipeline::RunOptions;
 
 /// The subcommand of the `flatcut` binary that runs one part of a batch, its task as JSON on
 /// standard input.
@@ -28,6 +29,16 @@ const STOP_GRACE: Duration = Duration::from_secs(5);
 /// The most of a failed worker's standard error kept as the reason, in bytes (its end).
 const STDERR_TAIL_BYTES: usize = 2000;
 
+/// Time a part's worker gets beyond its own time limit before it is killed by default: enough
+/// to write the part's files after the limit ended its flattening.
+pub const KILL_GRACE: Duration = Duration::from_secs(60);
+
+/// The default hard limit of a part's worker: its time limit
+/// ([`RunOptions::time_limit_seconds`]) plus [`KILL_GRACE`].
+pub fn default_kill_after(options: &RunOptions) -> Duration {
+    Duration::from_secs_f64(options.time_limit_seconds) + KILL_GRACE
+}
+
 /// How a batch's parts are run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scheduling {
@@ -35,7 +46,9 @@ pub struct Scheduling {
     pub program: PathBuf,
     /// Parts running at once.
     pub jobs: usize,
-    /// Longest a part may run; `None` for no limit.
+    /// Longest a part's worker may run before it is killed (the part is then `timed_out`);
+    /// `None` for no limit. The part's own time limit, which ends its flattening with the part
+    /// rejected, is [`RunOptions::time_limit_seconds`].
     pub time_limit: Option<Duration>,
 }
 

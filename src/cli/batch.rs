@@ -1,4 +1,4 @@
-//! `flatcut batch (INPUT... | --manifest FILE) -o OUT [--jobs N] [--shard I/N] [--time-limit S]`:
+//! `flatcut batch (INPUT... | --manifest FILE) -o OUT [--jobs N] [--shard I/N] [--kill-after S]`:
 //! every part into `OUT/parts/<name>/`, each in a worker process (the hidden subcommand
 //! `batch-part`), with `OUT/batch.json` summing them up. SIGINT and SIGTERM stop the workers
 //! (each leaves its folder as it was) and end the batch with exit code 130; a rerun finishes
@@ -12,9 +12,10 @@ use anyhow::{Context, bail};
 use clap::Args;
 
 use flatcut::batch::{
-    BatchConfig, BatchEvent, BatchSource, PartStatus, Scheduling, Shard, read_task, run_batch,
-    run_part_task,
+    BatchConfig, BatchEvent, BatchSource, PartStatus, Scheduling, Shard, default_kill_after,
+    read_task, run_batch, run_part_task,
 };
+use flatcut::pipeline::MAXIMUM_PART_TIME_LIMIT;
 
 use super::console::{say, stdout_text};
 use super::flatten::PartArgs;
@@ -39,9 +40,11 @@ pub struct BatchArgs {
     /// Run only shard I of N: the parts at positions I, I+N, I+2N, ... of the manifest.
     #[arg(long, value_name = "I/N")]
     shard: Option<Shard>,
-    /// Longest a part may run, in seconds; a part stopped there is `timed_out`.
+    /// Seconds after which a part's worker is killed, whatever it is doing; the part is then
+    /// `timed_out`. Default: the part's --time-limit plus a minute. (--time-limit ends the
+    /// flattening itself, with the part rejected and its files written.)
     #[arg(long, value_name = "S")]
-    time_limit: Option<f64>,
+    kill_after: Option<f64>,
     #[command(flatten)]
     part: PartArgs,
     /// Print batch.json to stdout too.
@@ -56,11 +59,15 @@ impl BatchArgs {
             Some(manifest) => BatchSource::Manifest(manifest.clone()),
             None => BatchSource::Inputs(self.inputs.clone()),
         };
-        let time_limit = match self.time_limit {
-            Some(seconds) if !(seconds.is_finite() && seconds > 0.0) => {
-                bail!("--time-limit {seconds}: give a positive number of seconds")
+        let base = self.part.config()?;
+        let time_limit = match self.kill_after {
+            Some(seconds) if !(seconds > 0.0 && seconds <= MAXIMUM_PART_TIME_LIMIT) => {
+                bail!(
+                    "--kill-after {seconds}: give a number of seconds above 0 and at most {MAXIMUM_PART_TIME_LIMIT}"
+                )
             }
-            seconds => seconds.map(Duration::from_secs_f64),
+            Some(seconds) => Duration::from_secs_f64(seconds),
+            None => default_kill_after(&base.options),
         };
         let jobs = match self.jobs {
             Some(0) => bail!("--jobs 0: give at least 1"),
@@ -71,12 +78,12 @@ impl BatchArgs {
         Ok(BatchConfig {
             source,
             output: self.output.clone(),
-            base: self.part.config()?,
+            base,
             shard: self.shard.unwrap_or_default(),
             scheduling: Scheduling {
                 program,
                 jobs,
-                time_limit,
+                time_limit: Some(time_limit),
             },
         })
     }

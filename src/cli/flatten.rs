@@ -86,6 +86,10 @@ pub struct PartArgs {
     /// θ · (R + K · t)).
     #[arg(long, value_name = "K", default_value_t = SheetOptions::default().k_factor)]
     k_factor: f64,
+    /// Longest a part's flattening and cutting may run, in seconds: a part still over tolerance
+    /// then is rejected, with the reason, and the run exits with 3.
+    #[arg(long, value_name = "S", default_value_t = RunOptions::default().time_limit_seconds)]
+    time_limit: f64,
 }
 
 impl FlattenArgs {
@@ -137,6 +141,7 @@ impl PartArgs {
             sheet: SheetOptions {
                 k_factor: self.k_factor,
             },
+            time_limit_seconds: self.time_limit,
         };
         Ok(RunConfig {
             options,

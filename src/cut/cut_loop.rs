@@ -68,6 +68,9 @@ pub fn cut_and_flatten(
         if flattened.stats.accuracy.within(flatten_options.tolerance) {
             break CutStop::ToleranceMet;
         }
+        if flatten_options.deadline.passed() {
+            break CutStop::TimeLimit;
+        }
         let new_cut_allowed = cuts.len() < max_cuts;
         if steps >= step_budget || (!new_cut_allowed && tips.is_empty()) {
             break CutStop::CutBudget;

@@ -66,6 +66,9 @@ pub enum CutStop {
     CutBudget,
     /// No candidate cut lowered the error.
     NoBetterCut,
+    /// The part's time limit passed ([`crate::flatten::FlattenOptions::deadline`]) before it
+    /// was within tolerance: the pattern is the last one made.
+    TimeLimit,
 }
 
 /// The cut part and its pattern.

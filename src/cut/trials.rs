@@ -100,7 +100,8 @@ fn best_cut(
     let mut best: Option<Trial> = None;
     let mut accepted = 0;
     for (tried, trial) in screened.into_iter().enumerate() {
-        if accepted == FULL_TRIALS || (tried >= TRIAL_BUDGET && accepted > 0) {
+        let out_of_time = flatten_options.deadline.passed();
+        if accepted == FULL_TRIALS || (tried >= TRIAL_BUDGET && accepted > 0) || out_of_time {
             break;
         }
         let Some(trial) = flatten_on(trial, flattened, &trial_options)? else {

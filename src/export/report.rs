@@ -58,6 +58,9 @@ pub struct ReportOptions {
     pub energy_png: EnergyPngOptions,
     /// How the patterns were nested; `null` without stock.
     pub nesting: Option<NestingReport>,
+    /// A part's time limit in seconds, when not the default (left out otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub part_time_limit_seconds: Option<f64>,
 }
 
 /// The nesting options of a run with stock.

@@ -27,6 +27,7 @@ use glam::DVec2;
 use super::accuracy::{DEFAULT_TOLERANCE, area_error, shape_error};
 use super::springs::SpringSystem;
 use crate::mesh::{FacetModel, NONE};
+use crate::progress::Deadline;
 
 /// The paper's time step `Δt` (§5: "usually we use Δt = 0.01").
 pub const PAPER_TIME_STEP: f64 = 0.01;
@@ -67,6 +68,8 @@ pub struct ReleaseParameters {
     pub tolerance: f64,
     /// Largest number of steps.
     pub max_steps: usize,
+    /// No step starts after it (phase two stops with [`StopReason::TimeLimit`]).
+    pub deadline: Deadline,
 }
 
 impl Default for ReleaseParameters {
@@ -76,6 +79,7 @@ impl Default for ReleaseParameters {
             energy_variation: PAPER_ENERGY_VARIATION,
             tolerance: DEFAULT_TOLERANCE,
             max_steps: PAPER_STEP_BUDGET,
+            deadline: Deadline::NONE,
         }
     }
 }
@@ -218,6 +222,13 @@ impl<'a> EnergyRelease<'a> {
                 return ReleaseOutcome {
                     steps: step - 1,
                     stop_reason: StopReason::ToleranceMet,
+                    cycle_energies,
+                };
+            }
+            if measure_errors && parameters.deadline.passed() {
+                return ReleaseOutcome {
+                    steps: step - 1,
+                    stop_reason: StopReason::TimeLimit,
                     cycle_energies,
                 };
             }

@@ -8,7 +8,7 @@ use glam::DVec2;
 use super::accuracy::{Accuracy, flipped_triangles};
 use super::energy_release::{EnergyRelease, ReleaseOutcome, ReleaseParameters, StopReason};
 use super::errors::FlattenError;
-use super::fast::fast_solve;
+use super::fast::{FastOptions, fast_solve};
 use super::flattened::{FlattenStats, Flattened};
 use super::init_flatten::{InitRelease, NEIGHBOURHOOD_SWEEPS, init_flatten};
 use super::injective::flip_free_flatten;
@@ -161,6 +161,7 @@ fn relax(
         energy_variation: options.energy_variation,
         tolerance: options.tolerance,
         max_steps: options.max_steps,
+        deadline: options.deadline,
     };
     energy.release(&system, positions, &parameters, true)
 }
@@ -184,12 +185,21 @@ fn minimise(
     options: &FlattenOptions,
     repair: Repair,
 ) -> Result<(usize, StopReason), FlattenError> {
-    let fast = fast_solve(model, springs, positions, options.fast)?;
+    let fast_options = FastOptions {
+        deadline: options.deadline,
+        ..options.fast
+    };
+    let fast = fast_solve(model, springs, positions, fast_options)?;
     if repair == Repair::None || flipped_triangles(model, positions) == 0 {
         return Ok((fast.iterations, fast.stop_reason));
     }
     Ok(
-        match flip_free_flatten(model, springs, options.fast.max_iterations) {
+        match flip_free_flatten(
+            model,
+            springs,
+            options.fast.max_iterations,
+            options.deadline,
+        ) {
             Ok((pattern, injective)) => {
                 *positions = pattern;
                 (

@@ -7,6 +7,7 @@ use super::energy_release::{PAPER_ENERGY_VARIATION, PAPER_STEP_BUDGET, PAPER_TIM
 use super::fast::FastOptions;
 use super::init_flatten::PAPER_INIT_RELEASE_STEPS;
 use super::springs::PAPER_SPRING_CONSTANT;
+use crate::progress::Deadline;
 
 /// Which procedure minimises the energy.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, clap::ValueEnum)]
@@ -38,6 +39,10 @@ pub struct FlattenOptions {
     pub init_release_steps: usize,
     /// Options of the fast solver's phase two (the step budget there is its own).
     pub fast: FastOptions,
+    /// When phase two stops, whichever solver runs ([`super::StopReason::TimeLimit`]): set by
+    /// the pipeline from a part's time limit; none by default, and never echoed.
+    #[serde(skip)]
+    pub deadline: Deadline,
 }
 
 impl Default for FlattenOptions {
@@ -51,6 +56,7 @@ impl Default for FlattenOptions {
             time_step: PAPER_TIME_STEP,
             init_release_steps: PAPER_INIT_RELEASE_STEPS,
             fast: FastOptions::default(),
+            deadline: Deadline::NONE,
         }
     }
 }

@@ -14,12 +14,13 @@ use crate::export::energy_png::EnergyPngOptions;
 use crate::flatten::FlattenOptions;
 use crate::nest::{DEFAULT_SEED, MAXIMUM_STOCK_MM, NestOptions, Rotations, Stock};
 use crate::pattern::PatternOptions;
+use crate::progress::Deadline;
 use crate::sheet::SheetOptions;
 use crate::tessellate::TessellateOptions;
 use crate::units::Units;
 
 /// Options of loading and flattening one part, echoed in the report.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RunOptions {
     /// Units of mesh files (part files and STEP files carry their own).
     pub units: Units,
@@ -37,6 +38,53 @@ pub struct RunOptions {
     /// default).
     #[serde(default, skip_serializing_if = "SheetOptions::is_default")]
     pub sheet: SheetOptions,
+    /// Longest a part's flattening and cutting may run, seconds; default
+    /// [`DEFAULT_PART_TIME_LIMIT`] (echoed only when not the default). A part still over
+    /// tolerance then is rejected with the reason.
+    #[serde(
+        default = "default_part_time_limit",
+        skip_serializing_if = "is_default_part_time_limit"
+    )]
+    pub time_limit_seconds: f64,
+}
+
+/// Default of [`RunOptions::time_limit_seconds`]: ten minutes, well beyond any sample part.
+pub const DEFAULT_PART_TIME_LIMIT: f64 = 600.0;
+
+/// Largest [`RunOptions::time_limit_seconds`] accepted: a week.
+pub const MAXIMUM_PART_TIME_LIMIT: f64 = 604_800.0;
+
+fn default_part_time_limit() -> f64 {
+    DEFAULT_PART_TIME_LIMIT
+}
+
+fn is_default_part_time_limit(seconds: &f64) -> bool {
+    *seconds == DEFAULT_PART_TIME_LIMIT
+}
+
+impl Default for RunOptions {
+    fn default() -> Self {
+        Self {
+            units: Units::default(),
+            flatten: FlattenOptions::default(),
+            cut: CutOptions::default(),
+            tessellate: TessellateOptions::default(),
+            overrides: PartOverrides::default(),
+            sheet: SheetOptions::default(),
+            time_limit_seconds: DEFAULT_PART_TIME_LIMIT,
+        }
+    }
+}
+
+impl RunOptions {
+    /// The flatten options of one part: the run's, with a deadline
+    /// [`Self::time_limit_seconds`] from now.
+    pub fn part_flatten_options(&self) -> FlattenOptions {
+        FlattenOptions {
+            deadline: Deadline::after(Duration::from_secs_f64(self.time_limit_seconds)),
+            ..self.flatten.clone()
+        }
+    }
 }
 
 /// What the command line or a batch manifest says of a part, over what its file says.
@@ -264,6 +312,16 @@ impl RunConfig {
                 "give the neutral fibre's place as a fraction of the thickness, 0 to 1".to_owned(),
             );
         }
+        let time_limit = self.options.time_limit_seconds;
+        if !(time_limit > 0.0 && time_limit <= MAXIMUM_PART_TIME_LIMIT) {
+            return invalid(
+                "--time-limit",
+                figure(time_limit),
+                format!(
+                    "give a part's limit in seconds, above 0 and at most {MAXIMUM_PART_TIME_LIMIT}"
+                ),
+            );
+        }
         self.pattern.validate()?;
         self.options.overrides.validate()?;
         self.nesting.validate(self.stock)
@@ -305,6 +363,11 @@ mod tests {
         let mut config = RunConfig::default();
         config.options.flatten.tolerance = 1.0;
         assert!(refused(&config).starts_with("--tolerance 1:"));
+        config.options.flatten.tolerance = 0.01;
+        for limit in [0.0, -1.0, f64::NAN, f64::INFINITY, 1e300] {
+            config.options.time_limit_seconds = limit;
+            assert!(refused(&config).starts_with("--time-limit"), "{limit}");
+        }
         let mut config = RunConfig {
             stock: Some(Stock::Sheets {
                 width: f64::INFINITY,

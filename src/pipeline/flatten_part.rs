@@ -28,7 +28,7 @@ pub fn flatten_part(
         &job.model,
         &job.stiffness,
         &job.constraints,
-        &options.flatten,
+        &options.part_flatten_options(),
         &options.cut,
         progress,
     )

@@ -21,8 +21,9 @@ mod run;
 
 pub use benchmark::{BenchmarkConfig, BenchmarkOutput, nest_benchmark, write_benchmark};
 pub use config::{
-    DEFAULT_RUN_GAP, DEFAULT_RUN_ROTATIONS, DEFAULT_RUN_TIME_LIMIT, MAXIMUM_TOLERANCE,
-    NestingConfig, PartOverrides, RunConfig, RunOptions,
+    DEFAULT_PART_TIME_LIMIT, DEFAULT_RUN_GAP, DEFAULT_RUN_ROTATIONS, DEFAULT_RUN_TIME_LIMIT,
+    MAXIMUM_PART_TIME_LIMIT, MAXIMUM_TOLERANCE, NestingConfig, PartOverrides, RunConfig,
+    RunOptions,
 };
 pub use facet_model::{FacetModelOutput, FacetSource, facet_model, write_facet_model};
 pub use flatten_part::flatten_part;

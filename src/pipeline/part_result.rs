@@ -50,7 +50,8 @@ impl PartResult {
         }
     }
 
-    /// Every reason to reject this part at `tolerance` ([`rejection_reasons`]). A sheet-metal
+    /// Every reason to reject this part at `tolerance` ([`rejection_reasons`]), and the time
+    /// limit if it ended the cut loop ([`CutStop::TimeLimit`]). A sheet-metal
     /// part's E_S and E_C compare its flat pattern with its skin, whose bends differ from the
     /// flat by their allowance by design: only flipped triangles and overlap reject it.
     pub fn rejection_reasons(&self, tolerance: f64) -> Vec<String> {
@@ -59,7 +60,14 @@ impl PartResult {
         } else {
             tolerance
         };
-        rejection_reasons(&self.flattened.stats.accuracy, tolerance)
+        let mut reasons = rejection_reasons(&self.flattened.stats.accuracy, tolerance);
+        if self.cut_stop == CutStop::TimeLimit {
+            reasons.push(format!(
+                "the time limit was reached after {:.0} s (--time-limit)",
+                self.flattened.stats.seconds
+            ));
+        }
+        reasons
     }
 
     /// Whether the part meets `tolerance`: E_S and E_C within it (any error for a sheet-metal

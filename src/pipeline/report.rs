@@ -11,7 +11,7 @@ use crate::geometry::signed_area;
 
 use crate::nest::Stock;
 
-use super::config::{NestingConfig, RunConfig};
+use super::config::{DEFAULT_PART_TIME_LIMIT, NestingConfig, RunConfig};
 use super::part_result::PartResult;
 
 /// The options the report records.
@@ -28,6 +28,8 @@ pub fn report_options(config: &RunConfig) -> ReportOptions {
         nesting: config
             .stock
             .map(|stock| nesting_report(stock, &config.nesting)),
+        part_time_limit_seconds: Some(options.time_limit_seconds)
+            .filter(|&seconds| seconds != DEFAULT_PART_TIME_LIMIT),
     }
 }
 

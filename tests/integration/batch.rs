@@ -196,7 +196,7 @@ fn a_part_past_the_time_limit_is_timed_out_and_run_again_by_the_next_batch() {
     let output = folder.path().join("out");
     let input = sample("saddle.obj");
     let input = input.to_str().unwrap();
-    let late = batch(&[input, "--time-limit", "0.001"], &output);
+    let late = batch(&[input, "--kill-after", "0.001"], &output);
     assert_eq!(late.status.code(), Some(1), "{}", stderr(&late));
     assert_eq!(statuses(&summary(&output)), ["saddle: timed_out"]);
     let part = output.join("parts/saddle");

@@ -197,6 +197,23 @@ fn a_rejected_part_is_marked_and_says_why() {
     );
 }
 
+/// A part that runs past its `--time-limit` ends there: rejected with the reason, its files
+/// written, exit 3.
+#[test]
+fn a_part_past_its_time_limit_is_rejected_with_the_reason() {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let folder = directory.path();
+    let output =
+        crate::util::flatten_into(&sample("hemisphere.obj"), folder, &["--time-limit", "0.001"]);
+    let message = stderr(&output);
+    assert_eq!(output.status.code(), Some(3), "{message}");
+    assert!(message.contains("the time limit was reached"), "{message}");
+    assert!(folder.join("hemisphere.REJECTED.dxf").exists());
+    let report = crate::util::read_report(folder);
+    assert_eq!(report["options"]["part_time_limit_seconds"], 0.001);
+    assert_eq!(report["parts"][0]["cut_stop"], "time_limit");
+}
+
 #[test]
 fn a_rejected_part_is_marked_on_the_sheet_too() {
     let directory = tempfile::tempdir().expect("temporary directory");

@@ -26,6 +26,9 @@ pub struct FastOptions {
     pub energy_tolerance: f64,
     /// Anderson depth `m`; default [`DEFAULT_ANDERSON_DEPTH`].
     pub anderson_depth: usize,
+    /// When the solver stops ([`crate::flatten::StopReason::TimeLimit`]); none by default.
+    #[serde(skip)]
+    pub deadline: crate::progress::Deadline,
 }
 
 impl Default for FastOptions {
@@ -35,6 +38,7 @@ impl Default for FastOptions {
             step_tolerance: DEFAULT_STEP_TOLERANCE,
             energy_tolerance: DEFAULT_ENERGY_TOLERANCE,
             anderson_depth: DEFAULT_ANDERSON_DEPTH,
+            deadline: crate::progress::Deadline::NONE,
         }
     }
 }

@@ -96,6 +96,9 @@ impl<'a> FastSolver<'a> {
             if stalled || rms_distance(positions, &plain) <= threshold {
                 return self.outcome(iteration, StopReason::Converged, initial_energy, energy);
             }
+            if self.options.deadline.passed() {
+                return self.outcome(iteration, StopReason::TimeLimit, initial_energy, energy);
+            }
             let extrapolated = anderson.extrapolate(&plain, &mut candidate);
             let accelerated_energy = (extrapolated && self.admissible(&candidate, &positive))
                 .then(|| self.local_step(&candidate, &mut candidate_targets));

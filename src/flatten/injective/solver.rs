@@ -13,6 +13,7 @@ use crate::flatten::accuracy::{flipped_triangles, signed_area};
 use crate::flatten::energy_release::StopReason;
 use crate::flatten::springs::SpringSystem;
 use crate::mesh::FacetModel;
+use crate::progress::Deadline;
 
 /// Newton iterations allowed at most (callers may allow fewer).
 pub const MAX_NEWTON_ITERATIONS: usize = 300;
@@ -46,7 +47,8 @@ pub struct InjectiveOutcome {
     /// Newton iterations taken.
     pub iterations: usize,
     /// Why it stopped: [`StopReason::Converged`], [`StopReason::EnergyStalled`] (no step along
-    /// the Newton direction lowered the objective) or [`StopReason::StepBudget`].
+    /// the Newton direction lowered the objective), [`StopReason::StepBudget`] or
+    /// [`StopReason::TimeLimit`] (the deadline passed).
     pub stop_reason: StopReason,
     /// Objective (spring energy plus barrier) of the start of the last stage.
     pub initial_objective: f64,
@@ -66,12 +68,20 @@ pub fn flip_free_flatten(
     model: &FacetModel,
     springs: &SpringSystem,
     max_iterations: usize,
+    deadline: Deadline,
 ) -> Result<(Vec<DVec2>, InjectiveOutcome), InjectiveError> {
     let mut positions = tutte_embedding(model)?;
     let mut iterations = 0;
     let mut outcome = None;
     for barrier in [SHAPING_BARRIER, ORIENTATION_BARRIER] {
-        let stage = flip_free_solve(model, springs, &mut positions, barrier, max_iterations)?;
+        let stage = flip_free_solve(
+            model,
+            springs,
+            &mut positions,
+            barrier,
+            max_iterations,
+            deadline,
+        )?;
         iterations += stage.iterations;
         outcome = Some(InjectiveOutcome {
             iterations,
@@ -83,14 +93,15 @@ pub fn flip_free_flatten(
 
 /// Minimises the spring energy plus `barrier` from `positions` (every triangle positively
 /// oriented, else [`InjectiveError::StartNotInjective`]), in place, with at most
-/// `max_iterations` (and [`MAX_NEWTON_ITERATIONS`]) Newton iterations; no triangle of any
-/// iterate is flipped or degenerate.
+/// `max_iterations` (and [`MAX_NEWTON_ITERATIONS`]) Newton iterations, none started after
+/// `deadline`; no triangle of any iterate is flipped or degenerate.
 pub fn flip_free_solve(
     model: &FacetModel,
     springs: &SpringSystem,
     positions: &mut [DVec2],
     barrier: Barrier,
     max_iterations: usize,
+    deadline: Deadline,
 ) -> Result<InjectiveOutcome, InjectiveError> {
     let max_iterations = max_iterations.min(MAX_NEWTON_ITERATIONS);
     let flipped = flipped_triangles(model, positions);
@@ -110,6 +121,10 @@ pub fn flip_free_solve(
     let mut stop_reason = StopReason::StepBudget;
     let mut iterations = max_iterations;
     for iteration in 0..max_iterations {
+        if deadline.passed() {
+            (stop_reason, iterations) = (StopReason::TimeLimit, iteration);
+            break;
+        }
         objective.gradient(positions, &mut gradient);
         objective.hessian(positions, &layout, &mut hessian);
         let factor = factor_damped(&pattern, &layout, &mut hessian)?;
@@ -454,7 +469,8 @@ mod tests {
         let start = tutte_embedding(&model).expect("a boundary");
         assert_eq!(flipped_triangles(&model, &start), 0, "the Tutte start");
         let (pattern, outcome) =
-            flip_free_flatten(&model, &springs, MAX_NEWTON_ITERATIONS).expect("flattens");
+            flip_free_flatten(&model, &springs, MAX_NEWTON_ITERATIONS, Deadline::NONE)
+                .expect("flattens");
         assert_eq!(flipped_triangles(&model, &pattern), 0, "{outcome:?}");
         assert!(
             outcome.objective <= outcome.initial_objective,
@@ -477,7 +493,8 @@ mod tests {
         for barrier in [SHAPING_BARRIER, ORIENTATION_BARRIER] {
             for _ in 0..15 {
                 let outcome =
-                    flip_free_solve(&model, &springs, &mut positions, barrier, 1).expect("solves");
+                    flip_free_solve(&model, &springs, &mut positions, barrier, 1, Deadline::NONE)
+                        .expect("solves");
                 assert!(
                     outcome.objective <= outcome.initial_objective,
                     "{outcome:?}"
@@ -497,7 +514,14 @@ mod tests {
         for p in &mut positions {
             p.x = -p.x;
         }
-        let refused = flip_free_solve(&model, &springs, &mut positions, ORIENTATION_BARRIER, 10);
+        let refused = flip_free_solve(
+            &model,
+            &springs,
+            &mut positions,
+            ORIENTATION_BARRIER,
+            10,
+            Deadline::NONE,
+        );
         assert_eq!(
             refused,
             Err(InjectiveError::StartNotInjective {
@@ -514,7 +538,8 @@ mod tests {
         let start = tutte_embedding(&model).expect("a boundary");
         assert_eq!(flipped_triangles(&model, &start), 0, "the Tutte start");
         let (pattern, outcome) =
-            flip_free_flatten(&model, &springs, MAX_NEWTON_ITERATIONS).expect("flattens");
+            flip_free_flatten(&model, &springs, MAX_NEWTON_ITERATIONS, Deadline::NONE)
+                .expect("flattens");
         assert_eq!(flipped_triangles(&model, &pattern), 0, "{outcome:?}");
         assert!(outcome.energy < springs.energy(&start), "{outcome:?}");
     }
