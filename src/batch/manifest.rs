@@ -81,13 +81,19 @@ pub fn read_manifest(path: &Path) -> Result<Vec<BatchPart>, BatchError> {
         path: path.to_path_buf(),
         source,
     })?;
+    parse_manifest(path, &text)
+}
+
+/// The parts of the manifest text of the file at `path` (CSV when its extension is `csv`, JSON
+/// Lines otherwise; relative inputs are in its folder), in its order, with unique, valid names.
+pub fn parse_manifest(path: &Path, text: &str) -> Result<Vec<BatchPart>, BatchError> {
     let is_csv = path
         .extension()
         .is_some_and(|extension| extension.eq_ignore_ascii_case("csv"));
     let entries = if is_csv {
-        csv_entries(path, &text)?
+        csv_entries(path, text)?
     } else {
-        json_lines_entries(path, &text)?
+        json_lines_entries(path, text)?
     };
     if entries.is_empty() {
         return Err(BatchError::Manifest {

@@ -22,7 +22,8 @@ use std::sync::atomic::AtomicBool;
 
 pub use errors::BatchError;
 pub use manifest::{
-    BatchPart, MANIFEST_FIELDS, MAXIMUM_NAME_BYTES, ManifestEntry, parts_of_inputs, read_manifest,
+    BatchPart, MANIFEST_FIELDS, MAXIMUM_NAME_BYTES, ManifestEntry, parse_manifest, parts_of_inputs,
+    read_manifest,
 };
 pub use record::{
     Fingerprint, PART_LOCK_FILE, PartRecord, PartStatus, PatternFigures, RECORD_FILE,

@@ -55,20 +55,23 @@ pub fn read_cut_sidecar(mesh: &Path, parts: usize) -> Result<Option<CutSidecar>,
         Err(error) if error.kind() == std::io::ErrorKind::NotFound => return Ok(None),
         Err(source) => return Err(IngestError::Read { path, source }),
     };
+    parse_cut_sidecar(&path, &text, parts).map(Some)
+}
+
+/// Parses the text of the sidecar at `path` (named in errors) of a mesh of `parts` parts.
+pub fn parse_cut_sidecar(path: &Path, text: &str, parts: usize) -> Result<CutSidecar, IngestError> {
+    let refused = |message: String| IngestError::Sidecar {
+        path: path.to_path_buf(),
+        message,
+    };
     let constraints: CutSidecar =
-        serde_json::from_str(&text).map_err(|error| IngestError::Sidecar {
-            path: path.clone(),
-            message: error.to_string(),
-        })?;
+        serde_json::from_str(text).map_err(|error| refused(error.to_string()))?;
     if parts > 1 {
-        return Err(IngestError::Sidecar {
-            path,
-            message: format!(
-                "the mesh holds {parts} parts; seams and no-cut regions need a mesh file per part"
-            ),
-        });
+        return Err(refused(format!(
+            "the mesh holds {parts} parts; seams and no-cut regions need a mesh file per part"
+        )));
     }
-    Ok(Some(constraints))
+    Ok(constraints)
 }
 
 #[cfg(test)]

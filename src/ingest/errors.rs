@@ -15,7 +15,7 @@ pub enum IngestError {
     },
     /// Neither the extension nor the content says what the file is.
     #[error(
-        "{path}: unknown input kind; give a .obj or .stl mesh, a .toml part file or a .step file"
+        "{path}: unknown input kind; give a .obj, .stl, .ply or .off mesh, a .toml part file or a .step file"
     )]
     UnknownKind {
         /// The file.

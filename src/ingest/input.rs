@@ -5,7 +5,9 @@ use std::path::Path;
 
 use super::errors::IngestError;
 use super::obj::{looks_like_obj, parse_obj};
+use super::off::{looks_like_off, parse_off};
 use super::part::{looks_like_part, read_part_text};
+use super::ply::{looks_like_ply, parse_ply};
 use super::step::{looks_like_step, read_step};
 use super::stl::{looks_like_stl, parse_stl};
 use crate::cad::{Brep, PartModel, TriangleSoup};
@@ -18,6 +20,10 @@ pub enum InputKind {
     Obj,
     /// STL mesh, ASCII or binary.
     Stl,
+    /// PLY mesh, ASCII or binary.
+    Ply,
+    /// OFF mesh.
+    Off,
     /// A part file (TOML) describing CAD surfaces.
     Part,
     /// A STEP file (AP203/AP214).
@@ -34,9 +40,13 @@ impl InputKind {
         match extension.as_deref() {
             Some("obj") => Ok(Self::Obj),
             Some("stl") => Ok(Self::Stl),
+            Some("ply") => Ok(Self::Ply),
+            Some("off") => Ok(Self::Off),
             Some("toml") => Ok(Self::Part),
             Some("step" | "stp") => Ok(Self::Step),
             _ if looks_like_step(bytes) => Ok(Self::Step),
+            _ if looks_like_ply(bytes) => Ok(Self::Ply),
+            _ if looks_like_off(bytes) => Ok(Self::Off),
             _ if looks_like_part(bytes) => Ok(Self::Part),
             _ if looks_like_stl(bytes) => Ok(Self::Stl),
             _ if looks_like_obj(bytes) => Ok(Self::Obj),
@@ -58,7 +68,7 @@ pub struct MeshInput {
     pub soup: TriangleSoup,
 }
 
-/// Reads a mesh file (OBJ or STL) whose coordinates are in `units`.
+/// Reads a mesh file (OBJ, STL, PLY or OFF) whose coordinates are in `units`.
 pub fn read_mesh(path: &Path, units: Units) -> Result<MeshInput, IngestError> {
     let bytes = std::fs::read(path).map_err(|source| IngestError::Read {
         path: path.to_path_buf(),
@@ -77,6 +87,8 @@ fn mesh_from_bytes(
     let soup = match kind {
         InputKind::Obj => parse_obj(bytes),
         InputKind::Stl => parse_stl(bytes),
+        InputKind::Ply => parse_ply(bytes),
+        InputKind::Off => parse_off(bytes),
         InputKind::Part | InputKind::Step => {
             return Err(IngestError::NotAMesh {
                 path: path.to_path_buf(),

@@ -203,8 +203,11 @@ fn a_rejected_part_is_marked_and_says_why() {
 fn a_part_past_its_time_limit_is_rejected_with_the_reason() {
     let directory = tempfile::tempdir().expect("temporary directory");
     let folder = directory.path();
-    let output =
-        crate::util::flatten_into(&sample("hemisphere.obj"), folder, &["--time-limit", "0.001"]);
+    let output = crate::util::flatten_into(
+        &sample("hemisphere.obj"),
+        folder,
+        &["--time-limit", "0.001"],
+    );
     let message = stderr(&output);
     assert_eq!(output.status.code(), Some(3), "{message}");
     assert!(message.contains("the time limit was reached"), "{message}");
