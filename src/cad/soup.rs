@@ -21,6 +21,31 @@ pub struct TriangleSoup {
     pub face_sources: Vec<u32>,
     /// Mesh edges, as vertex index pairs, that lie on a fold line, with the fold line's index.
     pub fold_edges: Vec<FoldEdge>,
+    /// Where each vertex and triangle was written in its text file, for messages; empty for
+    /// binary files and tessellations.
+    pub source_lines: SourceLines,
+}
+
+/// The 1-based line of each vertex and triangle in the text file a soup was read from (a
+/// polygon's triangles share its line). Either list is empty when the file has no lines.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct SourceLines {
+    /// Line of each vertex.
+    pub vertices: Vec<u32>,
+    /// Line of each triangle.
+    pub triangles: Vec<u32>,
+}
+
+impl SourceLines {
+    /// The line of vertex `index`, if known.
+    pub fn vertex(&self, index: usize) -> Option<u32> {
+        self.vertices.get(index).copied()
+    }
+
+    /// The line of triangle `index`, if known.
+    pub fn triangle(&self, index: usize) -> Option<u32> {
+        self.triangles.get(index).copied()
+    }
 }
 
 /// One mesh edge that lies on a user fold line.
@@ -41,6 +66,15 @@ impl TriangleSoup {
             triangles,
             face_sources,
             fold_edges: Vec::new(),
+            source_lines: SourceLines::default(),
+        }
+    }
+
+    /// The soup with the lines its vertices and triangles were read from.
+    pub fn with_lines(self, source_lines: SourceLines) -> Self {
+        Self {
+            source_lines,
+            ..self
         }
     }
 

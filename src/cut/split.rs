@@ -18,7 +18,7 @@
 //! is one that duplicates no vertex ([`CutError::OpensNothing`]: a single interior edge, whose two
 //! sides cannot be told apart in an indexed mesh).
 
-use crate::mesh::{FacetModel, FoldEdge, NONE, TriangleSoup, validate};
+use crate::mesh::{FacetModel, FoldEdge, NONE, SourceLines, TriangleSoup, validate};
 
 use super::errors::CutError;
 
@@ -67,6 +67,7 @@ pub fn split_along_edges(model: &FacetModel, cut_edges: &[usize]) -> Result<Spli
         triangles,
         face_sources: model.face_sources().to_vec(),
         fold_edges: copied_fold_edges(model, &original_vertex),
+        source_lines: SourceLines::default(),
     };
     let mut components = validate(&soup)
         .map_err(|defects| CutError::InvalidResult(defects.to_string()))?

@@ -5,7 +5,7 @@
 use glam::DVec3;
 
 use super::errors::FormatDefect;
-use crate::cad::TriangleSoup;
+use crate::cad::{SourceLines, TriangleSoup};
 
 /// True when the bytes look like an OBJ file: text whose statements start with `v ` or `f `.
 pub(crate) fn looks_like_obj(bytes: &[u8]) -> bool {
@@ -24,12 +24,16 @@ pub fn parse_obj(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
     })?;
     let mut positions = Vec::new();
     let mut triangles = Vec::new();
+    let mut lines = SourceLines::default();
     for (index, raw) in text.lines().enumerate() {
         let line = index + 1;
         let content = raw.split('#').next().unwrap_or("").trim();
         let mut words = content.split_whitespace();
         match words.next() {
-            Some("v") => positions.push(parse_position(words, line)?),
+            Some("v") => {
+                positions.push(parse_position(words, line)?);
+                lines.vertices.push(line as u32);
+            }
             Some("f") => {
                 let corners = words
                     .map(|word| parse_corner(word, positions.len(), line))
@@ -45,6 +49,7 @@ pub fn parse_obj(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
                 }
                 for k in 1..corners.len() - 1 {
                     triangles.push([corners[0], corners[k], corners[k + 1]]);
+                    lines.triangles.push(line as u32);
                 }
             }
             _ => {}
@@ -53,7 +58,7 @@ pub fn parse_obj(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
     if triangles.is_empty() {
         return Err(FormatDefect::Empty);
     }
-    Ok(TriangleSoup::new(positions, triangles))
+    Ok(TriangleSoup::new(positions, triangles).with_lines(lines))
 }
 
 fn parse_position<'a>(

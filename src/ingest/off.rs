@@ -7,7 +7,7 @@
 use glam::DVec3;
 
 use super::errors::FormatDefect;
-use crate::cad::TriangleSoup;
+use crate::cad::{SourceLines, TriangleSoup};
 
 /// True when the bytes start like an OFF file.
 pub(crate) fn looks_like_off(bytes: &[u8]) -> bool {
@@ -61,6 +61,7 @@ pub fn parse_off(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
             ),
         ));
     }
+    let mut source_lines = SourceLines::default();
     let mut positions = Vec::with_capacity(vertices);
     for _ in 0..vertices {
         let (line, text) = lines.next().ok_or_else(|| {
@@ -74,6 +75,7 @@ pub fn parse_off(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
             return Err(error(line, "a vertex needs x, y and z".into()));
         };
         positions.push(DVec3::new(x, y, z));
+        source_lines.vertices.push(line as u32);
     }
     let mut triangles = Vec::with_capacity(faces);
     for _ in 0..faces {
@@ -109,12 +111,13 @@ pub fn parse_off(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
         }
         for k in 1..count - 1 {
             triangles.push([corners[0], corners[k], corners[k + 1]]);
+            source_lines.triangles.push(line as u32);
         }
     }
     if triangles.is_empty() {
         return Err(FormatDefect::Empty);
     }
-    Ok(TriangleSoup::new(positions, triangles))
+    Ok(TriangleSoup::new(positions, triangles).with_lines(source_lines))
 }
 
 /// The numbers of a line.

@@ -4,6 +4,8 @@
 
 use std::fmt;
 
+use crate::cad::SourceLines;
+
 /// Largest coordinate magnitude accepted, in the mesh's units (1e9 mm is 1,000 km): beyond it a
 /// coordinate is a unit or exporter error, and squared lengths lose their precision.
 pub const MAXIMUM_COORDINATE: f64 = 1e9;
@@ -92,6 +94,41 @@ impl Defect {
     }
 }
 
+impl Defect {
+    /// The defect with the file's line of its vertex or triangle, where `lines` knows it:
+    /// `triangle 5 has zero area (...) [line 12]`.
+    pub fn located(&self, lines: &SourceLines) -> String {
+        let vertex_lines = |vertices: &[usize]| -> Option<String> {
+            let found: Option<Vec<String>> = vertices
+                .iter()
+                .map(|&v| lines.vertex(v).map(|line| line.to_string()))
+                .collect();
+            found.map(|found| found.join(" and "))
+        };
+        let line = match *self {
+            Defect::NonFiniteVertex { vertex }
+            | Defect::TooLargeVertex { vertex, .. }
+            | Defect::NonManifoldVertex { vertex, .. }
+            | Defect::UnreferencedVertices { first: vertex, .. } => vertex_lines(&[vertex]),
+            Defect::IndexOutOfRange { triangle, .. }
+            | Defect::RepeatedVertex { triangle }
+            | Defect::ZeroArea { triangle, .. } => {
+                lines.triangle(triangle).map(|line| line.to_string())
+            }
+            Defect::NonManifoldEdge {
+                vertices: [a, b], ..
+            }
+            | Defect::NonOrientable { vertices: [a, b] } => vertex_lines(&[a as usize, b as usize]),
+            Defect::NoTriangles | Defect::Reoriented { .. } => None,
+        };
+        match line {
+            Some(line) if line.contains(' ') => format!("{self} [lines {line}]"),
+            Some(line) => format!("{self} [line {line}]"),
+            None => self.to_string(),
+        }
+    }
+}
+
 impl fmt::Display for Defect {
     /// Vertices and triangles are numbered from 1, as in the file.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -168,19 +205,25 @@ impl fmt::Display for Defect {
     }
 }
 
-/// The defects that stop a mesh from being used, all of them.
+/// The defects that stop a mesh from being used, all of them, with the lines of the file they
+/// are on where it has lines.
 #[derive(Debug, Clone, PartialEq)]
-pub struct MeshDefects(pub Vec<Defect>);
+pub struct MeshDefects {
+    /// The defects.
+    pub defects: Vec<Defect>,
+    /// The file's lines of the mesh's vertices and triangles.
+    pub lines: SourceLines,
+}
 
 impl fmt::Display for MeshDefects {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         const SHOWN: usize = 20;
-        write!(f, "{} defect(s)", self.0.len())?;
-        for defect in self.0.iter().take(SHOWN) {
-            write!(f, "\n  - {defect}")?;
+        write!(f, "{} defect(s)", self.defects.len())?;
+        for defect in self.defects.iter().take(SHOWN) {
+            write!(f, "\n  - {}", defect.located(&self.lines))?;
         }
-        if self.0.len() > SHOWN {
-            write!(f, "\n  - ... and {} more", self.0.len() - SHOWN)?;
+        if self.defects.len() > SHOWN {
+            write!(f, "\n  - ... and {} more", self.defects.len() - SHOWN)?;
         }
         Ok(())
     }

@@ -7,7 +7,7 @@ mod facet;
 mod rows;
 mod validate;
 
-pub use crate::cad::{FoldEdge, NO_SOURCE_FACE, TriangleSoup};
+pub use crate::cad::{FoldEdge, NO_SOURCE_FACE, SourceLines, TriangleSoup};
 pub use crate::geometry::tolerance::DEGENERATE_AREA_RATIO;
 pub use chains::chain_edges;
 pub use defects::{Defect, MAXIMUM_COORDINATE, MeshDefects};

@@ -27,33 +27,41 @@ pub struct ValidatedMesh {
     pub warnings: Vec<Defect>,
 }
 
+/// The defects that stop `soup`, with its lines.
+fn refusal(soup: &TriangleSoup, defects: Vec<Defect>) -> MeshDefects {
+    MeshDefects {
+        defects,
+        lines: soup.source_lines.clone(),
+    }
+}
+
 /// Checks a soup and splits it into facet models; see the module documentation.
 pub fn validate(soup: &TriangleSoup) -> Result<ValidatedMesh, MeshDefects> {
     let mut errors = Vec::new();
     let mut warnings = Vec::new();
     if soup.triangles.is_empty() {
-        return Err(MeshDefects(vec![Defect::NoTriangles]));
+        return Err(refusal(soup, vec![Defect::NoTriangles]));
     }
     check_coordinates_and_indices(soup, &mut errors);
     if !errors.is_empty() {
-        return Err(MeshDefects(errors));
+        return Err(refusal(soup, errors));
     }
     let kept = drop_repeated_vertices(soup, &mut warnings);
     if kept.is_empty() {
         errors.push(Defect::NoTriangles);
-        return Err(MeshDefects(errors));
+        return Err(refusal(soup, errors));
     }
     check_areas(soup, &kept, &mut errors);
     let mut triangles: Vec<[u32; 3]> = kept.iter().map(|&t| soup.triangles[t]).collect();
     let half_edges = sorted_half_edges(&triangles);
     check_edge_valence(&half_edges, &mut errors);
     if !errors.is_empty() {
-        return Err(MeshDefects(errors));
+        return Err(refusal(soup, errors));
     }
     let component_of = orient_and_label(&mut triangles, &half_edges, &mut errors, &mut warnings);
     check_vertex_fans(soup.positions.len(), &triangles, &mut errors);
     if !errors.is_empty() {
-        return Err(MeshDefects(errors));
+        return Err(refusal(soup, errors));
     }
     let (components, soup_vertices) =
         split_components(soup, &kept, &triangles, &component_of, &mut warnings);
@@ -353,15 +361,19 @@ mod tests {
         positions.push([f64::NAN, 0.0, 0.0]);
         let defects =
             validate(&soup(&positions, &[[0, 1, 2], [0, 2, 9], [0, 2, 4]])).expect_err("defects");
-        assert!(defects.0.contains(&Defect::NonFiniteVertex { vertex: 4 }));
+        assert!(
+            defects
+                .defects
+                .contains(&Defect::NonFiniteVertex { vertex: 4 })
+        );
         assert!(
             !defects
-                .0
+                .defects
                 .iter()
                 .any(|defect| matches!(defect, Defect::ZeroArea { .. })),
             "{defects}"
         );
-        assert!(defects.0.contains(&Defect::IndexOutOfRange {
+        assert!(defects.defects.contains(&Defect::IndexOutOfRange {
             triangle: 1,
             index: 9,
             vertex_count: 5
@@ -379,7 +391,7 @@ mod tests {
         ];
         let defects = validate(&soup(&positions, &[[0, 1, 2], [0, 3, 4]])).expect_err("bow-tie");
         assert_eq!(
-            defects.0,
+            defects.defects,
             vec![Defect::NonManifoldVertex { vertex: 0, fans: 2 }]
         );
     }
@@ -450,7 +462,7 @@ mod tests {
         let defects = validate(&soup(&positions, &triangles)).expect_err("non-orientable");
         assert!(
             defects
-                .0
+                .defects
                 .iter()
                 .any(|d| matches!(d, Defect::NonOrientable { .. })),
             "{defects}"

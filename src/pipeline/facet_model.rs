@@ -75,10 +75,15 @@ pub fn facet_model(
         path: path.to_path_buf(),
         defects,
     })?;
+    let warnings = validated
+        .warnings
+        .iter()
+        .map(|warning| warning.located(&soup.source_lines))
+        .collect();
     Ok(FacetModelOutput {
         soup,
         source,
-        warnings: validated.warnings.iter().map(ToString::to_string).collect(),
+        warnings,
     })
 }
 

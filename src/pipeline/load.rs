@@ -337,7 +337,11 @@ fn split_parts(
         path: path.to_path_buf(),
         defects,
     })?;
-    let warnings: Vec<String> = validated.warnings.iter().map(ToString::to_string).collect();
+    let warnings: Vec<String> = validated
+        .warnings
+        .iter()
+        .map(|warning| warning.located(&soup.source_lines))
+        .collect();
     let several = validated.components.len() > 1;
     let constraints = read_cut_sidecar(path, validated.components.len())?
         .map(cut_constraints)

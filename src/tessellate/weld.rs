@@ -10,7 +10,7 @@
 use glam::DVec2;
 
 use super::face_mesh::FaceMesh;
-use crate::cad::{FoldEdge, TriangleSoup};
+use crate::cad::{FoldEdge, SourceLines, TriangleSoup};
 use crate::geometry::weld::merge_close_points;
 
 /// A welded soup and, per soup vertex, the faces it came from with its parameter-domain
@@ -79,6 +79,7 @@ pub fn weld_faces(faces: &[FaceMesh], weld: bool, tolerance: f64) -> Welded {
             triangles,
             face_sources,
             fold_edges,
+            source_lines: SourceLines::default(),
         },
         &representative,
         &owners,
@@ -146,6 +147,7 @@ fn compact(
             triangles: soup.triangles.iter().map(|t| t.map(remap)).collect(),
             face_sources: soup.face_sources,
             fold_edges,
+            source_lines: SourceLines::default(),
         },
         vertex_sources: vertex_sources(representative, &new_index, owners, parameters),
     }

@@ -299,8 +299,31 @@ fn every_bad_input_is_reported_with_vertices_numbered_as_in_the_file() {
         );
     }
     assert!(
-        said.contains("edge 1-2 is shared by 3 triangles"),
-        "1-based: {said}"
+        said.contains(
+            "edge 1-2 is shared by 3 triangles (non-manifold; at most 2 allowed) [lines 1 and 2]"
+        ),
+        "1-based, with the file's lines: {said}"
     );
     assert!(!folder.path().join("out").exists(), "nothing written");
+}
+
+#[test]
+fn a_degenerate_triangle_is_named_with_its_line() {
+    let folder = tempfile::tempdir().expect("temporary directory");
+    let text = "# a quad and a sliver\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\n\
+                f 1 2 3 4\n\nf 2 5 2\nf 2 3 5\n";
+    let input = folder.path().join("sliver.obj");
+    std::fs::write(&input, text.replace("f 2 5 2", "f 1 2 5")).unwrap();
+    let output = flatcut(&[
+        "flatten",
+        path(&input),
+        "-o",
+        path(&folder.path().join("out")),
+    ]);
+    let said = stderr(&output);
+    assert_eq!(output.status.code(), Some(1), "{said}");
+    assert!(
+        said.contains("triangle 3 has zero area") && said.contains("[line 9]"),
+        "the fanned quad's two triangles come first; the sliver is on line 9: {said}"
+    );
 }
