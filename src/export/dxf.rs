@@ -320,25 +320,26 @@ fn add_polyline(
     add_entity(document, layer, entity);
 }
 
-/// The label (part name, quantity, material), centred on the part's label anchor
-/// ([`PartDrawing::label_anchor`]), or beside it, across the grain line, when the part has one.
+/// The label (part name, quantity, material) where [`PartDrawing::label_placement`] puts it:
+/// inside the part's material, clear of its cut, fold and bend lines and grain arrow, level or
+/// turned along the part, as large as [`label_height`] allows down to the smallest height.
 fn add_label(document: &mut Drawing, drawing: &PartDrawing, outer: &[BulgeVertex]) {
-    let Some((low, high)) = polyline_bounds(outer, true) else {
+    let largest = label_height(drawing, outer);
+    let smallest = LABEL_HEIGHT_RANGE_MM.0 / drawing.units.millimetres();
+    let value = label_text(drawing);
+    let characters = value.chars().count();
+    let Some(placement) = drawing.label_placement(
+        characters,
+        LABEL_CHARACTER_WIDTH,
+        (smallest.min(largest), largest),
+    ) else {
         return;
     };
-    let height = label_height(drawing, outer);
-    let value = label_text(drawing);
-    let width = value.chars().count() as f64 * height * LABEL_CHARACTER_WIDTH;
-    let deep = drawing.label_anchor().unwrap_or((low + high) * 0.5);
-    let beside_grain = drawing
-        .grain_arrow()
-        .map_or(DVec2::ZERO, |([tail, head], _)| {
-            (head - tail).normalize_or_zero().perp() * (1.5 * height)
-        });
-    let location = deep + beside_grain - DVec2::new(width, height) * 0.5;
+    let width = characters as f64 * placement.height * LABEL_CHARACTER_WIDTH;
     let text = Text {
-        location: point(location),
-        text_height: height,
+        location: point(placement.insertion_point(width)),
+        text_height: placement.height,
+        rotation: placement.angle.to_degrees(),
         value,
         ..Default::default()
     };

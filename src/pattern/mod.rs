@@ -14,6 +14,7 @@ mod drawing;
 mod energy;
 mod errors;
 mod fold_polylines;
+mod label;
 mod options;
 mod part_pattern;
 mod pattern_file;
@@ -32,6 +33,7 @@ pub use drawing::PartDrawing;
 pub use energy::{NEGLIGIBLE_STRAIN, VertexEnergy, negligible_vertex_energy};
 pub use errors::PatternError;
 pub use fold_polylines::fold_polylines;
+pub use label::LabelPlacement;
 pub use options::PatternOptions;
 pub use part_pattern::{FlatShape, Pattern, PatternSource, part_pattern};
 pub use pattern_file::{
