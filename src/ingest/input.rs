@@ -68,12 +68,29 @@ pub struct MeshInput {
     pub soup: TriangleSoup,
 }
 
-/// Reads a mesh file (OBJ, STL, PLY or OFF) whose coordinates are in `units`.
-pub fn read_mesh(path: &Path, units: Units) -> Result<MeshInput, IngestError> {
-    let bytes = std::fs::read(path).map_err(|source| IngestError::Read {
+/// Largest input file read, in bytes (2 GiB: an OBJ of some 30 million triangles, far beyond
+/// what can be flattened; a bigger file is almost surely not a part).
+pub const MAXIMUM_INPUT_BYTES: u64 = 2 << 30;
+
+/// The bytes of an input file, refused before reading when larger than [`MAXIMUM_INPUT_BYTES`].
+fn read_bytes(path: &Path) -> Result<Vec<u8>, IngestError> {
+    let read_error = |source| IngestError::Read {
         path: path.to_path_buf(),
         source,
-    })?;
+    };
+    let size = std::fs::metadata(path).map_err(read_error)?.len();
+    if size > MAXIMUM_INPUT_BYTES {
+        return Err(IngestError::TooLarge {
+            path: path.to_path_buf(),
+            bytes: size,
+        });
+    }
+    std::fs::read(path).map_err(read_error)
+}
+
+/// Reads a mesh file (OBJ, STL, PLY or OFF) whose coordinates are in `units`.
+pub fn read_mesh(path: &Path, units: Units) -> Result<MeshInput, IngestError> {
+    let bytes = read_bytes(path)?;
     let kind = InputKind::detect(path, &bytes)?;
     mesh_from_bytes(path, kind, &bytes, units)
 }
@@ -117,10 +134,7 @@ pub enum Input {
 
 /// Reads any input: meshes in `units`; part and STEP files carry their own units.
 pub fn read_input(path: &Path, units: Units) -> Result<Input, IngestError> {
-    let bytes = std::fs::read(path).map_err(|source| IngestError::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let bytes = read_bytes(path)?;
     match InputKind::detect(path, &bytes)? {
         InputKind::Part => Ok(Input::Part(Box::new(read_part_text(path, &bytes)?))),
         InputKind::Step => Ok(Input::Step(read_step(path, &bytes)?)),

@@ -19,7 +19,7 @@ pub use cut_sidecar::{
     CutSidecar, SidecarRegion, cut_sidecar_path, parse_cut_sidecar, read_cut_sidecar,
 };
 pub use errors::{FormatDefect, IngestError};
-pub use input::{Input, InputKind, MeshInput, read_input, read_mesh};
+pub use input::{Input, InputKind, MAXIMUM_INPUT_BYTES, MeshInput, read_input, read_mesh};
 pub use obj::parse_obj;
 pub use off::parse_off;
 pub use part::{PartError, SpecDefect, parse_part, read_part_text};

@@ -315,7 +315,9 @@ mod tests {
         for p in drawing.fold_lines[0].iter_mut() {
             *p = turn.rotate(*p) + DVec2::new(500.0, 20.0);
         }
-        let placement = drawing.label_placement(14, 0.6, (2.0, 10.0)).expect("placed");
+        let placement = drawing
+            .label_placement(14, 0.6, (2.0, 10.0))
+            .expect("placed");
         let along_part = turn.rotate(DVec2::Y);
         assert!(
             DVec2::from_angle(placement.angle).dot(along_part).abs() > 1.0 - 1e-9,

@@ -327,3 +327,26 @@ fn a_degenerate_triangle_is_named_with_its_line() {
         "the fanned quad's two triangles come first; the sliver is on line 9: {said}"
     );
 }
+
+/// A file larger than flatcut reads is refused by its size, before a byte is read (a sparse
+/// file: nothing is written to disk).
+#[test]
+fn a_file_too_large_is_refused_before_it_is_read() {
+    let folder = tempfile::tempdir().expect("temporary directory");
+    let input = folder.path().join("huge.obj");
+    std::fs::File::create(&input)
+        .and_then(|file| file.set_len(3 << 30))
+        .expect("a sparse file");
+    let output = flatcut(&[
+        "flatten",
+        path(&input),
+        "-o",
+        path(&folder.path().join("out")),
+    ]);
+    let said = stderr(&output);
+    assert_eq!(output.status.code(), Some(1), "{said}");
+    assert!(
+        said.contains("the file is 3.0 GiB, above the 2 GiB flatcut reads"),
+        "{said}"
+    );
+}
