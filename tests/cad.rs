@@ -1448,7 +1448,7 @@ fn thin_solids_are_recognised_on_the_brep() {
         };
         let tessellation =
             tessellate_step(&sample(name), &brep, &Default::default()).expect("tessellated");
-        recognise_shell(&brep.shells[0], tessellation.soup())
+        recognise_shell(&brep.shells[0], tessellation.soup(), None)
     };
     let solid = recognised("sheet_l_hole_freecad.step").expect("the L is a sheet");
     assert!((solid.thickness - 2.0).abs() < 1e-9);

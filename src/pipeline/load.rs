@@ -16,7 +16,8 @@ use crate::flatten::Stiffness;
 use crate::ingest::{CutSidecar, Input, read_cut_sidecar, read_input};
 use crate::mesh::{FacetModel, validate};
 use crate::sheet::{
-    BendLine, NotASheet, SHEET_CHORD_MM, SheetUnfold, ThinSolid, recognise_shell, unfold_skin,
+    BendLine, NotASheet, SHEET_CHORD_MM, SheetOptions, SheetUnfold, ThinSolid, base_face_index,
+    recognise_shell, unfold_skin,
 };
 pub use crate::tessellate::TessellationFigures;
 use crate::tessellate::{
@@ -66,8 +67,10 @@ pub struct SheetPart {
     pub bends: Vec<BendLine>,
     /// The sheet's thickness, mm.
     pub thickness: f64,
-    /// The K-factor the bends were unrolled with.
-    pub k_factor: f64,
+    /// The K-factor every bend was unrolled with, when the rule is the K-factor.
+    pub k_factor: Option<f64>,
+    /// The bend rule in words (`K 0.44`, `DIN 6935`, `bend table FILE`).
+    pub rule: String,
     /// The face the unfold started from, described (`ADVANCED_FACE #17 on PLANE (#31)`).
     pub base_face: String,
 }
@@ -101,11 +104,16 @@ fn read_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> 
             let tessellation = tessellate_step(path, &brep, &options.tessellate)?;
             let mut template = template(brep.name.clone(), Units::Millimetres);
             template.tessellation = Some(tessellation.figures);
-            let not_a_sheet = match thin_solid(&brep, tessellation.soup()) {
+            let not_a_sheet = match thin_solid(path, &brep, tessellation.soup(), &options.sheet)? {
                 Ok(solid) => {
                     let fine =
                         sheet_tessellation(path, &brep, options, tessellation.figures.chord)?;
-                    let unfold = unfold_skin(&solid, fine.soup(), &options.sheet);
+                    let material = options.overrides.material.as_deref();
+                    let unfold = unfold_skin(&solid, fine.soup(), &options.sheet, material)
+                        .map_err(|reason| Error::SheetMetal {
+                            path: path.to_path_buf(),
+                            reason,
+                        })?;
                     let base_face = brep.shells[0].describe_face(solid.base_face);
                     let mut header = template.clone();
                     header.tessellation = Some(fine.figures);
@@ -167,16 +175,48 @@ pub fn tessellate_step(
     })
 }
 
-/// A STEP file of one solid recognised as sheet metal; otherwise why not, when it is a solid of
-/// planes and cylinders only (`None` for anything else: several shells, other surfaces).
-fn thin_solid(brep: &Brep, soup: &TriangleSoup) -> Result<ThinSolid, Option<String>> {
-    let [shell] = brep.shells.as_slice() else {
-        return Err(None);
+/// A STEP file of one solid recognised as sheet metal, unfolded from the options' base face or
+/// its largest planar face; otherwise why not, when it is a solid of planes and cylinders only
+/// (`None` for anything else: several shells, other surfaces). A base face that cannot be used
+/// (no such face, not a flange, the part not a sheet) is an error.
+fn thin_solid(
+    path: &Path,
+    brep: &Brep,
+    soup: &TriangleSoup,
+    options: &SheetOptions,
+) -> Result<Result<ThinSolid, Option<String>>, Error> {
+    let refuse = |reason: String| Error::SheetMetal {
+        path: path.to_path_buf(),
+        reason,
     };
-    recognise_shell(shell, soup).map_err(|not_a_sheet| match not_a_sheet {
-        NotASheet::OtherSurfaces(_) => None,
-        NotASheet::NoConstantThickness(reason) => Some(reason),
-    })
+    let [shell] = brep.shells.as_slice() else {
+        return match options.base_face {
+            Some(id) => Err(refuse(format!(
+                "--base-face #{id}: the file holds {} shells, not one sheet-metal solid",
+                brep.shells.len()
+            ))),
+            None => Ok(Err(None)),
+        };
+    };
+    let recognised = recognise_shell(shell, soup, None).map_err(|not_a_sheet| match not_a_sheet {
+        NotASheet::OtherSurfaces(reason) => (false, reason),
+        NotASheet::NoConstantThickness(reason) => (true, reason),
+    });
+    match (recognised, options.base_face) {
+        (Ok(solid), None) => Ok(Ok(solid)),
+        (Ok(solid), Some(id)) => {
+            let base = base_face_index(shell, &solid, id).map_err(refuse)?;
+            recognise_shell(shell, soup, Some(base))
+                .map(Ok)
+                .map_err(|not_a_sheet| {
+                    refuse(format!("--base-face #{id}: {}", not_a_sheet.reason()))
+                })
+        }
+        (Err((_, reason)), Some(id)) => Err(refuse(format!(
+            "--base-face #{id}: the part is not a sheet-metal solid ({reason})"
+        ))),
+        (Err((constant_thickness, reason)), None) => Ok(Err(constant_thickness.then_some(reason))),
+    }
 }
 
 /// The tessellation a sheet-metal solid is unfolded from: its chord at most [`SHEET_CHORD_MM`]
@@ -235,6 +275,7 @@ fn sheet_job(
             bends: unfold.bends,
             thickness: unfold.thickness,
             k_factor: unfold.k_factor,
+            rule: unfold.rule,
             base_face,
         }),
     }))
