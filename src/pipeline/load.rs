@@ -8,7 +8,8 @@ use std::path::{Path, PathBuf};
 use glam::DVec2;
 
 use crate::cad::{
-    Brep, ParameterRegion, PartAttributes, PartModel, RegionShape, SurfaceDomain, TriangleSoup,
+    Brep, FoldBend, FoldLineGeometry, ParameterRegion, PartAttributes, PartModel, RegionShape,
+    SurfaceDomain, TriangleSoup,
 };
 use crate::cut::{CutConstraints, NoCutRegion};
 use crate::error::Error;
@@ -16,8 +17,8 @@ use crate::flatten::Stiffness;
 use crate::ingest::{CutSidecar, Input, read_cut_sidecar, read_input};
 use crate::mesh::{FacetModel, validate};
 use crate::sheet::{
-    BendLine, NotASheet, SHEET_CHORD_MM, SheetOptions, SheetUnfold, ThinSolid, base_face_index,
-    recognise_shell, unfold_skin,
+    BendLine, BendRule, FoldedPart, NotASheet, SHEET_CHORD_MM, SheetOptions, SheetUnfold,
+    ThinSolid, base_face_index, recognise_shell, unfold_folds, unfold_skin,
 };
 pub use crate::tessellate::TessellationFigures;
 use crate::tessellate::{
@@ -133,6 +134,9 @@ fn read_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> 
                 }
             }
             Ok(jobs)
+        }
+        Input::Part(part) if part.fold_bends.iter().any(Option::is_some) => {
+            folded_part(path, &part, options)
         }
         Input::Part(part) => load_part_file(path, &part, &options.tessellate),
     }
@@ -279,6 +283,90 @@ fn sheet_job(
             base_face,
         }),
     }))
+}
+
+/// A part file whose folds have bend radii: its polygons unfolded exactly about their folds,
+/// each bend with the allowance of the bend rule ([`unfold_folds`]).
+fn folded_part(path: &Path, part: &PartModel, options: &RunOptions) -> Result<Vec<PartJob>, Error> {
+    let refuse = |reason: String| Error::SheetMetal {
+        path: path.to_path_buf(),
+        reason,
+    };
+    if !part.cad.weld {
+        return Err(refuse(
+            "a fold with a bend_radius joins two polygons: give join = \"weld\"".to_owned(),
+        ));
+    }
+    let tessellation = tessellate_part(path, part, &options.tessellate)?;
+    let folds: Vec<([usize; 2], Option<FoldBend>)> = part
+        .cad
+        .fold_lines
+        .iter()
+        .zip(&part.fold_bends)
+        .filter_map(|(geometry, bend)| match geometry {
+            FoldLineGeometry::Between { surfaces } => Some((*surfaces, *bend)),
+            FoldLineGeometry::OnSurface { .. } => None,
+        })
+        .collect();
+    let millimetres = part.units.millimetres();
+    let thickness = options
+        .overrides
+        .thickness_mm
+        .map(|mm| mm / millimetres)
+        .or(part.attributes.thickness)
+        .ok_or_else(|| refuse("a bend needs the part's thickness".to_owned()))?;
+    let material = options
+        .overrides
+        .material
+        .as_deref()
+        .or(part.attributes.material.as_deref());
+    let folded = FoldedPart {
+        soup: tessellation.soup(),
+        surfaces: part.cad.surfaces.len(),
+        folds: &folds,
+        thickness,
+        millimetres,
+    };
+    let unfold = unfold_folds(&folded, &options.sheet, material).map_err(refuse)?;
+    let validated = validate(tessellation.soup()).map_err(|defects| Error::Mesh {
+        path: path.to_path_buf(),
+        defects,
+    })?;
+    let ([model], [soup_vertices]) = (
+        validated.components.as_slice(),
+        validated.soup_vertices.as_slice(),
+    ) else {
+        return Err(refuse(
+            "the polygons of a part with bends must be one piece".to_owned(),
+        ));
+    };
+    let mut header = template(part.name.clone(), part.units);
+    header.quantity = part.quantity;
+    header.attributes = part.attributes.clone();
+    Ok(vec![PartJob {
+        name: header.name,
+        source: path.to_path_buf(),
+        units: header.units,
+        quantity: header.quantity,
+        attributes: header.attributes,
+        fold_line_count: 0,
+        tessellation: Some(tessellation.figures),
+        stiffness: Stiffness::uniform(model),
+        constraints: CutConstraints::default(),
+        model: model.clone(),
+        warnings: validated.warnings.iter().map(ToString::to_string).collect(),
+        sheet: Some(SheetPart {
+            flat: soup_vertices
+                .iter()
+                .map(|&vertex| unfold.flat[vertex as usize])
+                .collect(),
+            bends: unfold.bends,
+            thickness: thickness * millimetres,
+            k_factor: (options.sheet.rule == BendRule::KFactor).then_some(options.sheet.k_factor),
+            rule: options.sheet.rule.describe(options.sheet.k_factor),
+            base_face: format!("surface {}", unfold.base_surface),
+        }),
+    }])
 }
 
 /// What every part of one input file shares.

@@ -14,6 +14,7 @@ mod bend;
 mod bend_rule;
 mod bend_table;
 mod face_map;
+mod fold_unfold;
 mod options;
 mod recognise;
 mod surfaces;
@@ -29,10 +30,11 @@ pub use bend_table::{
     BendTable, BendTableRow, TABLE_ANGLE_TOLERANCE_DEGREES, TABLE_LENGTH_TOLERANCE_MM,
     TableQuantity, TableValue,
 };
+pub use fold_unfold::{FoldUnfold, FoldedPart, unfold_folds};
 pub use options::{DEFAULT_K_FACTOR, SheetOptions};
 pub use recognise::{MAXIMUM_THICKNESS_RATIO, NotASheet, ThinSolid, recognise};
 pub use surfaces::{LENGTH_TOLERANCE_MM, SheetSurface};
-pub use unfold::{SheetUnfold, unfold_skin};
+pub use unfold::{SheetUnfold, rest_position, unfold_skin};
 
 use crate::cad::{BrepShell, TriangleSoup};
 

@@ -365,7 +365,7 @@ fn bend_line(zone: &BendZone, points: Vec<DVec3>, allowance: BendAllowance) -> B
 
 /// Turns the pattern (and its bend lines) so that its smallest bounding rectangle is
 /// axis-aligned with the longer side along x, and moves it to start at the origin.
-fn rest_position(flat: &mut [DVec2], bends: &mut [BendLine]) {
+pub fn rest_position(flat: &mut [DVec2], bends: &mut [BendLine]) {
     let turn = long_side_of_smallest_rectangle(flat)
         .map_or(DVec2::X, |direction| DVec2::new(direction.x, -direction.y));
     let low = flat
