@@ -12,7 +12,9 @@ use super::drawing::SheetDrawing;
 use super::dxf_options::{DxfOptions, DxfVersion};
 use super::dxf_repair::repair;
 use super::errors::ExportError;
-use crate::pattern::{BulgeVertex, PartContours, PartDrawing, part_contours, polyline_bounds};
+use crate::pattern::{
+    BulgeVertex, LABEL_CHARACTER_WIDTH, PartContours, PartDrawing, part_contours, polyline_bounds,
+};
 use crate::sheet::BendDirection;
 use crate::units::Units;
 use dxf::entities::{Entity, EntityType, Line, LwPolyline, Polyline, Text, Vertex};
@@ -70,9 +72,6 @@ const LABEL_HEIGHT_RANGE_MM: (f64, f64) = (2.0, 10.0);
 
 /// Height of a bend's note as a fraction of the label's.
 const BEND_NOTE_HEIGHT_FRACTION: f64 = 0.5;
-
-/// Width of one label character as a fraction of the text height (for centring the label).
-const LABEL_CHARACTER_WIDTH: f64 = 0.6;
 
 /// Dash and gap of the dashed line type, in mm (ISO 128 long dash).
 const DASH_PATTERN_MM: [f64; 2] = [12.7, -6.35];
@@ -373,12 +372,7 @@ fn label_height(drawing: &PartDrawing, outer: &[BulgeVertex]) -> f64 {
 
 /// "name xQUANTITY material", written as TEXT shows it literally ([`escaped_text`]).
 fn label_text(drawing: &PartDrawing) -> String {
-    let mut label = format!("{} x{}", drawing.name, drawing.quantity);
-    if let Some(material) = &drawing.material {
-        label.push(' ');
-        label.push_str(material);
-    }
-    escaped_text(&label)
+    escaped_text(&drawing.label())
 }
 
 /// Text written so that TEXT shows it literally: control characters (which would break the

@@ -35,6 +35,10 @@ pub struct PartDrawing {
     pub bends: Vec<BendLine>,
 }
 
+/// Width of one label character as a fraction of the text height (for centring the label and
+/// for finding room for it).
+pub const LABEL_CHARACTER_WIDTH: f64 = 0.6;
+
 /// Grain arrowhead length as a fraction of the grain line, capped at [`ARROW_MAX_LENGTH_MM`].
 const ARROW_FRACTION: f64 = 0.1;
 
@@ -47,8 +51,48 @@ const ARROW_HALF_ANGLE: f64 = 25.0 * std::f64::consts::PI / 180.0;
 impl PartDrawing {
     /// Where the label is centred: a point deep inside the part's material
     /// ([`deep_interior_point`]), or `None` when the outer contour has fewer than three points.
+    ///
+    /// A sheet-metal part's label goes inside a flange: the anchor is the centre of the largest
+    /// box of the label's shape clear of the outline, the holes and every bend zone (between its
+    /// two tangent lines), so the label never lies across a bend line.
     pub fn label_anchor(&self) -> Option<DVec2> {
-        (self.outer.len() >= 3).then(|| deep_interior_point(&self.outer, &self.holes))
+        if self.outer.len() < 3 {
+            return None;
+        }
+        if self.bends.is_empty() {
+            return Some(deep_interior_point(&self.outer, &self.holes));
+        }
+        Some(self.anchor_clear_of_bends())
+    }
+
+    /// The label's text: `name xQUANTITY material`.
+    pub fn label(&self) -> String {
+        let mut label = format!("{} x{}", self.name, self.quantity);
+        if let Some(material) = &self.material {
+            label.push(' ');
+            label.push_str(material);
+        }
+        label
+    }
+
+    /// The deepest point for a label-shaped box: x squeezed by the label's width over its
+    /// height, so that the box becomes a square and the deepest point (farthest from the
+    /// outline, the holes and the bend zones) is the centre of the largest box that fits.
+    fn anchor_clear_of_bends(&self) -> DVec2 {
+        let aspect = (self.label().chars().count() as f64 * LABEL_CHARACTER_WIDTH).max(1.0);
+        let squeeze = |p: &DVec2| DVec2::new(p.x / aspect, p.y);
+        let outer: Vec<DVec2> = self.outer.iter().map(squeeze).collect();
+        let mut obstacles: Vec<Vec<DVec2>> = self
+            .holes
+            .iter()
+            .map(|hole| hole.iter().map(squeeze).collect())
+            .collect();
+        for bend in &self.bends {
+            let [[a, b], [c, d]] = bend.zone_edges();
+            obstacles.push([a, b, d, c].iter().map(squeeze).collect());
+        }
+        let deep = deep_interior_point(&outer, &obstacles);
+        DVec2::new(deep.x * aspect, deep.y)
     }
 
     /// The grain line (tail, head) and its arrowhead (barb, head, barb) as drawn, or `None` when
