@@ -162,7 +162,7 @@ pub fn din6935_factor(inner_radius: f64, thickness: f64) -> f64 {
 /// tan(θ/2)` up to 165°, 0 beyond.
 fn din6935(bend: BendGeometry) -> Result<BendAllowance, String> {
     let k = din6935_factor(bend.inner_radius, bend.thickness);
-    if !(k > 0.0) {
+    if k <= 0.0 || k.is_nan() {
         return Err(format!(
             "DIN 6935 does not cover an inner radius of {:.4} mm at thickness {:.4} mm (its correction factor 0.65 + 0.5·log10(R/t) is not positive below R/t = 0.05)",
             bend.inner_radius, bend.thickness
