@@ -439,3 +439,36 @@ fn a_bend_radius_off_a_polygon_edge_or_without_thickness_is_refused() {
         );
     }
 }
+
+/// A part file of three rectangular polygons, 30 wide, joined by two folds of bend radius 2 (mid
+/// surface, t 2): the first flange in z = 0 up to x = 40, a web in x = 40 up to z = `height`,
+/// the last flange from the web's top towards `+x` (a Z) or, for a U, back towards `−x`.
+fn three_flanges(directory: &Path, name: &str, last_towards_plus_x: bool) -> std::path::PathBuf {
+    let end = if last_towards_plus_x { 80 } else { 0 };
+    let text = format!(
+        "name = \"{name}\"\nthickness = 2.0\n\n\
+         [[surface]]\nkind = \"polygon\"\npoints = [[0, 0, 0], [40, 0, 0], [40, 30, 0], [0, 30, 0]]\n\n\
+         [[surface]]\nkind = \"polygon\"\npoints = [[40, 0, 0], [40, 0, 30], [40, 30, 30], [40, 30, 0]]\n\n\
+         [[surface]]\nkind = \"polygon\"\npoints = [[40, 0, 30], [{end}, 0, 30], [{end}, 30, 30], [40, 30, 30]]\n\n\
+         [[fold_line]]\nbetween = [0, 1]\nbend_radius = 2.0\n\n\
+         [[fold_line]]\nbetween = [1, 2]\nbend_radius = 2.0\n"
+    );
+    let path = directory.join(format!("{name}.toml"));
+    std::fs::write(&path, text).expect("written");
+    path
+}
+
+#[test]
+fn part_file_z_and_u_bend_both_ways_and_the_same_way() {
+    // Flanges 40, 30, 40 to the sharps, SB = (2 + 1) tan 45° = 3: 110 − 4 · 3 + 2 BA.
+    let allowance = quarter(2.0, 2.0, K);
+    let directory = tempfile::tempdir().expect("a temporary directory");
+    let (z, _) = run(&three_flanges(directory.path(), "zpart", true), &[]);
+    assert_size(&z, [110.0 - 12.0 + 2.0 * allowance, 30.0]);
+    assert_eq!(directions(&z), ["down", "up"]);
+    let (u, _) = run(&three_flanges(directory.path(), "upart", false), &[]);
+    assert_size(&u, [110.0 - 12.0 + 2.0 * allowance, 30.0]);
+    let mut both = directions(&u);
+    both.dedup();
+    assert_eq!(both.len(), 1, "a U bends twice the same way");
+}
