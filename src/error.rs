@@ -49,6 +49,15 @@ pub enum Error {
         /// Why, naming the shell and face or the surface.
         defect: crate::tessellate::BrepError,
     },
+    /// A sheet-metal solid could not be unfolded as asked (a base face that is not a flange, a
+    /// bend the bend rule does not cover).
+    #[error("{path}: sheet metal: {reason}")]
+    SheetMetal {
+        /// The input file.
+        path: PathBuf,
+        /// Why.
+        reason: String,
+    },
     /// A part could not be flattened.
     #[error("{path}: part '{part}': {source}")]
     Flatten {

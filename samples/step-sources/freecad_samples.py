@@ -240,11 +240,65 @@ def sheet_readme_case():
     return sheet_profile([48.12, ("bend", 90.0), 48.12], 1.64, 2.0, 30.0)
 
 
+def sheet_hat():
+    # Hat section: brims 20, sides 30, top 40 mm; bends +90, -90, -90, +90; R 2, t 2, 30 wide.
+    steps = [20.0, ("bend", 90.0), 30.0, ("bend", -90.0), 40.0, ("bend", -90.0), 30.0,
+             ("bend", 90.0), 20.0]
+    return sheet_profile(steps, 2.0, 2.0, 30.0)
+
+
+def sheet_hem():
+    # Hem: legs 40 and 20 mm folded back by 180 degrees, R 1, t 1, 30 wide (the legs' inner skins
+    # 2 mm apart).
+    return sheet_profile([40.0, ("bend", 180.0), 20.0], 1.0, 1.0, 30.0)
+
+
+def sheet_flange_holes():
+    # L: legs 60 and 40 mm, R 2, t 2, 50 wide; three 6 mm holes across the 40 mm flange (the
+    # flange that is not the base face), 15 mm up it, at 10, 25 and 40 mm across.
+    radius, thickness = 2.0, 2.0
+    solid = sheet_profile([60.0, ("bend", 90.0), 40.0], radius, thickness, 50.0)
+    x = 60.0 + radius + thickness
+    for across in (10.0, 25.0, 40.0):
+        hole = Part.makeCylinder(3.0, 10.0, FreeCAD.Vector(x - 5.0, radius + thickness + 15.0,
+                                                          across), FreeCAD.Vector(1, 0, 0))
+        solid = solid.cut(hole)
+    return solid.removeSplitter()
+
+
+def sheet_box():
+    # Box with four flanges and corner reliefs: base 60 x 40 mm (flat parts) with a 10 mm hole
+    # in its middle, flanges 20 mm up on all four sides, R 2, t 2. Two U profiles share the base: the one across the 60 mm side
+    # extruded over the other's 40 mm flat base only, and the other way round, so each corner
+    # is open where the two bends would meet (a rectangular relief as wide as the bend zones).
+    radius, thickness, flange = 2.0, 2.0, 20.0
+    setback = radius + thickness
+    across_60 = sheet_profile([flange, ("bend", 90.0), 60.0, ("bend", 90.0), flange], radius,
+                              thickness, 40.0)
+    across_60.translate(FreeCAD.Vector(0, 0, setback))
+    across_40 = sheet_profile([flange, ("bend", 90.0), 40.0, ("bend", 90.0), flange], radius,
+                              thickness, 60.0)
+    # In its own frame the base runs along y at x = flange + setback (outer skin); turn it about
+    # that line so its base runs along z, then move its extrusion onto y.
+    across_40.rotate(FreeCAD.Vector(flange + setback, 0, 0), FreeCAD.Vector(1, 0, 0), 90.0)
+    across_40.translate(FreeCAD.Vector(0, setback + 60.0, 0))
+    box = across_60.fuse(across_40)
+    # A 10 mm hole in the middle of the base: without one the base face meets its other side
+    # only through the bends (the reliefs leave its corners bare), and recognition needs a wall.
+    hole = Part.makeCylinder(5.0, 10.0, FreeCAD.Vector(flange + setback - 5.0, setback + 30.0,
+                                                      setback + 20.0), FreeCAD.Vector(1, 0, 0))
+    return box.cut(hole).removeSplitter()
+
+
 def sheet_samples():
     export(sheet_l_hole(), "sheet_l_hole_freecad.step")
     export(sheet_u(), "sheet_u_freecad.step")
     export(sheet_z(), "sheet_z_freecad.step")
     export(sheet_readme_case(), "sheet_readme_case_freecad.step")
+    export(sheet_hat(), "sheet_hat_freecad.step")
+    export(sheet_hem(), "sheet_hem_freecad.step")
+    export(sheet_flange_holes(), "sheet_flange_holes_freecad.step")
+    export(sheet_box(), "sheet_box_freecad.step")
 
 
 def main():

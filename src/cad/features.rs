@@ -24,6 +24,40 @@ pub enum FoldLineGeometry {
     },
 }
 
+/// Which face of the sheet a part's surfaces are at a bend: the fold's edge is then that face's
+/// virtual sharp (where its two flanges' planes meet).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SheetSide {
+    /// The inner face of the bend (setback `R · tan(θ/2)`).
+    Inside,
+    /// The mid-surface of the sheet (setback `(R + t/2) · tan(θ/2)`). The default.
+    #[default]
+    Mid,
+    /// The outer face of the bend (setback `(R + t) · tan(θ/2)`).
+    Outside,
+}
+
+impl SheetSide {
+    /// The side's distance from the inner face, as a fraction of the thickness (0, 1/2, 1).
+    pub fn depth(self) -> f64 {
+        match self {
+            Self::Inside => 0.0,
+            Self::Mid => 0.5,
+            Self::Outside => 1.0,
+        }
+    }
+}
+
+/// A fold of a part file made with a bend radius: a bend of the sheet, unfolded with an
+/// allowance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FoldBend {
+    /// Inner bend radius (part units).
+    pub inner_radius: f64,
+    /// Which face of the sheet the part's surfaces are.
+    pub side: SheetSide,
+}
+
 /// A fold line's stiffness settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FoldStiffness {

@@ -22,7 +22,8 @@ mod surface_domain;
 pub use brep::{Brep, BrepShell, FaceSource, LooseSurface, StepShell};
 pub use face_geometry::SurfaceGeometry;
 pub use features::{
-    DEFAULT_FOLD_STIFFNESS, FoldLineGeometry, FoldStiffness, RegionShape, StiffnessRegion,
+    DEFAULT_FOLD_STIFFNESS, FoldBend, FoldLineGeometry, FoldStiffness, RegionShape, SheetSide,
+    StiffnessRegion,
 };
 pub use frame::Frame;
 pub use parameter_region::ParameterRegion;

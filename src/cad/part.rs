@@ -6,7 +6,7 @@ use std::f64::consts::TAU;
 
 use glam::{DVec2, DVec3};
 
-use super::features::{FoldLineGeometry, FoldStiffness, StiffnessRegion};
+use super::features::{FoldBend, FoldLineGeometry, FoldStiffness, StiffnessRegion};
 use super::rulings::rulings;
 use super::surface::{RuledSurface, Surface};
 use crate::units::Units;
@@ -51,6 +51,8 @@ pub struct PartModel {
     pub cad: CadPart,
     /// Stiffness of each fold line, in the order of `cad.fold_lines`.
     pub fold_stiffness: Vec<FoldStiffness>,
+    /// The bend of each fold line made with a bend radius, in the order of `cad.fold_lines`.
+    pub fold_bends: Vec<Option<FoldBend>>,
     /// Regions of raised stiffness.
     pub regions: Vec<StiffnessRegion>,
 }

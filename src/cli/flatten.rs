@@ -10,7 +10,7 @@ use flatcut::flatten::{FlattenOptions, Solver};
 use flatcut::pattern::PatternOptions;
 use flatcut::pipeline::{PartOverrides, RunConfig, RunOptions};
 use flatcut::progress::Progress;
-use flatcut::sheet::SheetOptions;
+use flatcut::sheet::{BendRule, BendTable, SheetOptions};
 use flatcut::units::Units;
 
 use super::job::execute;
@@ -90,6 +90,39 @@ pub struct PartArgs {
     /// then is rejected, with the reason, and the run exits with 3.
     #[arg(long, value_name = "S", default_value_t = RunOptions::default().time_limit_seconds)]
     time_limit: f64,
+    /// Where the bend allowances of sheet-metal solids come from: `k-factor` (θ · (R + K · t),
+    /// `--k-factor`) or `din6935` (DIN 6935's correction factor k = 0.65 + 0.5 · log10(R/t),
+    /// BA = θ · (R + k · t / 2)). `--bend-table` gives a bend table instead.
+    #[arg(long, value_enum, default_value_t = BendRuleArg::KFactor, conflicts_with = "bend_table")]
+    bend_rule: BendRuleArg,
+    /// A bend table (CSV: thickness, inner_radius, angle and one of k, ba, bd; optionally
+    /// material, matched against the part's): each bend's allowance interpolated in it
+    /// (docs/sheet-metal.md). A bend outside the table is an error.
+    #[arg(long, value_name = "FILE")]
+    bend_table: Option<PathBuf>,
+    /// The STEP entity id of the ADVANCED_FACE a sheet-metal solid is unfolded from (a planar
+    /// face of one of its skins; its side is drawn), instead of the largest planar face.
+    #[arg(long, value_name = "ID", value_parser = parse_entity_id)]
+    base_face: Option<u64>,
+    /// Also draw each bend's two tangent lines (the bend zone's extent) on the BEND_ZONE layer.
+    #[arg(long)]
+    bend_zones: bool,
+}
+
+/// The bend rules `--bend-rule` names.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum BendRuleArg {
+    /// One K-factor for every bend (`--k-factor`).
+    KFactor,
+    /// DIN 6935.
+    Din6935,
+}
+
+/// An entity id, `17` or `#17`.
+fn parse_entity_id(text: &str) -> Result<u64, String> {
+    text.trim_start_matches('#')
+        .parse()
+        .map_err(|_| format!("{text:?} is not a STEP entity id (give 17 or #17)"))
 }
 
 impl FlattenArgs {
@@ -114,6 +147,15 @@ impl FlattenArgs {
 }
 
 impl PartArgs {
+    /// The bend rule: the table read and checked when one is given.
+    fn bend_rule(&self) -> anyhow::Result<BendRule> {
+        Ok(match (&self.bend_table, self.bend_rule) {
+            (Some(path), _) => BendRule::Table(BendTable::read(path).map_err(anyhow::Error::msg)?),
+            (None, BendRuleArg::KFactor) => BendRule::KFactor,
+            (None, BendRuleArg::Din6935) => BendRule::Din6935,
+        })
+    }
+
     /// The options of every part as a run's configuration with no inputs, converted in one
     /// place.
     pub fn config(&self) -> anyhow::Result<RunConfig> {
@@ -140,6 +182,8 @@ impl PartArgs {
             },
             sheet: SheetOptions {
                 k_factor: self.k_factor,
+                rule: self.bend_rule()?,
+                base_face: self.base_face,
             },
             time_limit_seconds: self.time_limit,
         };
@@ -148,6 +192,7 @@ impl PartArgs {
             pattern: PatternOptions {
                 chord_tolerance: self.dxf_chord,
                 seam_allowance: self.seam_allowance,
+                bend_zones: self.bend_zones,
             },
             dxf_version: self.dxf_version.into(),
             ..RunConfig::default()

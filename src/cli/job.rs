@@ -44,10 +44,10 @@ pub fn execute(
                 .filter(|_| part.rejected.is_empty())
             {
                 format!(
-                    "sheet metal t {} mm unfolded exactly, {} bend(s) at K {}, flat {:.3} x {:.3}",
+                    "sheet metal t {} mm unfolded exactly, {} bend(s) by {}, flat {:.3} x {:.3}",
                     sheet.thickness,
                     sheet.bends.len(),
-                    sheet.k_factor,
+                    sheet.bend_rule,
                     sheet.flat_width,
                     sheet.flat_height
                 )

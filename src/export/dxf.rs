@@ -12,7 +12,9 @@ use super::drawing::SheetDrawing;
 use super::dxf_options::{DxfOptions, DxfVersion};
 use super::dxf_repair::repair;
 use super::errors::ExportError;
-use crate::pattern::{BulgeVertex, PartContours, PartDrawing, part_contours, polyline_bounds};
+use crate::pattern::{
+    BulgeVertex, LABEL_CHARACTER_WIDTH, PartContours, PartDrawing, part_contours, polyline_bounds,
+};
 use crate::sheet::BendDirection;
 use crate::units::Units;
 use dxf::entities::{Entity, EntityType, Line, LwPolyline, Polyline, Text, Vertex};
@@ -42,10 +44,13 @@ pub mod layers {
     /// Bend lines of sheet-metal parts folding down (away from the viewer): drawn, never cut.
     /// Cyan, dashed; the bend's note is on [`MARKS`].
     pub const BEND_DOWN: &str = "BEND_DOWN";
+    /// Bend-zone extent lines of sheet-metal parts (`--bend-zones`): the two tangent lines of
+    /// each bend, where the flat starts to bend; drawn, never cut. Grey (ACI 9), continuous.
+    pub const BEND_ZONE: &str = "BEND_ZONE";
     /// Name of the dashed line type of the fold, sew and bend layers (defined in every file).
     pub const DASHED: &str = "DASHED";
     /// Every layer flatcut defines: name, colour index, line type.
-    pub const ALL: [(&str, u8, &str); 8] = [
+    pub const ALL: [(&str, u8, &str); 9] = [
         (CUT_OUTER, 1, "CONTINUOUS"),
         (CUT_INNER, 5, "CONTINUOUS"),
         (FOLD, 3, DASHED),
@@ -54,6 +59,7 @@ pub mod layers {
         (SHEET, 8, "CONTINUOUS"),
         (BEND_UP, 3, DASHED),
         (BEND_DOWN, 4, DASHED),
+        (BEND_ZONE, 9, "CONTINUOUS"),
     ];
 }
 
@@ -66,9 +72,6 @@ const LABEL_HEIGHT_RANGE_MM: (f64, f64) = (2.0, 10.0);
 
 /// Height of a bend's note as a fraction of the label's.
 const BEND_NOTE_HEIGHT_FRACTION: f64 = 0.5;
-
-/// Width of one label character as a fraction of the text height (for centring the label).
-const LABEL_CHARACTER_WIDTH: f64 = 0.6;
 
 /// Dash and gap of the dashed line type, in mm (ISO 128 long dash).
 const DASH_PATTERN_MM: [f64; 2] = [12.7, -6.35];
@@ -102,7 +105,7 @@ const FIXED_HEADER: &str = "0\nSECTION\n2\nHEADER\n\
 pub fn write_part_dxf(drawing: &PartDrawing, options: &DxfOptions) -> Result<Vec<u8>, ExportError> {
     let contours = part_contours(drawing, &options.pattern)?;
     let mut document = new_document(options.version, drawing.units)?;
-    add_part(&mut document, drawing, &contours, options.version);
+    add_part(&mut document, drawing, &contours, options);
     set_extents(&mut document, part_bounds(&contours));
     save(&document, options.version)
 }
@@ -122,7 +125,7 @@ pub fn write_sheet_dxf(sheet: &SheetDrawing, options: &DxfOptions) -> Result<Vec
     let mut bounds = (DVec2::ZERO, DVec2::new(sheet.width, sheet.height));
     for placed in &sheet.parts {
         let contours = part_contours(&placed.drawing, &options.pattern)?;
-        add_part(&mut document, &placed.drawing, &contours, options.version);
+        add_part(&mut document, &placed.drawing, &contours, options);
         let (low, high) = part_bounds(&contours);
         bounds = (bounds.0.min(low), bounds.1.max(high));
     }
@@ -231,8 +234,9 @@ fn add_part(
     document: &mut Drawing,
     drawing: &PartDrawing,
     contours: &PartContours,
-    version: DxfVersion,
+    options: &DxfOptions,
 ) {
+    let version = options.version;
     add_polyline(document, layers::CUT_OUTER, &contours.outer, true, version);
     for hole in &contours.holes {
         add_polyline(document, layers::CUT_INNER, hole, true, version);
@@ -243,7 +247,12 @@ fn add_part(
     for fold_line in &contours.fold_lines {
         add_polyline(document, layers::FOLD, fold_line, false, version);
     }
-    add_bends(document, drawing, &contours.outer);
+    add_bends(
+        document,
+        drawing,
+        &contours.outer,
+        options.pattern.bend_zones,
+    );
     if let Some(([tail, head], arrowhead)) = drawing.grain_arrow() {
         let line = Line::new(point(tail), point(head));
         add_entity(document, layers::MARKS, EntityType::Line(line));
@@ -254,11 +263,18 @@ fn add_part(
 }
 
 /// Bend lines (a LINE on `BEND_UP` or `BEND_DOWN`) and their notes (`UP 90%%d R2`, TEXT on
-/// `MARKS`, along the line, beside its middle), at half the label's height.
-fn add_bends(document: &mut Drawing, drawing: &PartDrawing, outer: &[BulgeVertex]) {
+/// `MARKS`, along the line, beside its middle), at half the label's height; with `zones`, each
+/// bend's two tangent lines (a LINE each on `BEND_ZONE`, half the allowance either side).
+fn add_bends(document: &mut Drawing, drawing: &PartDrawing, outer: &[BulgeVertex], zones: bool) {
     let height = label_height(drawing, outer) * BEND_NOTE_HEIGHT_FRACTION;
     for bend in &drawing.bends {
         let [start, end] = bend.line;
+        if zones {
+            for [from, to] in bend.zone_edges() {
+                let line = Line::new(point(from), point(to));
+                add_entity(document, layers::BEND_ZONE, EntityType::Line(line));
+            }
+        }
         let layer = match bend.direction {
             BendDirection::Up => layers::BEND_UP,
             BendDirection::Down => layers::BEND_DOWN,
@@ -357,12 +373,7 @@ fn label_height(drawing: &PartDrawing, outer: &[BulgeVertex]) -> f64 {
 
 /// "name xQUANTITY material", written as TEXT shows it literally ([`escaped_text`]).
 fn label_text(drawing: &PartDrawing) -> String {
-    let mut label = format!("{} x{}", drawing.name, drawing.quantity);
-    if let Some(material) = &drawing.material {
-        label.push(' ');
-        label.push_str(material);
-    }
-    escaped_text(&label)
+    escaped_text(&drawing.label())
 }
 
 /// Text written so that TEXT shows it literally: control characters (which would break the

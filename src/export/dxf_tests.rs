@@ -291,8 +291,9 @@ fn the_label_sits_on_the_material_and_is_sized_from_the_true_extents() {
         text.text_height
     );
     let width = text.value.chars().count() as f64 * text.text_height * LABEL_CHARACTER_WIDTH;
-    let centre =
-        DVec2::new(text.location.x, text.location.y) + 0.5 * DVec2::new(width, text.text_height);
+    let along = DVec2::from_angle(text.rotation.to_radians());
+    let centre = DVec2::new(text.location.x, text.location.y)
+        + 0.5 * (along * width + along.perp() * text.text_height);
     let radius = centre.length();
     assert!(
         (220.0..280.0).contains(&radius),

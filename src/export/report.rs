@@ -17,7 +17,7 @@ use crate::cut::{Cut, CutFigures, CutOptions, CutStop, Seam, SeamKind};
 use crate::flatten::{FlattenOptions, Solver, StopReason};
 use crate::nest::{NestLayout, Rotations, Stock};
 use crate::pattern::PatternOptions;
-use crate::sheet::{BendDirection, BendLine};
+use crate::sheet::{AllowanceRule, BendDirection, BendLine};
 use crate::tessellate::TessellateOptions;
 use crate::units::Units;
 
@@ -169,8 +169,12 @@ pub struct PartReport {
 pub struct SheetMetalReport {
     /// The sheet's thickness.
     pub thickness: f64,
-    /// The K-factor the bends were unrolled with.
-    pub k_factor: f64,
+    /// The K-factor every bend was unrolled with, when the rule is the K-factor (each bend's
+    /// `rule` says what gave its allowance).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub k_factor: Option<f64>,
+    /// The bend rule: `K 0.44`, `DIN 6935` or `bend table FILE`.
+    pub bend_rule: String,
     /// The face the unfold started from: the largest planar face, whose side is drawn.
     pub base_face: String,
     /// Every bend.
@@ -192,8 +196,13 @@ pub struct BendReport {
     pub inner_radius: f64,
     /// `up` or `down`, seen on the flat pattern as drawn.
     pub direction: BendDirection,
-    /// Bend allowance θ · (R + K · t): the flat width of the bend zone.
+    /// Bend allowance: the flat width of the bend zone.
     pub allowance: f64,
+    /// The rule that gave the allowance, with its figures: `k_factor` (`k`), `table` (`file`,
+    /// `quantity`, the interpolated `value`, the rows' `lines`) or `din6935` (its correction
+    /// factor `k` and compensation `v`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rule: Option<AllowanceRule>,
     /// Length of the bend line.
     pub length: f64,
 }
@@ -206,6 +215,7 @@ impl BendReport {
             inner_radius: bend.inner_radius,
             direction: bend.direction,
             allowance: bend.allowance,
+            rule: bend.rule.clone(),
             length: bend.length(),
         }
     }

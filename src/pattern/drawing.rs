@@ -5,7 +5,6 @@
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
 
-use crate::geometry::deep_interior_point;
 use crate::sheet::BendLine;
 use crate::units::Units;
 
@@ -35,6 +34,10 @@ pub struct PartDrawing {
     pub bends: Vec<BendLine>,
 }
 
+/// Width of one label character as a fraction of the text height (for centring the label and
+/// for finding room for it).
+pub const LABEL_CHARACTER_WIDTH: f64 = 0.6;
+
 /// Grain arrowhead length as a fraction of the grain line, capped at [`ARROW_MAX_LENGTH_MM`].
 const ARROW_FRACTION: f64 = 0.1;
 
@@ -45,10 +48,21 @@ const ARROW_MAX_LENGTH_MM: f64 = 10.0;
 const ARROW_HALF_ANGLE: f64 = 25.0 * std::f64::consts::PI / 180.0;
 
 impl PartDrawing {
-    /// Where the label is centred: a point deep inside the part's material
-    /// ([`deep_interior_point`]), or `None` when the outer contour has fewer than three points.
+    /// Where a level label is centred (the sheet previews' names): inside the material, clear
+    /// of every line drawn on the part, in its most open region ([`Self::label_placement`]'s
+    /// search, level only); `None` when the outer contour has fewer than three points.
     pub fn label_anchor(&self) -> Option<DVec2> {
-        (self.outer.len() >= 3).then(|| deep_interior_point(&self.outer, &self.holes))
+        (self.outer.len() >= 3).then(|| self.level_label_centre(LABEL_CHARACTER_WIDTH))
+    }
+
+    /// The label's text: `name xQUANTITY material`.
+    pub fn label(&self) -> String {
+        let mut label = format!("{} x{}", self.name, self.quantity);
+        if let Some(material) = &self.material {
+            label.push(' ');
+            label.push_str(material);
+        }
+        label
     }
 
     /// The grain line (tail, head) and its arrowhead (barb, head, barb) as drawn, or `None` when

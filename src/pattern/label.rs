@@ -92,7 +92,15 @@ impl PartDrawing {
         })
     }
 
-    /// Every line drawn on the part, as segments: outline, holes, fold and bend lines, grain.
+    /// The centre of a level label of this part's text, each character `character_width` times
+    /// the height wide.
+    pub(super) fn level_label_centre(&self, character_width: f64) -> DVec2 {
+        let aspect = (self.label().chars().count().max(1) as f64 * character_width).max(1.0);
+        self.best_centre(&self.drawn_segments(), 0.0, aspect, 1.0).0
+    }
+
+    /// Every line drawn on the part, as segments: outline, holes, fold lines, bend lines with
+    /// their zones' edges, grain.
     fn drawn_segments(&self) -> Vec<[DVec2; 2]> {
         let mut segments = Vec::new();
         for ring in std::iter::once(&self.outer).chain(&self.holes) {
@@ -101,7 +109,10 @@ impl PartDrawing {
         for line in &self.fold_lines {
             segments.extend(line.windows(2).map(|pair| [pair[0], pair[1]]));
         }
-        segments.extend(self.bends.iter().map(|bend| bend.line));
+        for bend in &self.bends {
+            segments.push(bend.line);
+            segments.extend(bend.zone_edges());
+        }
         if let Some(([tail, head], [left, tip, right])) = self.grain_arrow() {
             segments.extend([[tail, head], [left, tip], [tip, right]]);
         }

@@ -29,7 +29,7 @@ pub use contour::{
     fit_closed, fit_open, signed_area,
 };
 pub use contours::{PartContours, part_contours};
-pub use drawing::PartDrawing;
+pub use drawing::{LABEL_CHARACTER_WIDTH, PartDrawing};
 pub use energy::{NEGLIGIBLE_STRAIN, VertexEnergy, negligible_vertex_energy};
 pub use errors::PatternError;
 pub use fold_polylines::fold_polylines;

@@ -15,6 +15,15 @@ pub struct PatternOptions {
     /// Seam allowance in mm: the cut contours are offset outward by it and the nominal outline
     /// becomes the sew line. Default `None` (cut on the nominal outline).
     pub seam_allowance: Option<f64>,
+    /// Whether sheet-metal parts' DXFs also draw each bend zone's two tangent lines (where the
+    /// bend starts and ends, the allowance apart) on the `BEND_ZONE` layer. Default `false`.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub bend_zones: bool,
+}
+
+/// Whether a flag is off (left out of the JSON).
+fn is_false(flag: &bool) -> bool {
+    !*flag
 }
 
 impl Default for PatternOptions {
@@ -22,6 +31,7 @@ impl Default for PatternOptions {
         Self {
             chord_tolerance: DEFAULT_CHORD_TOLERANCE,
             seam_allowance: None,
+            bend_zones: false,
         }
     }
 }

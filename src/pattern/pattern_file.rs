@@ -149,6 +149,10 @@ mod tests {
                     angle_degrees: c,
                     inner_radius: b,
                     allowance: d,
+                    rule: Some(crate::sheet::AllowanceRule::Din6935 {
+                        k: a,
+                        compensation: b,
+                    }),
                 }],
             },
             grain_degrees: Some(c),
@@ -156,6 +160,7 @@ mod tests {
             options: PatternOptions {
                 chord_tolerance: 0.01,
                 seam_allowance: Some(a.abs().max(1.0)),
+                bend_zones: true,
             },
             rejected: true,
         }

@@ -106,6 +106,8 @@ fn unfolded_part(job: PartJob, sheet: &SheetPart, options: &RunOptions) -> PartR
         spring_constant: options.flatten.spring_constant,
     });
     pattern.drawing.bends = sheet.bends.clone();
+    // A part file's folds are its bends: drawn once, as bend lines.
+    pattern.drawing.fold_lines.clear();
     let stats = FlattenStats {
         accuracy,
         initial_accuracy: accuracy,

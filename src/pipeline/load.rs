@@ -8,7 +8,8 @@ use std::path::{Path, PathBuf};
 use glam::DVec2;
 
 use crate::cad::{
-    Brep, ParameterRegion, PartAttributes, PartModel, RegionShape, SurfaceDomain, TriangleSoup,
+    Brep, FoldBend, FoldLineGeometry, ParameterRegion, PartAttributes, PartModel, RegionShape,
+    SurfaceDomain, TriangleSoup,
 };
 use crate::cut::{CutConstraints, NoCutRegion};
 use crate::error::Error;
@@ -16,7 +17,8 @@ use crate::flatten::Stiffness;
 use crate::ingest::{CutSidecar, Input, read_cut_sidecar, read_input};
 use crate::mesh::{FacetModel, validate};
 use crate::sheet::{
-    BendLine, NotASheet, SHEET_CHORD_MM, SheetUnfold, ThinSolid, recognise_shell, unfold_skin,
+    BendLine, BendRule, FoldedPart, NotASheet, SHEET_CHORD_MM, SheetOptions, SheetUnfold,
+    ThinSolid, base_face_index, recognise_shell, unfold_folds, unfold_skin,
 };
 pub use crate::tessellate::TessellationFigures;
 use crate::tessellate::{
@@ -66,8 +68,10 @@ pub struct SheetPart {
     pub bends: Vec<BendLine>,
     /// The sheet's thickness, mm.
     pub thickness: f64,
-    /// The K-factor the bends were unrolled with.
-    pub k_factor: f64,
+    /// The K-factor every bend was unrolled with, when the rule is the K-factor.
+    pub k_factor: Option<f64>,
+    /// The bend rule in words (`K 0.44`, `DIN 6935`, `bend table FILE`).
+    pub rule: String,
     /// The face the unfold started from, described (`ADVANCED_FACE #17 on PLANE (#31)`).
     pub base_face: String,
 }
@@ -101,11 +105,16 @@ fn read_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> 
             let tessellation = tessellate_step(path, &brep, &options.tessellate)?;
             let mut template = template(brep.name.clone(), Units::Millimetres);
             template.tessellation = Some(tessellation.figures);
-            let not_a_sheet = match thin_solid(&brep, tessellation.soup()) {
+            let not_a_sheet = match thin_solid(path, &brep, tessellation.soup(), &options.sheet)? {
                 Ok(solid) => {
                     let fine =
                         sheet_tessellation(path, &brep, options, tessellation.figures.chord)?;
-                    let unfold = unfold_skin(&solid, fine.soup(), &options.sheet);
+                    let material = options.overrides.material.as_deref();
+                    let unfold = unfold_skin(&solid, fine.soup(), &options.sheet, material)
+                        .map_err(|reason| Error::SheetMetal {
+                            path: path.to_path_buf(),
+                            reason,
+                        })?;
                     let base_face = brep.shells[0].describe_face(solid.base_face);
                     let mut header = template.clone();
                     header.tessellation = Some(fine.figures);
@@ -125,6 +134,9 @@ fn read_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> 
                 }
             }
             Ok(jobs)
+        }
+        Input::Part(part) if part.fold_bends.iter().any(Option::is_some) => {
+            folded_part(path, &part, options)
         }
         Input::Part(part) => load_part_file(path, &part, &options.tessellate),
     }
@@ -167,16 +179,48 @@ pub fn tessellate_step(
     })
 }
 
-/// A STEP file of one solid recognised as sheet metal; otherwise why not, when it is a solid of
-/// planes and cylinders only (`None` for anything else: several shells, other surfaces).
-fn thin_solid(brep: &Brep, soup: &TriangleSoup) -> Result<ThinSolid, Option<String>> {
-    let [shell] = brep.shells.as_slice() else {
-        return Err(None);
+/// A STEP file of one solid recognised as sheet metal, unfolded from the options' base face or
+/// its largest planar face; otherwise why not, when it is a solid of planes and cylinders only
+/// (`None` for anything else: several shells, other surfaces). A base face that cannot be used
+/// (no such face, not a flange, the part not a sheet) is an error.
+fn thin_solid(
+    path: &Path,
+    brep: &Brep,
+    soup: &TriangleSoup,
+    options: &SheetOptions,
+) -> Result<Result<ThinSolid, Option<String>>, Error> {
+    let refuse = |reason: String| Error::SheetMetal {
+        path: path.to_path_buf(),
+        reason,
     };
-    recognise_shell(shell, soup).map_err(|not_a_sheet| match not_a_sheet {
-        NotASheet::OtherSurfaces(_) => None,
-        NotASheet::NoConstantThickness(reason) => Some(reason),
-    })
+    let [shell] = brep.shells.as_slice() else {
+        return match options.base_face {
+            Some(id) => Err(refuse(format!(
+                "--base-face #{id}: the file holds {} shells, not one sheet-metal solid",
+                brep.shells.len()
+            ))),
+            None => Ok(Err(None)),
+        };
+    };
+    let recognised = recognise_shell(shell, soup, None).map_err(|not_a_sheet| match not_a_sheet {
+        NotASheet::OtherSurfaces(reason) => (false, reason),
+        NotASheet::NoConstantThickness(reason) => (true, reason),
+    });
+    match (recognised, options.base_face) {
+        (Ok(solid), None) => Ok(Ok(solid)),
+        (Ok(solid), Some(id)) => {
+            let base = base_face_index(shell, &solid, id).map_err(refuse)?;
+            recognise_shell(shell, soup, Some(base))
+                .map(Ok)
+                .map_err(|not_a_sheet| {
+                    refuse(format!("--base-face #{id}: {}", not_a_sheet.reason()))
+                })
+        }
+        (Err((_, reason)), Some(id)) => Err(refuse(format!(
+            "--base-face #{id}: the part is not a sheet-metal solid ({reason})"
+        ))),
+        (Err((constant_thickness, reason)), None) => Ok(Err(constant_thickness.then_some(reason))),
+    }
 }
 
 /// The tessellation a sheet-metal solid is unfolded from: its chord at most [`SHEET_CHORD_MM`]
@@ -235,9 +279,94 @@ fn sheet_job(
             bends: unfold.bends,
             thickness: unfold.thickness,
             k_factor: unfold.k_factor,
+            rule: unfold.rule,
             base_face,
         }),
     }))
+}
+
+/// A part file whose folds have bend radii: its polygons unfolded exactly about their folds,
+/// each bend with the allowance of the bend rule ([`unfold_folds`]).
+fn folded_part(path: &Path, part: &PartModel, options: &RunOptions) -> Result<Vec<PartJob>, Error> {
+    let refuse = |reason: String| Error::SheetMetal {
+        path: path.to_path_buf(),
+        reason,
+    };
+    if !part.cad.weld {
+        return Err(refuse(
+            "a fold with a bend_radius joins two polygons: give join = \"weld\"".to_owned(),
+        ));
+    }
+    let tessellation = tessellate_part(path, part, &options.tessellate)?;
+    let folds: Vec<([usize; 2], Option<FoldBend>)> = part
+        .cad
+        .fold_lines
+        .iter()
+        .zip(&part.fold_bends)
+        .filter_map(|(geometry, bend)| match geometry {
+            FoldLineGeometry::Between { surfaces } => Some((*surfaces, *bend)),
+            FoldLineGeometry::OnSurface { .. } => None,
+        })
+        .collect();
+    let millimetres = part.units.millimetres();
+    let thickness = options
+        .overrides
+        .thickness_mm
+        .map(|mm| mm / millimetres)
+        .or(part.attributes.thickness)
+        .ok_or_else(|| refuse("a bend needs the part's thickness".to_owned()))?;
+    let material = options
+        .overrides
+        .material
+        .as_deref()
+        .or(part.attributes.material.as_deref());
+    let folded = FoldedPart {
+        soup: tessellation.soup(),
+        surfaces: part.cad.surfaces.len(),
+        folds: &folds,
+        thickness,
+        millimetres,
+    };
+    let unfold = unfold_folds(&folded, &options.sheet, material).map_err(refuse)?;
+    let validated = validate(tessellation.soup()).map_err(|defects| Error::Mesh {
+        path: path.to_path_buf(),
+        defects,
+    })?;
+    let ([model], [soup_vertices]) = (
+        validated.components.as_slice(),
+        validated.soup_vertices.as_slice(),
+    ) else {
+        return Err(refuse(
+            "the polygons of a part with bends must be one piece".to_owned(),
+        ));
+    };
+    let mut header = template(part.name.clone(), part.units);
+    header.quantity = part.quantity;
+    header.attributes = part.attributes.clone();
+    Ok(vec![PartJob {
+        name: header.name,
+        source: path.to_path_buf(),
+        units: header.units,
+        quantity: header.quantity,
+        attributes: header.attributes,
+        fold_line_count: 0,
+        tessellation: Some(tessellation.figures),
+        stiffness: Stiffness::uniform(model),
+        constraints: CutConstraints::default(),
+        model: model.clone(),
+        warnings: validated.warnings.iter().map(ToString::to_string).collect(),
+        sheet: Some(SheetPart {
+            flat: soup_vertices
+                .iter()
+                .map(|&vertex| unfold.flat[vertex as usize])
+                .collect(),
+            bends: unfold.bends,
+            thickness: thickness * millimetres,
+            k_factor: (options.sheet.rule == BendRule::KFactor).then_some(options.sheet.k_factor),
+            rule: options.sheet.rule.describe(options.sheet.k_factor),
+            base_face: format!("surface {}", unfold.base_surface),
+        }),
+    }])
 }
 
 /// What every part of one input file shares.

@@ -118,6 +118,7 @@ fn sheet_metal_report(result: &PartResult) -> Option<SheetMetalReport> {
     Some(SheetMetalReport {
         thickness: sheet.thickness,
         k_factor: sheet.k_factor,
+        bend_rule: sheet.rule.clone(),
         base_face: sheet.base_face.clone(),
         bends: drawing.bends.iter().map(BendReport::new).collect(),
         flat_width: high.x - low.x,

@@ -4,6 +4,8 @@
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
 
+use super::bend_rule::AllowanceRule;
+
 /// Which way a bend folds, seen on the flat pattern from the side drawn (the chosen skin).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -32,14 +34,8 @@ impl BendDirection {
     }
 }
 
-/// The bend allowance `BA = θ · (R_inner + K · t)`: the flat length of a bend of `angle`
-/// radians, inner radius `inner_radius` and thickness `thickness`, at K-factor `k_factor`.
-pub fn bend_allowance(angle: f64, inner_radius: f64, k_factor: f64, thickness: f64) -> f64 {
-    angle * (inner_radius + k_factor * thickness)
-}
-
 /// One bend of a flat pattern, in the drawing's units.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct BendLine {
     /// The bend's centre line on the flat pattern (the middle of the bend zone), end to end.
     pub line: [DVec2; 2],
@@ -51,6 +47,10 @@ pub struct BendLine {
     pub inner_radius: f64,
     /// The bend allowance: the flat width of the bend zone.
     pub allowance: f64,
+    /// The rule that gave the allowance (absent in pattern files written before rules were
+    /// recorded).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rule: Option<AllowanceRule>,
 }
 
 impl BendLine {
@@ -62,6 +62,17 @@ impl BendLine {
             short_number(self.angle_degrees),
             short_number(self.inner_radius)
         )
+    }
+
+    /// The bend zone's two edges on the flat (the tangent lines where the bend starts and
+    /// ends): the bend line moved half the allowance to either side.
+    pub fn zone_edges(&self) -> [[DVec2; 2]; 2] {
+        let [start, end] = self.line;
+        let across = (end - start).normalize_or_zero().perp() * (self.allowance / 2.0);
+        [
+            [start - across, end - across],
+            [start + across, end + across],
+        ]
     }
 
     /// The bend line's length.
@@ -79,7 +90,7 @@ impl BendLine {
             } else {
                 self.direction
             },
-            ..*self
+            ..self.clone()
         }
     }
 }
@@ -102,14 +113,9 @@ mod tests {
             angle_degrees: 90.000000001,
             inner_radius: 2.4,
             allowance: 4.0,
+            rule: None,
         };
         assert_eq!(bend.note(), "UP 90° R2.4");
         assert_eq!(bend.length(), 30.0);
-    }
-
-    #[test]
-    fn the_allowance_is_the_neutral_arc() {
-        let allowance = bend_allowance(std::f64::consts::FRAC_PI_2, 1.64, 0.38, 2.0);
-        assert!((allowance - std::f64::consts::FRAC_PI_2 * 2.4).abs() < 1e-12);
     }
 }

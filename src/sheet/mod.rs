@@ -9,18 +9,32 @@
 //! [`BendLine`]s; the pipeline turns it into a part's pattern like any flattened part, with its
 //! bend lines drawn on the `BEND_UP` / `BEND_DOWN` layers. See `docs/sheet-metal.md`.
 
+mod base_face;
 mod bend;
+mod bend_rule;
+mod bend_table;
 mod face_map;
+mod fold_unfold;
 mod options;
 mod recognise;
 mod surfaces;
 mod unfold;
 
-pub use bend::{BendDirection, BendLine, bend_allowance};
+pub use base_face::base_face_index;
+pub use bend::{BendDirection, BendLine};
+pub use bend_rule::{
+    AllowanceRule, BendAllowance, BendGeometry, BendRule, allowance_by_rule, bend_allowance,
+    din6935_factor,
+};
+pub use bend_table::{
+    BendTable, BendTableRow, TABLE_ANGLE_TOLERANCE_DEGREES, TABLE_LENGTH_TOLERANCE_MM,
+    TableQuantity, TableValue,
+};
+pub use fold_unfold::{FoldUnfold, FoldedPart, unfold_folds};
 pub use options::{DEFAULT_K_FACTOR, SheetOptions};
 pub use recognise::{MAXIMUM_THICKNESS_RATIO, NotASheet, ThinSolid, recognise};
 pub use surfaces::{LENGTH_TOLERANCE_MM, SheetSurface};
-pub use unfold::{SheetUnfold, unfold_skin};
+pub use unfold::{SheetUnfold, rest_position, unfold_skin};
 
 use crate::cad::{BrepShell, TriangleSoup};
 
@@ -30,10 +44,15 @@ use crate::cad::{BrepShell, TriangleSoup};
 /// arcs.
 pub const SHEET_CHORD_MM: f64 = 0.002;
 
-/// Recognises `shell` as a thin solid ([`recognise`]); `soup` is the shell's tessellation, each
+/// Recognises `shell` as a thin solid ([`recognise`]) unfolded from `base_face` (a face index,
+/// [`base_face_index`]) or the largest planar face; `soup` is the shell's tessellation, each
 /// triangle tagged with its face's index in the shell (the faces' areas come from it).
-pub fn recognise_shell(shell: &BrepShell, soup: &TriangleSoup) -> Result<ThinSolid, NotASheet> {
-    recognise(shell, &face_areas(soup, shell.shell.faces.len()))
+pub fn recognise_shell(
+    shell: &BrepShell,
+    soup: &TriangleSoup,
+    base_face: Option<usize>,
+) -> Result<ThinSolid, NotASheet> {
+    recognise(shell, &face_areas(soup, shell.shell.faces.len()), base_face)
 }
 
 /// The area of each face's triangles, per face of the shell.

@@ -52,11 +52,17 @@ impl NotASheet {
 }
 
 /// Recognises a shell as a thin solid; `face_areas` are the faces' areas (mm²), in the shell's
-/// face order.
-pub fn recognise(shell: &BrepShell, face_areas: &[f64]) -> Result<ThinSolid, NotASheet> {
+/// face order; the unfold starts from `base_face` (a planar face) when given, else from the
+/// largest planar face.
+pub fn recognise(
+    shell: &BrepShell,
+    face_areas: &[f64],
+    base_face: Option<usize>,
+) -> Result<ThinSolid, NotASheet> {
     let surfaces = sheet_surfaces(shell)?;
     let neighbours = face_neighbours(shell);
-    let base_face = largest_plane(&surfaces, face_areas)
+    let base_face = base_face
+        .or_else(|| largest_plane(&surfaces, face_areas))
         .ok_or_else(|| NotASheet::NoConstantThickness("the solid has no planar face".to_owned()))?;
     let thickness = nearest_opposite_plane(&surfaces, &neighbours, base_face).ok_or_else(|| {
         NotASheet::NoConstantThickness(format!(

@@ -6,7 +6,8 @@
 
 use glam::{DVec2, DVec3};
 
-use super::bend::{BendDirection, BendLine, bend_allowance};
+use super::bend::{BendDirection, BendLine};
+use super::bend_rule::{BendAllowance, BendGeometry, BendRule, allowance_by_rule};
 use super::face_map::{BendMap, FaceMap, PlaneMap};
 use super::options::SheetOptions;
 use super::recognise::ThinSolid;
@@ -19,8 +20,10 @@ use crate::geometry::long_side_of_smallest_rectangle;
 pub struct SheetUnfold {
     /// The sheet's thickness, mm.
     pub thickness: f64,
-    /// The K-factor the bends were unrolled with.
-    pub k_factor: f64,
+    /// The K-factor every bend was unrolled with, when the rule is the K-factor.
+    pub k_factor: Option<f64>,
+    /// The bend rule in words (`K 0.44`, `DIN 6935`, `bend table FILE`).
+    pub rule: String,
     /// The face the unfold started from (the largest planar face), in the shell's face order.
     pub base_face: usize,
     /// The chosen skin's triangles, counter-clockwise seen from outside the solid, tagged with
@@ -42,11 +45,37 @@ struct BendZone {
 }
 
 /// Unfolds the chosen skin of `solid`, whose triangles are those of `soup` tagged with the
-/// skin's faces (a soup's face source is the shell's face index).
-pub fn unfold_skin(solid: &ThinSolid, soup: &TriangleSoup, options: &SheetOptions) -> SheetUnfold {
+/// skin's faces (a soup's face source is the shell's face index), each bend's allowance by the
+/// options' rule (a table's rows picked by `material`); an error when the rule does not cover a
+/// bend.
+pub fn unfold_skin(
+    solid: &ThinSolid,
+    soup: &TriangleSoup,
+    options: &SheetOptions,
+    material: Option<&str>,
+) -> Result<SheetUnfold, String> {
     let mut skin = skin_soup(solid, soup);
     let face_vertices = vertices_by_face(&skin, solid.surfaces.len());
-    let (maps, zones) = face_maps(solid, &skin, &face_vertices, options.k_factor);
+    let k_neutral = |_: usize, inner: f64| inner + options.k_factor * solid.thickness;
+    let (maps, zones) = face_maps(solid, &skin, &face_vertices, &k_neutral);
+    let allowances = zones
+        .iter()
+        .enumerate()
+        .map(|(index, zone)| {
+            let bend = BendGeometry {
+                thickness: solid.thickness,
+                inner_radius: zone.inner_radius,
+                angle: bend_angle(&zone.map, &bend_points(&skin, &maps, index)),
+            };
+            allowance_by_rule(&options.rule, options.k_factor, bend, material)
+                .map(|allowance| (bend.angle, allowance))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let rule_neutral = |index: usize, inner: f64| match allowances.get(index) {
+        Some(&(angle, ref allowance)) if angle > 0.0 => allowance.allowance / angle,
+        _ => k_neutral(index, inner),
+    };
+    let (maps, zones) = face_maps(solid, &skin, &face_vertices, &rule_neutral);
     let flat = flat_positions(&skin, &maps);
     if wound_clockwise(&skin, &flat) {
         for triangle in &mut skin.triangles {
@@ -55,26 +84,23 @@ pub fn unfold_skin(solid: &ThinSolid, soup: &TriangleSoup, options: &SheetOption
     }
     let mut bends: Vec<BendLine> = zones
         .iter()
+        .zip(allowances)
         .enumerate()
-        .map(|(index, zone)| {
-            bend_line(
-                zone,
-                bend_points(&skin, &maps, index),
-                solid.thickness,
-                options.k_factor,
-            )
+        .map(|(index, (zone, (_, allowance)))| {
+            bend_line(zone, bend_points(&skin, &maps, index), allowance)
         })
         .collect();
     let mut flat = flat;
     rest_position(&mut flat, &mut bends);
-    SheetUnfold {
+    Ok(SheetUnfold {
         thickness: solid.thickness,
-        k_factor: options.k_factor,
+        k_factor: (options.rule == BendRule::KFactor).then_some(options.k_factor),
+        rule: options.rule.describe(options.k_factor),
         base_face: solid.base_face,
         skin,
         flat,
         bends,
-    }
+    })
 }
 
 /// The triangles of `soup` on the skin's faces, with only the vertices they use.
@@ -117,12 +143,13 @@ fn vertices_by_face(skin: &TriangleSoup, faces: usize) -> Vec<Vec<u32>> {
 }
 
 /// Every skin face's map to the flat pattern, reached from the base face across smooth edges,
-/// and the bends met on the way.
+/// and the bends met on the way; `neutral` gives the neutral radius of the bend met `index`-th
+/// from its inner radius.
 fn face_maps(
     solid: &ThinSolid,
     skin: &TriangleSoup,
     face_vertices: &[Vec<u32>],
-    k_factor: f64,
+    neutral: &dyn Fn(usize, f64) -> f64,
 ) -> (Vec<Option<FaceMap>>, Vec<BendZone>) {
     let mut maps: Vec<Option<FaceMap>> = vec![None; solid.surfaces.len()];
     let mut zones = Vec::new();
@@ -154,7 +181,7 @@ fn face_maps(
                         &solid.surfaces[face],
                         other,
                         positions,
-                        k_factor,
+                        &|inner| neutral(zones.len(), inner),
                     );
                     zones.push(zone);
                     FaceMap::Bend(zones.len() - 1, zone.map)
@@ -200,14 +227,14 @@ fn base_map(solid: &ThinSolid) -> PlaneMap {
 
 /// The bend a flange (`plane`, its surface `flange`) runs into at face `face` (a cylinder whose
 /// triangle vertices are `positions`): unrolled from the tangent line, turning the way the face
-/// lies.
+/// lies, at the neutral radius `neutral` gives for its inner radius.
 fn enter_bend(
     solid: &ThinSolid,
     plane: &PlaneMap,
     flange: &SheetSurface,
     face: usize,
     positions: impl Iterator<Item = DVec3> + Clone,
-    k_factor: f64,
+    neutral: &dyn Fn(f64) -> f64,
 ) -> BendZone {
     let SheetSurface::Cylinder {
         origin,
@@ -245,7 +272,7 @@ fn enter_bend(
             start,
             towards,
             skin_radius: radius,
-            neutral_radius: inner_radius + k_factor * solid.thickness,
+            neutral_radius: neutral(inner_radius),
             flat_origin: plane.point(origin + start * radius),
             flat_axis: plane.direction(axis),
             flat_across: plane.direction(towards),
@@ -305,11 +332,16 @@ fn bend_points(skin: &TriangleSoup, maps: &[Option<FaceMap>], bend: usize) -> Ve
         .collect()
 }
 
+/// A bend's angle: the largest angle of its points from its start line.
+fn bend_angle(map: &BendMap, points: &[DVec3]) -> f64 {
+    points.iter().map(|&p| map.angle(p)).fold(0.0, f64::max)
+}
+
 /// A bend's line on the flat pattern (its centre, from end to end along the axis), angle, inner
 /// radius and allowance.
-fn bend_line(zone: &BendZone, points: Vec<DVec3>, thickness: f64, k_factor: f64) -> BendLine {
+fn bend_line(zone: &BendZone, points: Vec<DVec3>, allowance: BendAllowance) -> BendLine {
     let map = &zone.map;
-    let angle = points.iter().map(|&p| map.angle(p)).fold(0.0, f64::max);
+    let angle = bend_angle(map, &points);
     let (low, high) = points
         .iter()
         .map(|&p| map.axial(p))
@@ -326,13 +358,14 @@ fn bend_line(zone: &BendZone, points: Vec<DVec3>, thickness: f64, k_factor: f64)
         },
         angle_degrees: angle.to_degrees(),
         inner_radius,
-        allowance: bend_allowance(angle, inner_radius, k_factor, thickness),
+        allowance: allowance.allowance,
+        rule: Some(allowance.rule),
     }
 }
 
 /// Turns the pattern (and its bend lines) so that its smallest bounding rectangle is
 /// axis-aligned with the longer side along x, and moves it to start at the origin.
-fn rest_position(flat: &mut [DVec2], bends: &mut [BendLine]) {
+pub fn rest_position(flat: &mut [DVec2], bends: &mut [BendLine]) {
     let turn = long_side_of_smallest_rectangle(flat)
         .map_or(DVec2::X, |direction| DVec2::new(direction.x, -direction.y));
     let low = flat

@@ -10,4 +10,5 @@ mod golden;
 mod nesting;
 mod outputs;
 mod sheet_metal;
+mod sheet_metal_bends;
 mod util;

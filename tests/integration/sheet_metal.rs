@@ -10,22 +10,23 @@ use std::path::Path;
 use crate::util::{assert_ezdxf_accepts, flatten_into, read_report, sample, stderr};
 
 /// The flat size must match the analytic one this closely, mm.
-const FLAT_TOLERANCE_MM: f64 = 1e-3;
+pub(crate) const FLAT_TOLERANCE_MM: f64 = 1e-3;
 
 /// One entity of an ASCII DXF: its type, layer, points (codes 10/20), end point (11/21),
-/// bulges (42), text (1).
+/// bulges (42), text (1), text height (40).
 #[derive(Debug, Default)]
-struct Entity {
-    kind: String,
-    layer: String,
-    points: Vec<[f64; 2]>,
-    end: Option<[f64; 2]>,
-    bulges: Vec<f64>,
-    text: String,
+pub(crate) struct Entity {
+    pub(crate) kind: String,
+    pub(crate) layer: String,
+    pub(crate) points: Vec<[f64; 2]>,
+    pub(crate) end: Option<[f64; 2]>,
+    pub(crate) bulges: Vec<f64>,
+    pub(crate) text: String,
+    pub(crate) height: f64,
 }
 
 /// The entities of an ASCII DXF's ENTITIES section, read with a parser of our own.
-fn dxf_entities(path: &Path) -> Vec<Entity> {
+pub(crate) fn dxf_entities(path: &Path) -> Vec<Entity> {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let lines: Vec<&str> = text.lines().map(str::trim).collect();
     let start = lines
@@ -62,6 +63,7 @@ fn dxf_entities(path: &Path) -> Vec<Entity> {
             "11" => entity.end = Some([number(), 0.0]),
             "21" => entity.end.as_mut().expect("x before y")[1] = number(),
             "42" => entity.bulges.push(number()),
+            "40" => entity.height = number(),
             _ => {}
         }
     }
@@ -72,7 +74,7 @@ fn dxf_entities(path: &Path) -> Vec<Entity> {
 }
 
 /// The radius of a closed polyline of two arcs (a circle), or `None` when it is not one.
-fn circle_radius(entity: &Entity) -> Option<f64> {
+pub(crate) fn circle_radius(entity: &Entity) -> Option<f64> {
     let ([a, b], [first, second]) = (entity.points.as_slice(), entity.bulges.as_slice()) else {
         return None;
     };
@@ -101,11 +103,11 @@ fn unfold(name: &str, k_factor: f64) -> (serde_json::Value, Vec<Entity>) {
 
 /// Checks `file` with ezdxf ([`assert_ezdxf_accepts`]): its audit, the bend layers defined, no
 /// SPLINE or open polyline on a cut layer.
-fn check_with_ezdxf(file: &Path) {
+pub(crate) fn check_with_ezdxf(file: &Path) {
     assert_ezdxf_accepts(file, &["--layer", "BEND_UP", "--layer", "BEND_DOWN"]);
 }
 
-fn number(value: &serde_json::Value) -> f64 {
+pub(crate) fn number(value: &serde_json::Value) -> f64 {
     value
         .as_f64()
         .unwrap_or_else(|| panic!("a number: {value}"))
@@ -160,7 +162,7 @@ fn assert_unfold(
 
 /// The centre of a closed polyline of two arcs: from the first arc's chord and bulge `β`, the
 /// centre is `c (1 − β²) / (4β)` to the left of the chord's middle.
-fn circle_centre(entity: &Entity) -> [f64; 2] {
+pub(crate) fn circle_centre(entity: &Entity) -> [f64; 2] {
     let ([a, b], [bulge, _]) = (entity.points.as_slice(), entity.bulges.as_slice()) else {
         panic!("a circle of two arcs");
     };
@@ -172,10 +174,10 @@ fn circle_centre(entity: &Entity) -> [f64; 2] {
 }
 
 /// The x of each bend line (the lines run along y, across the flat's width).
-fn bend_line_positions(entities: &[Entity]) -> Vec<f64> {
+pub(crate) fn bend_line_positions(entities: &[Entity]) -> Vec<f64> {
     let mut positions: Vec<f64> = entities
         .iter()
-        .filter(|e| e.layer.starts_with("BEND_"))
+        .filter(|e| e.layer == "BEND_UP" || e.layer == "BEND_DOWN")
         .map(|e| {
             let end = e.end.expect("a LINE's end");
             assert!(

@@ -7,10 +7,10 @@ use glam::{DVec2, DVec3};
 use super::checks::{check, positive};
 use super::errors::SpecDefect;
 use super::loops::polygon_area;
-use super::spec::{FoldLineSpec, RegionSpec};
+use super::spec::{FoldLineSpec, RegionSpec, SheetSideSpec};
 use crate::cad::{
-    DEFAULT_FOLD_STIFFNESS, FoldLineGeometry, FoldStiffness, ParameterRegion, RegionShape,
-    StiffnessRegion, Surface, SurfaceDomain,
+    DEFAULT_FOLD_STIFFNESS, FoldBend, FoldLineGeometry, FoldStiffness, ParameterRegion,
+    PatchGeometry, RegionShape, SheetSide, StiffnessRegion, Surface, SurfaceDomain,
 };
 
 /// Builds a fold line's geometry and stiffness.
@@ -73,6 +73,56 @@ pub fn build_fold_line(
             width: spec.width,
         },
     ))
+}
+
+/// A fold line's bend, when it has a bend radius: only on the edge two polygons share, and only
+/// in a part with a `thickness`.
+pub fn build_fold_bend(
+    spec: &FoldLineSpec,
+    surfaces: &[Surface],
+    thickness: Option<f64>,
+) -> Result<Option<FoldBend>, SpecDefect> {
+    let Some(inner_radius) = spec.bend_radius else {
+        check(
+            spec.side.is_none(),
+            "side",
+            "is only read with a bend_radius",
+        )?;
+        return Ok(None);
+    };
+    check(
+        inner_radius.is_finite() && inner_radius >= 0.0,
+        "bend_radius",
+        format!("must be a length of 0 or more, got {inner_radius}"),
+    )?;
+    check(
+        thickness.is_some(),
+        "bend_radius",
+        "a bend needs the part's `thickness`",
+    )?;
+    let Some(pair) = spec.between else {
+        return Err(SpecDefect::new(
+            "bend_radius",
+            "a bend is the edge two polygons share: give 'between = [a, b]'",
+        ));
+    };
+    for index in pair {
+        let planar = matches!(
+            &surfaces[index],
+            Surface::Patch(patch) if matches!(patch.geometry, PatchGeometry::Plane(_))
+        );
+        check(
+            planar,
+            "bend_radius",
+            format!("surface {index} is not a polygon: only folds between polygons are bent"),
+        )?;
+    }
+    let side = match spec.side.unwrap_or(SheetSideSpec::Mid) {
+        SheetSideSpec::Inside => SheetSide::Inside,
+        SheetSideSpec::Mid => SheetSide::Mid,
+        SheetSideSpec::Outside => SheetSide::Outside,
+    };
+    Ok(Some(FoldBend { inner_radius, side }))
 }
 
 /// Checks that a fold polyline stays on its surface: every point in the surface's parameter

@@ -8,7 +8,7 @@ use glam::DVec3;
 
 use super::build::build_surface;
 use super::errors::{PartError, SpecDefect};
-use super::features::{build_fold_line, build_region};
+use super::features::{build_fold_bend, build_fold_line, build_region};
 use super::locate::{field_line, find_key, line_of, syntax_error, table_end};
 use super::spec::{Join, PartSpec};
 use crate::cad::{CadPart, PartAttributes, PartModel};
@@ -42,9 +42,12 @@ pub fn parse_part(path: &Path, text: &str) -> Result<PartModel, PartError> {
     }
     let mut fold_lines = Vec::new();
     let mut fold_stiffness = Vec::new();
+    let mut fold_bends = Vec::new();
+    let thickness = spec.thickness.as_ref().map(|t| *t.get_ref());
     for (index, fold) in spec.fold_lines.iter().enumerate() {
-        let (geometry, stiffness) = build_fold_line(fold.get_ref(), &surfaces)
-            .map_err(|d| located(fold.span(), d, format!("fold_line[{index}]")))?;
+        let at = |d| located(fold.span(), d, format!("fold_line[{index}]"));
+        let (geometry, stiffness) = build_fold_line(fold.get_ref(), &surfaces).map_err(at)?;
+        fold_bends.push(build_fold_bend(fold.get_ref(), &surfaces, thickness).map_err(at)?);
         fold_lines.push(geometry);
         fold_stiffness.push(stiffness);
     }
@@ -73,6 +76,7 @@ pub fn parse_part(path: &Path, text: &str) -> Result<PartModel, PartError> {
             weld: spec.join == Join::Weld,
         },
         fold_stiffness,
+        fold_bends,
         regions,
     })
 }

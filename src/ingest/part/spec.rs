@@ -301,6 +301,23 @@ pub struct FoldLineSpec {
     pub factor: Option<f64>,
     /// Width of the band of raised stiffness (part units); default twice the mesh size.
     pub width: Option<f64>,
+    /// Inner bend radius (part units): the fold is a bend of the sheet, unfolded with an
+    /// allowance (needs `between` two polygons and the part's `thickness`).
+    pub bend_radius: Option<f64>,
+    /// Which face of the sheet the surfaces are at this bend; default `mid`.
+    pub side: Option<SheetSideSpec>,
+}
+
+/// Which face of the sheet a part's surfaces are at a bend.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SheetSideSpec {
+    /// The inner face of the bend.
+    Inside,
+    /// The mid-surface.
+    Mid,
+    /// The outer face of the bend.
+    Outside,
 }
 
 /// A region of raised stiffness: a 3D box, or a polygon in one surface's parameter domain.
