@@ -8,7 +8,8 @@ use std::path::{Path, PathBuf};
 use glam::DVec2;
 
 use crate::cad::{
-    Brep, ParameterRegion, PartAttributes, PartModel, RegionShape, SurfaceDomain, TriangleSoup,
+    Brep, ParameterRegion, PartAttributes, PartModel, RegionShape, SurfaceDomain, SurfaceGeometry,
+    TriangleSoup,
 };
 use crate::cut::{CutConstraints, NoCutRegion};
 use crate::error::Error;
@@ -16,12 +17,12 @@ use crate::flatten::Stiffness;
 use crate::ingest::{CutSidecar, Input, read_cut_sidecar, read_input};
 use crate::mesh::{FacetModel, validate};
 use crate::sheet::{
-    BendLine, NotASheet, SHEET_CHORD_MM, SheetUnfold, ThinSolid, recognise_shell, unfold_skin,
+    BendLine, NotASheet, SHEET_CHORD_MM, SheetSurface, SheetUnfold, recognise_shell, unfold_skin,
 };
 pub use crate::tessellate::TessellationFigures;
 use crate::tessellate::{
-    TessellateOptions, Tessellation, tessellate_brep, tessellate_part as tessellate_cad,
-    vertices_inside,
+    TessellateOptions, Tessellation, tessellate_brep, tessellate_brep_for_unfold,
+    tessellate_part as tessellate_cad, vertices_inside,
 };
 use crate::units::Units;
 
@@ -98,24 +99,13 @@ fn read_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> 
             split_parts(path, &mesh.soup, template, |_, _, _| {})
         }
         Input::Step(brep) => {
+            let not_a_sheet = match sheet_metal_part(path, &brep, options)? {
+                Ok(job) => return Ok(vec![job]),
+                Err(reason) => reason,
+            };
             let tessellation = tessellate_step(path, &brep, &options.tessellate)?;
             let mut template = template(brep.name.clone(), Units::Millimetres);
             template.tessellation = Some(tessellation.figures);
-            let not_a_sheet = match thin_solid(&brep, tessellation.soup()) {
-                Ok(solid) => {
-                    let fine =
-                        sheet_tessellation(path, &brep, options, tessellation.figures.chord)?;
-                    let unfold = unfold_skin(&solid, fine.soup(), &options.sheet);
-                    let base_face = brep.shells[0].describe_face(solid.base_face);
-                    let mut header = template.clone();
-                    header.tessellation = Some(fine.figures);
-                    if let Some(job) = sheet_job(path, unfold, base_face, header)? {
-                        return Ok(vec![job]);
-                    }
-                    Some("its skin is not one piece".to_owned())
-                }
-                Err(reason) => reason,
-            };
             let mut jobs = split_parts(path, tessellation.soup(), template, |_, _, _| {})?;
             if let Some(reason) = not_a_sheet {
                 for job in &mut jobs {
@@ -167,31 +157,42 @@ pub fn tessellate_step(
     })
 }
 
-/// A STEP file of one solid recognised as sheet metal; otherwise why not, when it is a solid of
-/// planes and cylinders only (`None` for anything else: several shells, other surfaces).
-fn thin_solid(brep: &Brep, soup: &TriangleSoup) -> Result<ThinSolid, Option<String>> {
-    let [shell] = brep.shells.as_slice() else {
-        return Err(None);
-    };
-    recognise_shell(shell, soup).map_err(|not_a_sheet| match not_a_sheet {
-        NotASheet::OtherSurfaces(_) => None,
-        NotASheet::NoConstantThickness(reason) => Some(reason),
-    })
-}
-
-/// The tessellation a sheet-metal solid is unfolded from: its chord at most [`SHEET_CHORD_MM`]
-/// (`chord` is the one the file was first tessellated with).
-fn sheet_tessellation(
+/// The part of a STEP file of one solid of planes and cylinders recognised as sheet metal, its
+/// skin unfolded exactly; otherwise why not (`None` for anything else: several shells, other
+/// surfaces). The solid is tessellated once, for the unfold: its chord at most
+/// [`SHEET_CHORD_MM`], its faces triangulated from their boundaries
+/// ([`tessellate_brep_for_unfold`]); it is recognised on that tessellation's face areas.
+fn sheet_metal_part(
     path: &Path,
     brep: &Brep,
     options: &RunOptions,
-    chord: f64,
-) -> Result<Tessellation, Error> {
-    let fine = TessellateOptions {
-        chord: Some(chord.min(SHEET_CHORD_MM)),
-        ..options.tessellate
+) -> Result<Result<PartJob, Option<String>>, Error> {
+    let [shell] = brep.shells.as_slice() else {
+        return Ok(Err(None));
     };
-    tessellate_step(path, brep, &fine)
+    let sheet_like = (0..shell.shell.faces.len()).all(|face| {
+        let geometry = shell.surface_geometry(face);
+        SheetSurface::of(geometry).is_some() || matches!(geometry, SurfaceGeometry::Cone { .. })
+    });
+    if !sheet_like {
+        return Ok(Err(None));
+    }
+    // A solid this tessellation fails on is left to the surface path, which reports its own
+    // error if it fails too.
+    let Ok(fine) = tessellate_brep_for_unfold(brep, &options.tessellate, SHEET_CHORD_MM) else {
+        return Ok(Err(None));
+    };
+    let solid = match recognise_shell(shell, fine.soup()) {
+        Ok(solid) => solid,
+        Err(NotASheet::OtherSurfaces(_)) => return Ok(Err(None)),
+        Err(NotASheet::NoConstantThickness(reason)) => return Ok(Err(Some(reason))),
+    };
+    let unfold = unfold_skin(&solid, fine.soup(), &options.sheet);
+    let base_face = shell.describe_face(solid.base_face);
+    let mut header = template(brep.name.clone(), Units::Millimetres);
+    header.tessellation = Some(fine.figures);
+    Ok(sheet_job(path, unfold, base_face, header)?
+        .ok_or_else(|| Some("its skin is not one piece".to_owned())))
 }
 
 /// The part of an unfolded sheet-metal solid: its skin validated into one facet model, the flat
