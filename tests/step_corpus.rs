@@ -230,3 +230,22 @@ fn an_external_corpus_loads_or_is_refused_by_name() {
         "refused without naming where: {unnamed:?}"
     );
 }
+
+#[test]
+fn a_sheet_with_a_conical_transition_is_refused_as_sheet_metal_with_its_reason() {
+    // FreeCAD: a hopper, a conical wall on a flat flange ring, 1.5 mm thick
+    // (samples/step-sources/freecad_samples.py, FLATCUT_SAMPLE_SET=cone).
+    let path = repository_path("samples/sheet_cone_flange_freecad.step");
+    let jobs = load_and_check(&path).unwrap_or_else(|e| panic!("{e}"));
+    let [job] = jobs.as_slice() else {
+        panic!("{} parts, expected one", jobs.len());
+    };
+    assert!(job.sheet.is_none());
+    let warning = job.warnings.join("\n");
+    assert!(
+        warning.contains("not unfolded as sheet metal (ADVANCED_FACE #")
+            && warning.contains("on CONICAL_SURFACE")
+            && warning.contains("is a cone: conical bends and transitions are not unfolded"),
+        "{warning}"
+    );
+}

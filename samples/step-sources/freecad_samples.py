@@ -259,6 +259,15 @@ def sheet_perforated():
     return solid.cut(Part.makeCompound(holes)).removeSplitter()
 
 
+def sheet_cone_flange():
+    # A hopper: a conical wall (radii 60 and 30 at the bottom and top, 50 high, 1.5 thick
+    # radially) on a flat flange ring 1.5 thick out to radius 80. Sheet metal with a conical
+    # transition, which flatcut refuses as sheet metal with its reason (not unfolded yet).
+    wall = Part.makeCone(60.0, 30.0, 50.0).cut(Part.makeCone(58.5, 28.5, 50.0))
+    flange = Part.makeCylinder(80.0, 1.5).cut(Part.makeCylinder(58.5, 1.5))
+    return wall.fuse(flange).removeSplitter()
+
+
 def sheet_samples():
     export(sheet_l_hole(), "sheet_l_hole_freecad.step")
     export(sheet_u(), "sheet_u_freecad.step")
@@ -269,6 +278,8 @@ def sheet_samples():
 def main():
     if SAMPLE_SET == "sheet":
         sheet_samples()
+    elif SAMPLE_SET == "cone":
+        export(sheet_cone_flange(), "sheet_cone_flange_freecad.step")
     elif SAMPLE_SET == "perforated":
         export(sheet_perforated(), "sheet_perforated_freecad.step")
     elif UNIT == "mm":

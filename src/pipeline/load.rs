@@ -27,6 +27,7 @@ use crate::tessellate::{
 use crate::units::Units;
 
 use super::config::{PartOverrides, RunOptions};
+use super::step_defects::with_step_faces;
 
 /// One part ready to flatten: a connected facet model with its stiffness map.
 #[derive(Debug, Clone)]
@@ -106,7 +107,8 @@ fn read_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> 
             let tessellation = tessellate_step(path, &brep, &options.tessellate)?;
             let mut template = template(brep.name.clone(), Units::Millimetres);
             template.tessellation = Some(tessellation.figures);
-            let mut jobs = split_parts(path, tessellation.soup(), template, |_, _, _| {})?;
+            let mut jobs = split_parts(path, tessellation.soup(), template, |_, _, _| {})
+                .map_err(|error| with_step_faces(error, &brep, tessellation.soup()))?;
             if let Some(reason) = not_a_sheet {
                 for job in &mut jobs {
                     job.warnings.push(format!(
