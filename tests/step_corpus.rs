@@ -62,6 +62,10 @@ const CORPUS: &[(&str, Expected)] = &[
     ("samples/box_fillet_pocket_inch.step", Expected::Surfaces(1)),
     ("samples/cone_frustum_freecad.step", Expected::Surfaces(1)),
     ("samples/vase_revolved_freecad.step", Expected::Surfaces(1)),
+    // Four solids, two sharing a corner and two an edge: four parts, each welded on its own
+    // (welded together they met at a non-manifold vertex and edge and the file was refused, as an
+    // Onshape part of the ABC data set was).
+    ("samples/boxes_touching_freecad.step", Expected::Surfaces(4)),
 ];
 
 fn repository_path(relative: &str) -> PathBuf {

@@ -268,6 +268,19 @@ def sheet_cone_flange():
     return wall.fuse(flange).removeSplitter()
 
 
+def boxes_touching():
+    # Two 20 mm cubes sharing one corner and two 10 x 10 x 5 plates sharing one edge: four
+    # solids in one file, which must stay four parts (not welded at the shared corner and edge).
+    vector = FreeCAD.Vector
+    solids = [
+        Part.makeBox(20.0, 20.0, 20.0),
+        Part.makeBox(20.0, 20.0, 20.0, vector(20.0, 20.0, 20.0)),
+        Part.makeBox(10.0, 10.0, 5.0, vector(60.0, 0.0, 0.0)),
+        Part.makeBox(10.0, 10.0, 5.0, vector(70.0, 0.0, 5.0)),
+    ]
+    return Part.makeCompound(solids)
+
+
 def sheet_samples():
     export(sheet_l_hole(), "sheet_l_hole_freecad.step")
     export(sheet_u(), "sheet_u_freecad.step")
@@ -280,6 +293,7 @@ def main():
         sheet_samples()
     elif SAMPLE_SET == "cone":
         export(sheet_cone_flange(), "sheet_cone_flange_freecad.step")
+        export(boxes_touching(), "boxes_touching_freecad.step")
     elif SAMPLE_SET == "perforated":
         export(sheet_perforated(), "sheet_perforated_freecad.step")
     elif UNIT == "mm":

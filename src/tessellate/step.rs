@@ -65,10 +65,16 @@ fn tessellate_brep_as(
             Refinement::Full => mesh_size,
             Refinement::ChordOnly => size,
         };
+        // Each closed shell (a solid) is welded on its own: two solids that touch at a point or
+        // along an edge stay two parts instead of meeting at a non-manifold vertex or edge. Open
+        // shells are welded together, so surfaces exported as separate shells that share edges
+        // make one part.
+        let mut open_shells = TriangleSoup::default();
         for shell in &brep.shells {
             let first_source = soup.face_sources.last().map_or(0, |s| s + 1);
+            let mut shell_soup = TriangleSoup::default();
             mesh_shell(
-                &mut soup,
+                &mut shell_soup,
                 &shell.shell,
                 first_source,
                 (face_size, chord),
@@ -83,8 +89,15 @@ fn tessellate_brep_as(
                     e.message
                 ))
             })?;
+            weld_coincident(&mut shell_soup);
+            if is_closed(&shell_soup) {
+                append_soup(&mut soup, shell_soup);
+            } else {
+                append_soup(&mut open_shells, shell_soup);
+            }
         }
-        weld_coincident(&mut soup);
+        weld_coincident(&mut open_shells);
+        append_soup(&mut soup, open_shells);
         (mesh_size, chord)
     };
     if soup.triangles.is_empty() {
@@ -98,6 +111,30 @@ fn tessellate_brep_as(
         vertex_sources: Vec::new(),
     };
     Ok(Tessellation::new(welded, mesh_size, chord))
+}
+
+/// Whether every edge of a soup is shared by exactly two triangles.
+fn is_closed(soup: &TriangleSoup) -> bool {
+    let mut edges: Vec<[u32; 2]> = soup
+        .triangles
+        .iter()
+        .flat_map(|&[a, b, c]| [[a, b], [b, c], [c, a]])
+        .map(|[a, b]| [a.min(b), a.max(b)])
+        .collect();
+    edges.sort_unstable();
+    !edges.is_empty()
+        && edges
+            .chunk_by(|x, y| x == y)
+            .all(|shared| shared.len() == 2)
+}
+
+/// Appends `other`'s triangles (with their face sources) and positions to `soup`.
+fn append_soup(soup: &mut TriangleSoup, other: TriangleSoup) {
+    let offset = soup.positions.len() as u32;
+    soup.positions.extend(other.positions);
+    soup.triangles
+        .extend(other.triangles.iter().map(|t| t.map(|v| v + offset)));
+    soup.face_sources.extend(other.face_sources);
 }
 
 /// Meshes loose surfaces over their whole parameter domains with the patch mesher
