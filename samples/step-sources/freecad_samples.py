@@ -290,6 +290,47 @@ def sheet_box():
     return box.cut(hole).removeSplitter()
 
 
+def sheet_perforated():
+    # A 504-face sheet part for the timing measure (README, docs/sheet-metal.md): a U of legs
+    # 60, 200 and 60 mm, R 2, t 1.5, 300 wide, with 490 holes of 4 mm: a 7 x 40 grid through
+    # the first leg (y in [0, t]) and a 7 x 30 grid through the base (x in [62, 63.5]). Faces:
+    # 10 on the skins, 4 walls round the edge, 490 hole walls.
+    solid = sheet_profile([60.0, ("bend", 90.0), 200.0, ("bend", 90.0), 60.0], 2.0, 1.5, 300.0)
+    vector = FreeCAD.Vector
+    holes = []
+    for i in range(40):
+        for j in range(7):
+            holes.append(Part.makeCylinder(2.0, 10.0, vector(8.0 + 6.5 * j, -4.0, 10.0 + 7.0 * i),
+                                           vector(0, 1, 0)))
+    for i in range(30):
+        for j in range(7):
+            holes.append(Part.makeCylinder(2.0, 10.0, vector(70.0, 15.0 + 25.0 * j, 12.0 + 9.5 * i),
+                                           vector(-1, 0, 0)))
+    return solid.cut(Part.makeCompound(holes)).removeSplitter()
+
+
+def sheet_cone_flange():
+    # A hopper: a conical wall (radii 60 and 30 at the bottom and top, 50 high, 1.5 thick
+    # radially) on a flat flange ring 1.5 thick out to radius 80. Sheet metal with a conical
+    # transition, which flatcut refuses as sheet metal with its reason (not unfolded yet).
+    wall = Part.makeCone(60.0, 30.0, 50.0).cut(Part.makeCone(58.5, 28.5, 50.0))
+    flange = Part.makeCylinder(80.0, 1.5).cut(Part.makeCylinder(58.5, 1.5))
+    return wall.fuse(flange).removeSplitter()
+
+
+def boxes_touching():
+    # Two 20 mm cubes sharing one corner and two 10 x 10 x 5 plates sharing one edge: four
+    # solids in one file, which must stay four parts (not welded at the shared corner and edge).
+    vector = FreeCAD.Vector
+    solids = [
+        Part.makeBox(20.0, 20.0, 20.0),
+        Part.makeBox(20.0, 20.0, 20.0, vector(20.0, 20.0, 20.0)),
+        Part.makeBox(10.0, 10.0, 5.0, vector(60.0, 0.0, 0.0)),
+        Part.makeBox(10.0, 10.0, 5.0, vector(70.0, 0.0, 5.0)),
+    ]
+    return Part.makeCompound(solids)
+
+
 def sheet_samples():
     export(sheet_l_hole(), "sheet_l_hole_freecad.step")
     export(sheet_u(), "sheet_u_freecad.step")
@@ -304,6 +345,11 @@ def sheet_samples():
 def main():
     if SAMPLE_SET == "sheet":
         sheet_samples()
+    elif SAMPLE_SET == "cone":
+        export(sheet_cone_flange(), "sheet_cone_flange_freecad.step")
+        export(boxes_touching(), "boxes_touching_freecad.step")
+    elif SAMPLE_SET == "perforated":
+        export(sheet_perforated(), "sheet_perforated_freecad.step")
     elif UNIT == "mm":
         export(cone_frustum_side(), "cone_frustum_freecad.step")
         export(bspline_loft(), "bspline_loft_freecad.step")

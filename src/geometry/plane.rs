@@ -113,20 +113,48 @@ const DEEP_POINT_REFINEMENTS: usize = 4;
 /// A point deep inside the region of `outer` without `holes`, where a label or a mark belongs:
 /// of a grid over the bounding box, refined around the best point a few times, the point inside
 /// the region farthest from every ring (an approximate pole of inaccessibility). The bounding
-/// box's centre when no grid point lies inside.
+/// box's centre when no grid point lies inside. Rings are skipped by their bounding boxes where
+/// that cannot change the answer (a point outside a hole's box is not in it, a ring whose box is
+/// no nearer than the nearest side so far has no nearer side), so a plate with hundreds of
+/// finely sampled holes costs about as much as a plain one.
 pub fn deep_interior_point(outer: &[DVec2], holes: &[Vec<DVec2>]) -> DVec2 {
     let (low, high) = bounding_box(outer);
-    let clearance = |point: DVec2| {
-        let in_region = inside(point, outer) && !holes.iter().any(|hole| inside(point, hole));
-        in_region.then(|| {
-            std::iter::once(outer)
-                .chain(holes.iter().map(Vec::as_slice))
-                .flat_map(|ring| {
-                    (0..ring.len()).map(move |k| (ring[k], ring[(k + 1) % ring.len()]))
-                })
-                .map(|(p, q)| distance_to_segment(point, p, q))
-                .fold(f64::INFINITY, f64::min)
+    let rings: Vec<(&[DVec2], DVec2, DVec2)> = std::iter::once(outer)
+        .chain(holes.iter().map(Vec::as_slice))
+        .map(|ring| {
+            let (ring_low, ring_high) = bounding_box(ring);
+            (ring, ring_low, ring_high)
         })
+        .collect();
+    let box_distance = |point: DVec2, ring_low: DVec2, ring_high: DVec2| {
+        (ring_low - point)
+            .max(point - ring_high)
+            .max(DVec2::ZERO)
+            .length()
+    };
+    // The point's distance to the nearest ring when it is inside the region and farther than
+    // `to_beat` from every ring.
+    let clearance = |point: DVec2, to_beat: f64| {
+        let in_hole = rings[1..].iter().any(|&(ring, ring_low, ring_high)| {
+            box_distance(point, ring_low, ring_high) == 0.0 && inside(point, ring)
+        });
+        if !inside(point, outer) || in_hole {
+            return None;
+        }
+        let mut nearest = f64::INFINITY;
+        for &(ring, ring_low, ring_high) in &rings {
+            if box_distance(point, ring_low, ring_high) >= nearest {
+                continue;
+            }
+            for k in 0..ring.len() {
+                let side = distance_to_segment(point, ring[k], ring[(k + 1) % ring.len()]);
+                nearest = nearest.min(side);
+            }
+            if nearest <= to_beat {
+                return None;
+            }
+        }
+        Some(nearest)
     };
     let mut best = (0.5 * (low + high), f64::NEG_INFINITY);
     let (mut centre, mut half) = (0.5 * (low + high), 0.5 * (high - low));
@@ -136,7 +164,7 @@ pub fn deep_interior_point(outer: &[DVec2], holes: &[Vec<DVec2>]) -> DVec2 {
             for j in 0..=DEEP_POINT_GRID {
                 let point = centre - half + step * DVec2::new(i as f64, j as f64);
                 // A strictly larger clearance wins: the first of equals stays, deterministically.
-                if let Some(distance) = clearance(point).filter(|&d| d > best.1) {
+                if let Some(distance) = clearance(point, best.1) {
                     best = (point, distance);
                 }
             }

@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 use glam::DVec2;
 
 use crate::cad::{
-    Brep, FoldBend, FoldLineGeometry, ParameterRegion, PartAttributes, PartModel, RegionShape,
-    SurfaceDomain, TriangleSoup,
+    Brep, BrepShell, FoldBend, FoldLineGeometry, ParameterRegion, PartAttributes, PartModel,
+    RegionShape, SurfaceDomain, SurfaceGeometry, TriangleSoup,
 };
 use crate::cut::{CutConstraints, NoCutRegion};
 use crate::error::Error;
@@ -17,17 +17,18 @@ use crate::flatten::Stiffness;
 use crate::ingest::{CutSidecar, Input, read_cut_sidecar, read_input};
 use crate::mesh::{FacetModel, validate};
 use crate::sheet::{
-    BendLine, BendRule, FoldedPart, NotASheet, SHEET_CHORD_MM, SheetOptions, SheetUnfold,
-    ThinSolid, base_face_index, recognise_shell, unfold_folds, unfold_skin,
+    BendLine, BendRule, FoldedPart, NotASheet, SHEET_CHORD_MM, SheetOptions, SheetSurface,
+    SheetUnfold, ThinSolid, base_face_index, recognise_shell, unfold_folds, unfold_skin,
 };
 pub use crate::tessellate::TessellationFigures;
 use crate::tessellate::{
-    TessellateOptions, Tessellation, tessellate_brep, tessellate_part as tessellate_cad,
-    vertices_inside,
+    TessellateOptions, Tessellation, tessellate_brep, tessellate_brep_for_unfold,
+    tessellate_part as tessellate_cad, vertices_inside,
 };
 use crate::units::Units;
 
 use super::config::{PartOverrides, RunOptions};
+use super::step_defects::with_step_faces;
 
 /// One part ready to flatten: a connected facet model with its stiffness map.
 #[derive(Debug, Clone)]
@@ -102,30 +103,15 @@ fn read_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> 
             split_parts(path, &mesh.soup, template, |_, _, _| {})
         }
         Input::Step(brep) => {
+            let not_a_sheet = match sheet_metal_part(path, &brep, options)? {
+                Ok(job) => return Ok(vec![job]),
+                Err(reason) => reason,
+            };
             let tessellation = tessellate_step(path, &brep, &options.tessellate)?;
             let mut template = template(brep.name.clone(), Units::Millimetres);
             template.tessellation = Some(tessellation.figures);
-            let not_a_sheet = match thin_solid(path, &brep, tessellation.soup(), &options.sheet)? {
-                Ok(solid) => {
-                    let fine =
-                        sheet_tessellation(path, &brep, options, tessellation.figures.chord)?;
-                    let material = options.overrides.material.as_deref();
-                    let unfold = unfold_skin(&solid, fine.soup(), &options.sheet, material)
-                        .map_err(|reason| Error::SheetMetal {
-                            path: path.to_path_buf(),
-                            reason,
-                        })?;
-                    let base_face = brep.shells[0].describe_face(solid.base_face);
-                    let mut header = template.clone();
-                    header.tessellation = Some(fine.figures);
-                    if let Some(job) = sheet_job(path, unfold, base_face, header)? {
-                        return Ok(vec![job]);
-                    }
-                    Some("its skin is not one piece".to_owned())
-                }
-                Err(reason) => reason,
-            };
-            let mut jobs = split_parts(path, tessellation.soup(), template, |_, _, _| {})?;
+            let mut jobs = split_parts(path, tessellation.soup(), template, |_, _, _| {})
+                .map_err(|error| with_step_faces(error, &brep, tessellation.soup()))?;
             if let Some(reason) = not_a_sheet {
                 for job in &mut jobs {
                     job.warnings.push(format!(
@@ -179,29 +165,65 @@ pub fn tessellate_step(
     })
 }
 
-/// A STEP file of one solid recognised as sheet metal, unfolded from the options' base face or
-/// its largest planar face; otherwise why not, when it is a solid of planes and cylinders only
-/// (`None` for anything else: several shells, other surfaces). A base face that cannot be used
-/// (no such face, not a flange, the part not a sheet) is an error.
-fn thin_solid(
+/// The part of a STEP file of one solid of planes and cylinders recognised as sheet metal, its
+/// skin unfolded exactly from the options' base face or its largest planar face; otherwise why
+/// not (`None` for anything else: several shells, other surfaces). The solid is tessellated
+/// once, for the unfold: its chord at most [`SHEET_CHORD_MM`], its faces triangulated from their
+/// boundaries ([`tessellate_brep_for_unfold`]); it is recognised on that tessellation's face
+/// areas. A base face that cannot be used (no such face, not a flange, the part not a sheet)
+/// is an error.
+fn sheet_metal_part(
     path: &Path,
     brep: &Brep,
-    soup: &TriangleSoup,
-    options: &SheetOptions,
-) -> Result<Result<ThinSolid, Option<String>>, Error> {
+    options: &RunOptions,
+) -> Result<Result<PartJob, Option<String>>, Error> {
     let refuse = |reason: String| Error::SheetMetal {
         path: path.to_path_buf(),
         reason,
     };
-    let [shell] = brep.shells.as_slice() else {
-        return match options.base_face {
-            Some(id) => Err(refuse(format!(
-                "--base-face #{id}: the file holds {} shells, not one sheet-metal solid",
-                brep.shells.len()
-            ))),
-            None => Ok(Err(None)),
-        };
+    let base_face_refused = |reason: String| match options.sheet.base_face {
+        Some(id) => Err(refuse(format!("--base-face #{id}: {reason}"))),
+        None => Ok(Err(None)),
     };
+    let [shell] = brep.shells.as_slice() else {
+        return base_face_refused(format!(
+            "the file holds {} shells, not one sheet-metal solid",
+            brep.shells.len()
+        ));
+    };
+    let sheet_like = (0..shell.shell.faces.len()).all(|face| {
+        let geometry = shell.surface_geometry(face);
+        SheetSurface::of(geometry).is_some() || matches!(geometry, SurfaceGeometry::Cone { .. })
+    });
+    if !sheet_like {
+        return base_face_refused("the part is not a solid of planes and cylinders".to_owned());
+    }
+    // A solid this tessellation fails on is left to the surface path, which reports its own
+    // error if it fails too.
+    let Ok(fine) = tessellate_brep_for_unfold(brep, &options.tessellate, SHEET_CHORD_MM) else {
+        return base_face_refused("the solid cannot be tessellated for an unfold".to_owned());
+    };
+    let solid = match thin_solid(shell, fine.soup(), &options.sheet).map_err(refuse)? {
+        Ok(solid) => solid,
+        Err(reason) => return Ok(Err(reason)),
+    };
+    let material = options.overrides.material.as_deref();
+    let unfold = unfold_skin(&solid, fine.soup(), &options.sheet, material).map_err(refuse)?;
+    let base_face = shell.describe_face(solid.base_face);
+    let mut header = template(brep.name.clone(), Units::Millimetres);
+    header.tessellation = Some(fine.figures);
+    Ok(sheet_job(path, unfold, base_face, header)?
+        .ok_or_else(|| Some("its skin is not one piece".to_owned())))
+}
+
+/// The thin solid of `shell`, recognised from the options' base face or its largest planar
+/// face; otherwise why not, when that is worth a warning (`None` when it is no sheet at all). A
+/// base face that cannot be used is an error (the reason).
+fn thin_solid(
+    shell: &BrepShell,
+    soup: &TriangleSoup,
+    options: &SheetOptions,
+) -> Result<Result<ThinSolid, Option<String>>, String> {
     let recognised = recognise_shell(shell, soup, None).map_err(|not_a_sheet| match not_a_sheet {
         NotASheet::OtherSurfaces(reason) => (false, reason),
         NotASheet::NoConstantThickness(reason) => (true, reason),
@@ -209,33 +231,16 @@ fn thin_solid(
     match (recognised, options.base_face) {
         (Ok(solid), None) => Ok(Ok(solid)),
         (Ok(solid), Some(id)) => {
-            let base = base_face_index(shell, &solid, id).map_err(refuse)?;
+            let base = base_face_index(shell, &solid, id)?;
             recognise_shell(shell, soup, Some(base))
                 .map(Ok)
-                .map_err(|not_a_sheet| {
-                    refuse(format!("--base-face #{id}: {}", not_a_sheet.reason()))
-                })
+                .map_err(|not_a_sheet| format!("--base-face #{id}: {}", not_a_sheet.reason()))
         }
-        (Err((_, reason)), Some(id)) => Err(refuse(format!(
+        (Err((_, reason)), Some(id)) => Err(format!(
             "--base-face #{id}: the part is not a sheet-metal solid ({reason})"
-        ))),
+        )),
         (Err((constant_thickness, reason)), None) => Ok(Err(constant_thickness.then_some(reason))),
     }
-}
-
-/// The tessellation a sheet-metal solid is unfolded from: its chord at most [`SHEET_CHORD_MM`]
-/// (`chord` is the one the file was first tessellated with).
-fn sheet_tessellation(
-    path: &Path,
-    brep: &Brep,
-    options: &RunOptions,
-    chord: f64,
-) -> Result<Tessellation, Error> {
-    let fine = TessellateOptions {
-        chord: Some(chord.min(SHEET_CHORD_MM)),
-        ..options.tessellate
-    };
-    tessellate_step(path, brep, &fine)
 }
 
 /// The part of an unfolded sheet-metal solid: its skin validated into one facet model, the flat

@@ -18,6 +18,7 @@ mod pattern_nest;
 mod rejection;
 mod report;
 mod run;
+mod step_defects;
 
 pub use benchmark::{BenchmarkConfig, BenchmarkOutput, nest_benchmark, write_benchmark};
 pub use config::{

@@ -101,18 +101,67 @@ pub fn recognise(
     Ok(solid)
 }
 
-/// Every face's surface, or why the shell is not made of planes and cylinders.
+/// Every face's surface, or why the shell is not made of planes and cylinders (see
+/// [`cone_refusal`] for a sheet with a conical face).
 fn sheet_surfaces(shell: &BrepShell) -> Result<Vec<SheetSurface>, NotASheet> {
-    (0..shell.shell.faces.len())
-        .map(|face| {
-            SheetSurface::of(shell.surface_geometry(face)).ok_or_else(|| {
-                NotASheet::OtherSurfaces(format!(
-                    "{} is neither a plane nor a cylinder",
-                    shell.describe_face(face)
-                ))
-            })
+    let surfaces: Vec<Option<SheetSurface>> = (0..shell.shell.faces.len())
+        .map(|face| SheetSurface::of(shell.surface_geometry(face)))
+        .collect();
+    match surfaces.iter().position(Option::is_none) {
+        None => Ok(surfaces.into_iter().flatten().collect()),
+        Some(face) => Err(cone_refusal(shell, &surfaces).unwrap_or_else(|| {
+            NotASheet::OtherSurfaces(format!(
+                "{} is neither a plane nor a cylinder",
+                shell.describe_face(face)
+            ))
+        })),
+    }
+}
+
+/// The refusal of a sheet with a conical bend or transition, which is not unfolded exactly yet:
+/// when every face that is neither a plane nor a cylinder is a cone, and two parallel planes
+/// sharing a wall lie close enough to be a sheet's two skins (within
+/// [`MAXIMUM_THICKNESS_RATIO`] of the part's size). Other solids with cones (a solid cone, a
+/// turned part) are not sheets and are not refused as such.
+fn cone_refusal(shell: &BrepShell, surfaces: &[Option<SheetSurface>]) -> Option<NotASheet> {
+    let is_cone = |face: usize| {
+        matches!(
+            shell.surface_geometry(face),
+            crate::cad::SurfaceGeometry::Cone { .. }
+        )
+    };
+    let others: Vec<usize> = (0..surfaces.len())
+        .filter(|&face| surfaces[face].is_none())
+        .collect();
+    if !others.iter().all(|&face| is_cone(face)) {
+        return None;
+    }
+    let neighbours = face_neighbours(shell);
+    let planes: Vec<(usize, SheetSurface)> = surfaces
+        .iter()
+        .enumerate()
+        .filter_map(|(face, surface)| match surface {
+            Some(plane @ SheetSurface::Plane { .. }) => Some((face, *plane)),
+            _ => None,
         })
-        .collect()
+        .collect();
+    let size = super::surfaces::vertices_extent(shell);
+    let thin = planes.iter().any(|&(a, plane)| {
+        planes.iter().any(|&(b, other)| {
+            a < b
+                && share_a_wall(&neighbours, a, b)
+                && plane.opposite_distance(&other).is_some_and(|distance| {
+                    distance > super::surfaces::LENGTH_TOLERANCE_MM
+                        && distance <= MAXIMUM_THICKNESS_RATIO * size
+                })
+        })
+    });
+    thin.then(|| {
+        NotASheet::NoConstantThickness(format!(
+            "{} is a cone: conical bends and transitions are not unfolded exactly yet",
+            shell.describe_face(others[0])
+        ))
+    })
 }
 
 /// Faces sharing an edge with each face, ascending.

@@ -5,7 +5,7 @@
 
 use glam::DVec3;
 
-use crate::cad::SurfaceGeometry;
+use crate::cad::{BrepShell, SurfaceGeometry};
 
 /// Largest distance, in mm, between two positions that are the same (a plane through an axis,
 /// two radii, two parallel planes at a given thickness).
@@ -132,6 +132,24 @@ impl SheetSurface {
             }
             _ => None,
         }
+    }
+}
+
+/// The bounding diagonal of a shell's vertices, mm.
+pub fn vertices_extent(shell: &BrepShell) -> f64 {
+    let points = shell
+        .shell
+        .vertices
+        .iter()
+        .map(|p| DVec3::new(p.x, p.y, p.z));
+    let (low, high) = points.fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(low, high), p| (low.min(p), high.max(p)),
+    );
+    if low.x <= high.x {
+        (high - low).length()
+    } else {
+        0.0
     }
 }
 

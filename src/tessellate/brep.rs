@@ -42,9 +42,10 @@ use super::edge_sampling::{
     edge_apexes, graded_at_vertices, sample_curve, sample_edge, sample_toward_apex, to_dvec,
 };
 use super::face_domain::{BoundaryLoop, FaceSurface, face_domain};
-use super::patch::mesh_patch;
+use super::patch::{Refinement, mesh_patch_as};
 use super::pole_to_pole::PoleToPole;
-use crate::cad::{PatchGeometry, PatchSurface, StepShell, TriangleSoup};
+use super::seamless::join_seamless_loops;
+use crate::cad::{PatchGeometry, PatchSurface, StepShell, SurfaceGeometry, TriangleSoup};
 use crate::geometry::tolerance::{LOOP_GAP_RATIO, SNAP_RATIO};
 use crate::geometry::weld::PointWelder;
 
@@ -93,14 +94,17 @@ pub fn shells_size<'a>(shells: impl IntoIterator<Item = &'a StepShell>) -> f64 {
 }
 
 /// Meshes every face of `shell` (see the module documentation) and appends them to `soup`, face
-/// sources continuing from `first_source`; `size` is the part's size.
+/// sources continuing from `first_source`; `size` is the part's size. With
+/// [`Refinement::ChordOnly`] the faces keep `mesh_size` (no smaller size where they curve), the
+/// edges are not graded at their vertices and the faces are triangulated from their boundary
+/// samples without refinement (see [`Refinement`]).
 pub fn mesh_shell(
     soup: &mut TriangleSoup,
     shell: &StepShell,
     first_source: u32,
-    mesh_size: f64,
-    chord: f64,
+    (mesh_size, chord): (f64, f64),
     size: f64,
+    refinement: Refinement,
 ) -> Result<(), FaceError> {
     let vertices = |edge: usize| {
         let (a, b) = shell.edges[edge].vertices;
@@ -111,13 +115,16 @@ pub fn mesh_shell(
             .map(|e| sample_edge(&shell.edges[e].curve, vertices(e), sizes[e], chord))
             .collect()
     };
-    let face_sizes = face_mesh_sizes(
-        shell,
-        &sample_all(&vec![mesh_size; shell.edges.len()]),
-        mesh_size,
-        chord,
-        size,
-    );
+    let face_sizes = match refinement {
+        Refinement::Full => face_mesh_sizes(
+            shell,
+            &sample_all(&vec![mesh_size; shell.edges.len()]),
+            mesh_size,
+            chord,
+            size,
+        ),
+        Refinement::ChordOnly => vec![mesh_size; shell.faces.len()],
+    };
     let mut edge_sizes = vec![mesh_size; shell.edges.len()];
     for (face, &face_size) in shell.faces.iter().zip(&face_sizes) {
         for edge in face.boundaries.iter().flatten() {
@@ -139,7 +146,10 @@ pub fn mesh_shell(
             None => sample_edge(&shell.edges[e].curve, vertices(e), edge_sizes[e], chord),
         })
         .collect();
-    let edges = graded_at_vertices(shell, edges, &apexes, size);
+    let edges = match refinement {
+        Refinement::Full => graded_at_vertices(shell, edges, &apexes, size),
+        Refinement::ChordOnly => edges,
+    };
     for (index, face) in shell.faces.iter().enumerate() {
         let error = |message: String| FaceError {
             face: index,
@@ -148,7 +158,7 @@ pub fn mesh_shell(
         let pieces = face_pieces(face, &edges, face_sizes[index], chord, size).map_err(error)?;
         for loops in &pieces {
             let face_mesh = catch_unwind(AssertUnwindSafe(|| {
-                mesh_face(face, loops, face_sizes[index], chord, size)
+                mesh_face(face, loops, (face_sizes[index], chord), size, refinement)
             }))
             .map_err(|_| error("the face could not be tessellated".into()))?
             .map_err(error)?;
@@ -258,7 +268,9 @@ fn has_no_edge(face: &CompressedFace<StepSurface>) -> bool {
     face.boundaries.iter().all(|boundary| boundary.is_empty())
 }
 
-/// The boundary loops of each piece a face is meshed in: its own loops, or for a face with no
+/// The boundary loops of each piece a face is meshed in: its own loops (the two end loops of a
+/// cylinder or cone side without a seam edge joined along a ruling: [`join_seamless_loops`]),
+/// or for a face with no
 /// edge on a surface closed from pole to pole (a full sphere) the two caps of [`PoleToPole`],
 /// their middle parallel and seam meridians sampled like edges to `mesh_size` and the chord.
 fn face_pieces(
@@ -269,7 +281,14 @@ fn face_pieces(
     size: f64,
 ) -> Result<Vec<Vec<BoundaryLoop>>, String> {
     if !has_no_edge(face) {
-        return Ok(vec![face_loops(face, edges, size)?]);
+        let loops = face_loops(face, edges, size)?;
+        return Ok(vec![match SurfaceGeometry::of(&face.surface) {
+            SurfaceGeometry::Cylinder { origin, axis, .. }
+            | SurfaceGeometry::Cone { origin, axis, .. } => {
+                join_seamless_loops(loops, origin, axis, mesh_size)
+            }
+            _ => loops,
+        }]);
     }
     let closed = PoleToPole::of(&face.surface).ok_or_else(|| {
         "it has no boundary edge (only a vertex loop) and its surface is not closed from pole \
@@ -365,9 +384,9 @@ fn face_loops(
 fn mesh_face(
     face: &CompressedFace<StepSurface>,
     loops: &[BoundaryLoop],
-    mesh_size: f64,
-    chord: f64,
+    (mesh_size, chord): (f64, f64),
     size: f64,
+    refinement: Refinement,
 ) -> Result<MeshedFace, String> {
     let domain = face_domain(&face.surface, loops, size).map_err(|e| e.0)?;
     let (boundary, samples) = domain_boundary(&domain.loops, loops);
@@ -377,7 +396,8 @@ fn mesh_face(
         outer,
         holes,
     };
-    let mesh = mesh_patch(&patch, &[], mesh_size, chord).map_err(|e| e.to_string())?;
+    let mesh =
+        mesh_patch_as(&patch, &[], mesh_size, chord, refinement).map_err(|e| e.to_string())?;
     let positions = snap_to_samples(&mesh.positions, &mesh.parameters, &samples);
     let mut triangles = mesh.triangles;
     if !follows_face_normal(

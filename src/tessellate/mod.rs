@@ -36,6 +36,7 @@ mod revolution;
 mod ruled;
 mod ruled_folds;
 mod ruled_plane;
+mod seamless;
 mod step;
 mod strip;
 mod weld;
@@ -47,5 +48,5 @@ pub use options::{
 };
 pub use part::tessellate_part;
 pub use region_vertices::vertices_inside;
-pub use step::tessellate_brep;
+pub use step::{tessellate_brep, tessellate_brep_for_unfold};
 pub use weld::Welded;

@@ -63,6 +63,30 @@ pub fn mesh_patch(
     mesh_size: f64,
     chord: f64,
 ) -> Result<FaceMesh, TessellateError> {
+    mesh_patch_as(patch, fold_lines, mesh_size, chord, Refinement::Full)
+}
+
+/// How far a patch's triangulation is refined.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Refinement {
+    /// To the mesh size and the minimum angle, then to the chord.
+    Full,
+    /// To the chord only: the boundary's constrained Delaunay triangulation, with Steiner points
+    /// only where a triangle strays farther than the chord from the surface (a plane gets none).
+    /// For an exact unfold, which needs the boundary and points on the surface, not well-shaped
+    /// triangles.
+    ChordOnly,
+}
+
+/// Meshes a trimmed patch with the given refinement (see [`mesh_patch`]).
+pub fn mesh_patch_as(
+    patch: &PatchSurface,
+    fold_lines: &[(u32, Vec<DVec2>)],
+    mesh_size: f64,
+    chord: f64,
+    refinement: Refinement,
+) -> Result<FaceMesh, TessellateError> {
+    let refined = refinement == Refinement::Full;
     let scale = domain_scale(patch)?;
     let mut cdt = Cdt::new();
     let loops = std::iter::once(&patch.outer).chain(&patch.holes);
@@ -94,7 +118,9 @@ pub fn mesh_patch(
     // are kept by a point-in-domain test of their centroids.
     let domain = ScaledDomain::new(patch, scale);
     let exclude_outer = fold_lines.is_empty();
-    refine(&mut cdt, mesh_size, budget, exclude_outer);
+    if refined {
+        refine(&mut cdt, mesh_size, budget, exclude_outer);
+    }
     for _ in 0..CHORD_ROUNDS {
         let steiner = chord_violations(&cdt, &domain, patch, scale, chord);
         if steiner.is_empty() {
@@ -103,7 +129,9 @@ pub fn mesh_patch(
         for point in steiner {
             insert_point(&mut cdt, point)?;
         }
-        refine(&mut cdt, mesh_size, budget, exclude_outer);
+        if refined {
+            refine(&mut cdt, mesh_size, budget, exclude_outer);
+        }
     }
     Ok(extract_mesh(
         &cdt,

@@ -13,6 +13,9 @@ use super::statements::Statements;
 use super::units::{ContextUnits, units_of};
 use crate::cad::{BrepShell, FaceSource, LooseSurface, PatchGeometry, StepShell};
 
+/// Faces named in the message about a shell none of whose faces could be read, at most.
+const NAMED_FACES: usize = 3;
+
 /// A shell with its vertices, curves and surfaces scaled by `factor` (file units to
 /// millimetres).
 fn scaled_shell(mut shell: StepShell, factor: f64) -> StepShell {
@@ -65,6 +68,25 @@ pub fn convert_shells(
         let converted = catch_unwind(AssertUnwindSafe(|| table.to_compressed_shell(shell)))
             .map_err(|_| format!("shell #{id}: truck-stepio failed on it"))?
             .map_err(|e| format!("shell #{id}: {e}"))?;
+        if converted.faces.is_empty() && !declared.is_empty() {
+            // Every face was dropped: those are the faces to name.
+            let named: Vec<String> = declared
+                .iter()
+                .take(NAMED_FACES)
+                .map(|&face| describe_face(statements, face))
+                .collect();
+            return Err(format!(
+                "{} ({}{}; truck-stepio dropped them: a degenerate face, or a loop it cannot \
+                 close)",
+                cannot_read(declared.len()),
+                named.join(", "),
+                if declared.len() > NAMED_FACES {
+                    ", ..."
+                } else {
+                    ""
+                }
+            ));
+        }
         if converted.faces.len() < declared.len() {
             return Err(cannot_read(declared.len() - converted.faces.len()));
         }
