@@ -68,7 +68,7 @@ impl PartDrawing {
         if self.outer.len() < 3 {
             return None;
         }
-        let segments = self.drawn_segments();
+        let segments = Lines::new(self.drawn_segments());
         let aspect = (characters.max(1) as f64 * character_width).max(f64::MIN_POSITIVE);
         // The box of the largest text with its margin: a growth of 1 fits it exactly.
         let boxed = (1.0 + LABEL_MARGIN) * largest;
@@ -96,7 +96,8 @@ impl PartDrawing {
     /// the height wide.
     pub(super) fn level_label_centre(&self, character_width: f64) -> DVec2 {
         let aspect = (self.label().chars().count().max(1) as f64 * character_width).max(1.0);
-        self.best_centre(&self.drawn_segments(), 0.0, aspect, 1.0).0
+        self.best_centre(&Lines::new(self.drawn_segments()), 0.0, aspect, 1.0)
+            .0
     }
 
     /// Every line drawn on the part, as segments: outline, holes, fold lines, bend lines with
@@ -147,32 +148,37 @@ impl PartDrawing {
     /// grow there (scaled by it, it touches a line; 0 outside the material). Among the centres
     /// where the box grows [`LABEL_ROOM`] times, or [`LABEL_TIE`] of the most it grows anywhere,
     /// the one farthest from every line wins, so the label sits in the part's most open region.
-    fn best_centre(
-        &self,
-        segments: &[[DVec2; 2]],
-        angle: f64,
-        width: f64,
-        height: f64,
-    ) -> (DVec2, f64) {
+    fn best_centre(&self, lines: &Lines, angle: f64, width: f64, height: f64) -> (DVec2, f64) {
         let along = DVec2::from_angle(angle);
         let half = DVec2::new(0.5 * width, 0.5 * height);
+        // A point at distance d from the centre is at least d / |half| away in the box's measure.
+        let diagonal = half.length();
+        let hole_boxes: Vec<(DVec2, DVec2)> = self.holes.iter().map(|h| bounding_box(h)).collect();
         let measure = |point: DVec2| -> Option<(f64, f64)> {
-            let in_material =
-                inside(point, &self.outer) && !self.holes.iter().any(|hole| inside(point, hole));
-            in_material.then(|| {
+            let in_hole = self
+                .holes
+                .iter()
+                .zip(&hole_boxes)
+                .any(|(hole, &(low, high))| {
+                    point.cmpge(low).all() && point.cmple(high).all() && inside(point, hole)
+                });
+            (inside(point, &self.outer) && !in_hole).then(|| {
                 let frame = |p: DVec2| {
                     let d = p - point;
                     DVec2::new(d.dot(along) / half.x, d.dot(along.perp()) / half.y)
                 };
-                segments.iter().fold(
-                    (f64::INFINITY, f64::INFINITY),
-                    |(growth, clearance), &[p, q]| {
-                        (
-                            growth.min(chebyshev_distance_to_segment(frame(p), frame(q))),
-                            clearance.min(distance_to_segment(point, p, q)),
-                        )
-                    },
-                )
+                let (mut growth, mut clearance) = (f64::INFINITY, f64::INFINITY);
+                for chunk in &lines.chunks {
+                    let near = distance_to_box(point, chunk.low, chunk.high);
+                    if near >= clearance && near / diagonal >= growth {
+                        continue;
+                    }
+                    for &[p, q] in &chunk.segments {
+                        growth = growth.min(chebyshev_distance_to_segment(frame(p), frame(q)));
+                        clearance = clearance.min(distance_to_segment(point, p, q));
+                    }
+                }
+                (growth, clearance)
             })
         };
         // First the most the box can grow anywhere, then, among the centres where it grows
@@ -214,6 +220,44 @@ impl PartDrawing {
         }
         best
     }
+}
+
+/// The drawn lines in runs of consecutive segments, each with its bounding box, so that a
+/// search can skip the runs farther than the nearest line found.
+struct Lines {
+    chunks: Vec<Chunk>,
+}
+
+struct Chunk {
+    low: DVec2,
+    high: DVec2,
+    segments: Vec<[DVec2; 2]>,
+}
+
+/// Segments per run of [`Lines`].
+const CHUNK_SEGMENTS: usize = 32;
+
+impl Lines {
+    fn new(segments: Vec<[DVec2; 2]>) -> Self {
+        let chunks = segments
+            .chunks(CHUNK_SEGMENTS)
+            .map(|run| {
+                let points: Vec<DVec2> = run.iter().flatten().copied().collect();
+                let (low, high) = bounding_box(&points);
+                Chunk {
+                    low,
+                    high,
+                    segments: run.to_vec(),
+                }
+            })
+            .collect();
+        Self { chunks }
+    }
+}
+
+/// The distance from `point` to the box `low`–`high` (0 inside it).
+fn distance_to_box(point: DVec2, low: DVec2, high: DVec2) -> f64 {
+    (low - point).max(point - high).max(DVec2::ZERO).length()
 }
 
 /// The distance from the origin to the segment `p`–`q` in the maximum norm: the half side of
