@@ -32,7 +32,7 @@ pub const MIN_SHRINK_FRACTION: f64 = 0.0025;
 pub const STALL_ROUNDS: u32 = 40;
 /// On a roll, the share of the work budget given to the sequence search; the rest goes to the
 /// compression through overlap (`separator.rs`), which starts from its best layout.
-pub const SEQUENCE_SEARCH_SHARE: f64 = 0.15;
+pub const SEQUENCE_SEARCH_SHARE: f64 = 0.05;
 /// How many times the roll length of the construction may double before the search gives up.
 const MAX_ROLL_DOUBLINGS: u32 = 8;
 /// Roll length of the first attempt, as a multiple of (net area / roll width) plus the largest part.

@@ -42,6 +42,7 @@
 //! public layout), `solution` and `random`.
 
 mod compaction;
+mod compression;
 mod holes;
 mod local_search;
 mod measure;
