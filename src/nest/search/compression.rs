@@ -43,14 +43,16 @@ const POOL_SPREAD: f64 = 0.25;
 
 impl Problem<'_> {
     /// Searches through overlap from the complete roll layout `best` within `budget` work
-    /// (collision queries); returns the shortest separated layout found (or `None` if none is
-    /// shorter) and the work.
+    /// (collision queries), calling `stop` with the work spent (true ends the search) and
+    /// `on_best` with the length of each shorter separated layout; returns the shortest separated
+    /// layout found (or `None` if none is shorter) and the work.
     pub(super) fn compress(
         &self,
         best: &Solution<JaguaEngine>,
         budget: u64,
         random: &mut SplitMix64,
         mut stop: impl FnMut(u64) -> bool,
+        mut on_best: impl FnMut(f64),
     ) -> (Option<Solution<JaguaEngine>>, u64) {
         let parts: Vec<Part> = (best.placed.iter().zip(&best.order))
             .filter_map(|(placed, &copy)| {
@@ -83,6 +85,7 @@ impl Problem<'_> {
                 best_parts.clone_from(&separator.parts);
                 best_length = separator.used_length();
                 improved = true;
+                on_best(best_length);
                 pool.clear();
                 separator.reset(&best_parts, best_length, true);
                 cut_at_random(
@@ -112,6 +115,7 @@ impl Problem<'_> {
                 best_parts.clone_from(&separator.parts);
                 best_length = separator.used_length();
                 improved = true;
+                on_best(best_length);
             }
         }
         let work = separator.work();
@@ -228,7 +232,8 @@ mod tests {
         let problem = Problem::new(&items, &options).expect("valid problem");
         let parts = four_squares(&problem, |copy| DVec2::new(0.1 + 12.0 * copy, 0.1));
         let start = problem.solution_of(&parts, 46.2);
-        let (compressed, work) = problem.compress(&start, 2_000_000, &mut SplitMix64(1), |_| false);
+        let (compressed, work) =
+            problem.compress(&start, 2_000_000, &mut SplitMix64(1), |_| false, |_| ());
         assert!(work > 0);
         let compressed = compressed.expect("a shorter layout");
         assert!(problem.cost(&compressed).length < 40.0);
@@ -260,7 +265,7 @@ mod tests {
         let start = problem.solution_of(&parts, 70.2);
         let run = || {
             let (compressed, work) =
-                problem.compress(&start, 1_000_000, &mut SplitMix64(5), |_| false);
+                problem.compress(&start, 1_000_000, &mut SplitMix64(5), |_| false, |_| ());
             let compressed = compressed.expect("a shorter layout");
             let places: Vec<(usize, [u64; 2])> = (compressed.placed.iter().flatten())
                 .map(|placed| {
