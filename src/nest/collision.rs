@@ -152,6 +152,9 @@ pub struct JaguaEngine {
     inside: (DVec2, DVec2),
     /// Reused by every overlap query (cleared first): no allocation per query.
     collector: BasicHazardCollector<Entity>,
+    /// The hazard key and placed shape of each inserted part, indexed by our key (jagua-rs only
+    /// finds a hazard by its entity through a linear search).
+    parts: Vec<Option<(HazKey, Arc<SPolygon>)>>,
 }
 
 /// Depth of the quadtree (jagua-rs recommends 3–10).
@@ -224,6 +227,7 @@ impl JaguaEngine {
             queries: 0,
             inside,
             collector: BasicHazardCollector::new(),
+            parts: Vec::new(),
         })
     }
 
@@ -251,13 +255,21 @@ impl CollisionEngine for JaguaEngine {
     }
 
     fn insert(&mut self, key: u32, shape: ShapeId, translation: DVec2) {
-        let placed = self.translated(shape, translation).clone();
+        let placed = Arc::new(self.translated(shape, translation).clone());
         self.engine
-            .register_hazard(Hazard::new(Entity::Part(key), Arc::new(placed)));
+            .register_hazard(Hazard::new(Entity::Part(key), Arc::clone(&placed)));
+        let hazard_key = (self.engine)
+            .haz_key(&Entity::Part(key))
+            .expect("the hazard was just registered");
+        let index = key as usize;
+        if self.parts.len() <= index {
+            self.parts.resize(index + 1, None);
+        }
+        self.parts[index] = Some((hazard_key, placed));
     }
 
     fn remove(&mut self, key: u32) {
-        if let Some(hazard_key) = self.engine.haz_key(&Entity::Part(key)) {
+        if let Some((hazard_key, _)) = self.parts.get_mut(key as usize).and_then(Option::take) {
             self.engine.deregister_hazard_by_key(hazard_key);
         }
     }
@@ -403,6 +415,7 @@ impl JaguaEngine {
         let placed: &SPolygon =
             self.scratch[shape].transform_from(&self.library.shapes[shape], &transform);
         let engine = &self.engine;
+        let parts = &self.parts;
         let inside = self.inside;
         let collector = &mut self.collector;
         collector.clear();
@@ -411,7 +424,7 @@ impl JaguaEngine {
             total += match entity {
                 Entity::Exterior => weight(Obstacle::Edge) * edge_overlap(placed, inside),
                 Entity::Part(key) => {
-                    weight(Obstacle::Part(key)) * Self::overlap_with(engine, placed, key)
+                    weight(Obstacle::Part(key)) * Self::overlap_with(parts, placed, key)
                 }
             };
             total > bound
@@ -442,7 +455,7 @@ impl JaguaEngine {
                 Entity::Exterior => (Obstacle::Edge, edge_overlap(placed, self.inside)),
                 Entity::Part(key) => (
                     Obstacle::Part(key),
-                    Self::overlap_with(&self.engine, placed, key),
+                    Self::overlap_with(&self.parts, placed, key),
                 ),
             })
             .collect();
@@ -461,21 +474,17 @@ impl JaguaEngine {
             Transformation::from_translation((translation.x as f32, translation.y as f32));
         let placed: &SPolygon =
             self.scratch[shape].transform_from(&self.library.shapes[shape], &transform);
-        let Some(other) = self
-            .engine
-            .haz_key(&Entity::Part(key))
-            .and_then(|hazard_key| self.engine.hazard(hazard_key))
-        else {
+        let Some(Some((_, other))) = self.parts.get(key as usize) else {
             return 0.0;
         };
-        pole_depth(measured_poles(placed), measured_poles(&other.shape))
+        pole_depth(measured_poles(placed), measured_poles(other))
     }
 
-    fn overlap_with(engine: &CDEngine<Entity>, placed: &SPolygon, key: u32) -> f64 {
-        engine
-            .haz_key(&Entity::Part(key))
-            .and_then(|hazard_key| engine.hazard(hazard_key))
-            .map_or(0.0, |other| part_overlap(placed, &other.shape))
+    fn overlap_with(parts: &[Option<(HazKey, Arc<SPolygon>)>], placed: &SPolygon, key: u32) -> f64 {
+        match parts.get(key as usize) {
+            Some(Some((_, other))) => part_overlap(placed, other),
+            _ => 0.0,
+        }
     }
 }
 
