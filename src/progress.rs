@@ -14,6 +14,9 @@ pub trait Progress: Sync {
     /// Something the user should know that does not stop the run (a repair made to an input, a
     /// slow option), as one line without a prefix. Ignored by default.
     fn warn(&self, _message: &str) {}
+    /// A short status of the current stage that replaces the previous one (the nesting's best
+    /// density so far), shown beside the stage's name. Ignored by default.
+    fn status(&self, _status: &str) {}
 }
 
 /// Progress that goes nowhere: for tests, scripts and library users who do not care.

@@ -15,7 +15,8 @@ const SPINNER_TICK: Duration = Duration::from_millis(120);
 
 /// A progress bar on stderr, silent when stderr is not a terminal (scripts, CI, pipes).
 pub struct TerminalProgress {
-    bar: Mutex<Option<ProgressBar>>,
+    /// The bar and the name of its stage.
+    bar: Mutex<Option<(ProgressBar, String)>>,
     enabled: bool,
 }
 
@@ -55,7 +56,7 @@ impl Progress for TerminalProgress {
             .bar
             .lock()
             .unwrap_or_else(|poisoned| poisoned.into_inner());
-        *slot = Some(bar);
+        *slot = Some((bar, stage.to_string()));
     }
 
     fn advance(&self, done: u64) {
@@ -65,7 +66,7 @@ impl Progress for TerminalProgress {
             .unwrap_or_else(|poisoned| poisoned.into_inner())
             .as_ref()
         {
-            bar.set_position(done);
+            bar.0.set_position(done);
         }
     }
 
@@ -76,7 +77,7 @@ impl Progress for TerminalProgress {
             .unwrap_or_else(|poisoned| poisoned.into_inner())
             .take()
         {
-            bar.finish_and_clear();
+            bar.0.finish_and_clear();
         }
     }
 
@@ -89,8 +90,20 @@ impl Progress for TerminalProgress {
             .unwrap_or_else(|poisoned| poisoned.into_inner())
             .as_ref()
         {
-            Some(bar) => bar.suspend(|| say!("{line}")),
+            Some(bar) => bar.0.suspend(|| say!("{line}")),
             None => say!("{line}"),
+        }
+    }
+
+    /// Shows `STAGE (STATUS)` as the bar's message.
+    fn status(&self, status: &str) {
+        if let Some((bar, stage)) = self
+            .bar
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner())
+            .as_ref()
+        {
+            bar.set_message(format!("{stage} ({status})"));
         }
     }
 }

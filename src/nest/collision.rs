@@ -150,6 +150,11 @@ pub struct JaguaEngine {
     queries: u64,
     /// Bounding box of the container's inside (after the inset), for the edge overlap.
     inside: (DVec2, DVec2),
+    /// Reused by every overlap query (cleared first): no allocation per query.
+    collector: BasicHazardCollector<Entity>,
+    /// The hazard key and placed shape of each inserted part, indexed by our key (jagua-rs only
+    /// finds a hazard by its entity through a linear search).
+    parts: Vec<Option<(HazKey, Arc<SPolygon>)>>,
 }
 
 /// Depth of the quadtree (jagua-rs recommends 3–10).
@@ -221,6 +226,8 @@ impl JaguaEngine {
             scratch,
             queries: 0,
             inside,
+            collector: BasicHazardCollector::new(),
+            parts: Vec::new(),
         })
     }
 
@@ -248,13 +255,21 @@ impl CollisionEngine for JaguaEngine {
     }
 
     fn insert(&mut self, key: u32, shape: ShapeId, translation: DVec2) {
-        let placed = self.translated(shape, translation).clone();
+        let placed = Arc::new(self.translated(shape, translation).clone());
         self.engine
-            .register_hazard(Hazard::new(Entity::Part(key), Arc::new(placed)));
+            .register_hazard(Hazard::new(Entity::Part(key), Arc::clone(&placed)));
+        let hazard_key = (self.engine)
+            .haz_key(&Entity::Part(key))
+            .expect("the hazard was just registered");
+        let index = key as usize;
+        if self.parts.len() <= index {
+            self.parts.resize(index + 1, None);
+        }
+        self.parts[index] = Some((hazard_key, placed));
     }
 
     fn remove(&mut self, key: u32) {
-        if let Some(hazard_key) = self.engine.haz_key(&Entity::Part(key)) {
+        if let Some((hazard_key, _)) = self.parts.get_mut(key as usize).and_then(Option::take) {
             self.engine.deregister_hazard_by_key(hazard_key);
         }
     }
@@ -305,20 +320,27 @@ fn pole_depth(a: &[Circle], b: &[Circle]) -> f64 {
 /// Overlap quantity of two sets of poles: over every overlapping pair, its penetration times the
 /// smaller radius (mm², an area-like quantity that grows smoothly as the shapes move deeper into
 /// each other and weighs contacts between large poles more than between small ones).
-fn pole_overlap(a: &[Circle], b: &[Circle]) -> f64 {
+fn pole_overlap(a: &[Circle], b: &[Circle], b_box: Rect) -> f64 {
     let mut total = 0.0;
     for pole_a in a {
+        let (x, y, radius) = (pole_a.center.0, pole_a.center.1, pole_a.radius);
+        // A pole clear of the other shape's bounding box overlaps none of its poles.
+        if x + radius <= b_box.x_min
+            || x - radius >= b_box.x_max
+            || y + radius <= b_box.y_min
+            || y - radius >= b_box.y_max
+        {
+            continue;
+        }
         for pole_b in b {
-            let reach = f64::from(pole_a.radius + pole_b.radius);
-            let dx = f64::from(pole_a.center.0 - pole_b.center.0);
-            let dy = f64::from(pole_a.center.1 - pole_b.center.1);
-            if dx.abs() >= reach || dy.abs() >= reach {
+            let reach = f64::from(radius + pole_b.radius);
+            let dx = f64::from(x - pole_b.center.0);
+            let dy = f64::from(y - pole_b.center.1);
+            let squared = dx * dx + dy * dy;
+            if squared >= reach * reach {
                 continue;
             }
-            let penetration = reach - dx.hypot(dy);
-            if penetration > 0.0 {
-                total += penetration * f64::from(pole_a.radius.min(pole_b.radius));
-            }
+            total += (reach - squared.sqrt()) * f64::from(radius.min(pole_b.radius));
         }
     }
     total
@@ -341,7 +363,7 @@ fn part_overlap(a: &SPolygon, b: &SPolygon) -> f64 {
     let common_x = f64::from(box_a.x_max.min(box_b.x_max) - box_a.x_min.max(box_b.x_min));
     let common_y = f64::from(box_a.y_max.min(box_b.y_max) - box_a.y_min.max(box_b.y_min));
     let boxes = BOX_OVERLAP_FRACTION * common_x.max(0.0) * common_y.max(0.0);
-    (pole_overlap(poles_a, poles_b) + boxes).max(floor)
+    (pole_overlap(poles_a, poles_b, box_b) + boxes).max(floor)
 }
 
 fn unseen_floor(a: &[Circle], b: &[Circle]) -> f64 {
@@ -393,14 +415,16 @@ impl JaguaEngine {
         let placed: &SPolygon =
             self.scratch[shape].transform_from(&self.library.shapes[shape], &transform);
         let engine = &self.engine;
+        let parts = &self.parts;
         let inside = self.inside;
-        let mut collector = BasicHazardCollector::<Entity>::new();
+        let collector = &mut self.collector;
+        collector.clear();
         let mut total = 0.0;
-        let _ = engine.collect_poly_collisions_until(placed, &NoFilter, &mut collector, |entity| {
+        let _ = engine.collect_poly_collisions_until(placed, &NoFilter, collector, |entity| {
             total += match entity {
                 Entity::Exterior => weight(Obstacle::Edge) * edge_overlap(placed, inside),
                 Entity::Part(key) => {
-                    weight(Obstacle::Part(key)) * Self::overlap_with(engine, placed, key)
+                    weight(Obstacle::Part(key)) * Self::overlap_with(parts, placed, key)
                 }
             };
             total > bound
@@ -422,16 +446,16 @@ impl JaguaEngine {
             Transformation::from_translation((translation.x as f32, translation.y as f32));
         let placed: &SPolygon =
             self.scratch[shape].transform_from(&self.library.shapes[shape], &transform);
-        let mut collector = BasicHazardCollector::<Entity>::new();
+        self.collector.clear();
         self.engine
-            .collect_poly_collisions(placed, &Ignore(ignore), &mut collector);
-        let mut found: Vec<(Obstacle, f64)> = collector
+            .collect_poly_collisions(placed, &Ignore(ignore), &mut self.collector);
+        let mut found: Vec<(Obstacle, f64)> = (self.collector)
             .entities()
             .map(|entity| match *entity {
                 Entity::Exterior => (Obstacle::Edge, edge_overlap(placed, self.inside)),
                 Entity::Part(key) => (
                     Obstacle::Part(key),
-                    Self::overlap_with(&self.engine, placed, key),
+                    Self::overlap_with(&self.parts, placed, key),
                 ),
             })
             .collect();
@@ -450,21 +474,17 @@ impl JaguaEngine {
             Transformation::from_translation((translation.x as f32, translation.y as f32));
         let placed: &SPolygon =
             self.scratch[shape].transform_from(&self.library.shapes[shape], &transform);
-        let Some(other) = self
-            .engine
-            .haz_key(&Entity::Part(key))
-            .and_then(|hazard_key| self.engine.hazard(hazard_key))
-        else {
+        let Some(Some((_, other))) = self.parts.get(key as usize) else {
             return 0.0;
         };
-        pole_depth(measured_poles(placed), measured_poles(&other.shape))
+        pole_depth(measured_poles(placed), measured_poles(other))
     }
 
-    fn overlap_with(engine: &CDEngine<Entity>, placed: &SPolygon, key: u32) -> f64 {
-        engine
-            .haz_key(&Entity::Part(key))
-            .and_then(|hazard_key| engine.hazard(hazard_key))
-            .map_or(0.0, |other| part_overlap(placed, &other.shape))
+    fn overlap_with(parts: &[Option<(HazKey, Arc<SPolygon>)>], placed: &SPolygon, key: u32) -> f64 {
+        match parts.get(key as usize) {
+            Some(Some((_, other))) => part_overlap(placed, other),
+            _ => 0.0,
+        }
     }
 }
 
@@ -489,10 +509,14 @@ mod tests {
     fn two_circles_overlap_by_their_penetration_times_the_smaller_radius() {
         let (a, b) = ([circle(0.0, 0.0, 5.0)], [circle(4.0, 0.0, 3.0)]);
         assert!((pole_depth(&a, &b) - 4.0).abs() < 1e-6);
-        assert!((pole_overlap(&a, &b) - 12.0).abs() < 1e-5);
+        let wide = Rect::try_new(-100.0, -100.0, 100.0, 100.0).unwrap();
+        assert!((pole_overlap(&a, &b, wide) - 12.0).abs() < 1e-5);
         let apart = [circle(9.0, 0.0, 3.0)];
         assert_eq!(pole_depth(&a, &apart), 0.0);
-        assert_eq!(pole_overlap(&a, &apart), 0.0);
+        assert_eq!(pole_overlap(&a, &apart, wide), 0.0);
+        // The other shape's bounding box clear of the poles: nothing is counted.
+        let far = Rect::try_new(50.0, 50.0, 60.0, 60.0).unwrap();
+        assert_eq!(pole_overlap(&a, &b, far), 0.0);
     }
 
     #[test]

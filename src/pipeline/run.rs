@@ -186,4 +186,8 @@ impl Progress for PartProgress<'_> {
     fn warn(&self, message: &str) {
         self.inner.warn(message);
     }
+
+    fn status(&self, status: &str) {
+        self.inner.status(status);
+    }
 }

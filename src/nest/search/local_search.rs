@@ -32,7 +32,7 @@ pub const MIN_SHRINK_FRACTION: f64 = 0.0025;
 pub const STALL_ROUNDS: u32 = 40;
 /// On a roll, the share of the work budget given to the sequence search; the rest goes to the
 /// compression through overlap (`separator.rs`), which starts from its best layout.
-pub const SEQUENCE_SEARCH_SHARE: f64 = 0.15;
+pub const SEQUENCE_SEARCH_SHARE: f64 = 0.05;
 /// How many times the roll length of the construction may double before the search gives up.
 const MAX_ROLL_DOUBLINGS: u32 = 8;
 /// Roll length of the first attempt, as a multiple of (net area / roll width) plus the largest part.
@@ -117,6 +117,7 @@ impl Problem<'_> {
                 best = chosen;
                 stalled_rounds = 0;
                 (current, pass) = self.shrink(&mut best, shrink_fraction, &mut work, &mut random);
+                self.report_best(progress, self.cost(&best).length);
             } else if shrinking {
                 stalled_rounds = if self.less_left_out(chosen_cost, current_cost) {
                     0
@@ -156,6 +157,7 @@ impl Problem<'_> {
                         progress.advance((start_work + spent).min(total_budget));
                         started.elapsed() >= self.options.time_limit
                     },
+                    |length| self.report_best(progress, length),
                 );
                 work += spent;
                 if started.elapsed() >= self.options.time_limit {
@@ -248,6 +250,19 @@ impl Problem<'_> {
             }
             *best = solution;
         }
+    }
+
+    /// Shows the density of a complete roll layout `length` long as the stage's status (the
+    /// lengths of the search are those of the inflated outlines, so it is a hair below the final
+    /// figure measured on the exact ones).
+    fn report_best(&self, progress: &dyn Progress, length: f64) {
+        let area: f64 = (self.copies.iter())
+            .map(|copy| self.items[copy.item].area().max(0.0))
+            .sum();
+        progress.status(&format!(
+            "best density {:.2} %",
+            100.0 * area / (self.height * length)
+        ));
     }
 
     /// Roll length of the first attempt (grown if a copy finds no room).

@@ -20,14 +20,16 @@
 //!      threshold accepting: a neighbour up to [`ACCEPTANCE_THRESHOLD`](local_search::ACCEPTANCE_THRESHOLD) longer is accepted at the
 //!      start, falling linearly to zero.
 //!
-//! 3. **Compression through overlap (roll only, `separator`).** The sequence search gets
+//! 3. **Search through overlap (roll only, `separator`, `compression`).** The sequence search gets
 //!    [`SEQUENCE_SEARCH_SHARE`](local_search::SEQUENCE_SEARCH_SHARE) of the budget; the rest cuts
-//!    the best layout's strip shorter, pushes the parts beyond the cut inside (into overlap) and
-//!    separates them by guided local search on the pole-based overlap measure of the collision
-//!    engine: each colliding part moves to the sampled, then coordinate-descent-refined, position
-//!    of least weighted overlap, and the weights of pairs that keep colliding grow. A separated
-//!    layout is kept and cut again; a failure restores the best and halves the cut. The result is
-//!    returned only if the independent check accepts it.
+//!    the best layout's strip shorter at a random split (the parts right of it move left, into
+//!    overlap) and separates them by guided local search on the pole-based overlap measure of the
+//!    collision engine: each colliding part moves to the sampled, then coordinate-descent-refined,
+//!    position of least weighted overlap, the weights of pairs that keep colliding grow and the
+//!    others decay, and each round runs two seeded workers in parallel and keeps the better. In
+//!    exploration a separated layout is cut again and a failed one is pooled, disrupted and
+//!    separated again at the same length; compression then cuts the best by ever smaller steps.
+//!    The result is returned only if the independent check accepts it.
 //!
 //! Determinism: the work is counted in collision queries and the search stops after
 //! `work_limit` of them (default `time_limit × NOMINAL_QUERIES_PER_SECOND`), so the result depends
@@ -38,10 +40,11 @@
 //!
 //! Files: `problem` (validated input and oriented shapes, checked by `validation`), `placement`
 //! (bottom-left, with `compaction`), `moves`, `objective`, `local_search` (the loop and its
-//! budget), `separator` (compression through overlap), `holes` (parts in holes), `measure` (the
+//! budget), `separator` and `compression` (search through overlap), `holes` (parts in holes), `measure` (the
 //! public layout), `solution` and `random`.
 
 mod compaction;
+mod compression;
 mod holes;
 mod local_search;
 mod measure;

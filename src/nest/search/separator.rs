@@ -1,9 +1,11 @@
-//! Compression through overlap (roll only): from the best complete layout, cut the strip shorter,
-//! push the parts beyond the cut back inside (they now overlap), and *separate* them by moving and
-//! turning one colliding part at a time to the position of least weighted overlap (sampled, then
-//! refined by coordinate descent), raising the weight of every pair that keeps colliding (guided
-//! local search). A separated layout is kept and cut again; when separation fails, the best is
-//! restored and the cut halved.
+//! The separator (roll only): parts on a strip, possibly overlapping, moved one colliding part at
+//! a time to the position of least weighted overlap (sampled, then refined by coordinate
+//! descent), with the weights of pairs that keep colliding raised and those of pairs that stopped
+//! colliding decayed (guided local search). Each round runs [`WORKERS`] independent copies in
+//! parallel from the same state, each with its own seed, and keeps the one of least weighted
+//! overlap; rounds continue until nothing collides or no substantial progress is made
+//! ([`Limits`]: rounds without progress per strike, strikes, each strike restarting from the
+//! least-overlapping state found).
 //!
 //! The overlap measure is [`JaguaEngine::overlap`] (pole-based, see `collision.rs`); a layout is
 //! separated when no part collides with anything (the same test as the bottom-left placement).
@@ -11,140 +13,84 @@
 use std::sync::Arc;
 
 use glam::DVec2;
+use rayon::prelude::*;
 
 use super::problem::{CLEARANCE_RELATIVE, Problem};
 use super::random::SplitMix64;
-use super::solution::{Placed, Solution};
 use crate::nest::collision::{CollisionEngine, JaguaEngine, Obstacle, ShapeId};
 
-/// First cut of the compression, as a fraction of the strip's length.
-pub const COMPRESSION_STEP: f64 = 0.005;
-/// Smallest cut: below this the step stays here.
-pub const MIN_COMPRESSION_STEP: f64 = 0.0005;
-/// Separation rounds (every colliding part moved once) without a lower total overlap after which
-/// the separation gives up.
-pub const SEPARATION_PATIENCE: u32 = 25;
 /// Random positions tried anywhere in the strip per move, in a random allowed orientation.
 pub const GLOBAL_SAMPLES: usize = 24;
 /// Random positions tried near the part's position per move (its orientation or another).
 pub const LOCAL_SAMPLES: usize = 24;
-/// Multiplier of a pair's weight per round in which it still collides.
-pub const WEIGHT_GROWTH: f64 = 1.3;
+/// Weight multiplier of a pair that still collides, for the smallest overlap of the round; the
+/// largest overlap gets [`WEIGHT_GROWTH_MAX`], others in proportion.
+pub const WEIGHT_GROWTH_MIN: f64 = 1.2;
+/// Weight multiplier of the pair with the largest overlap of the round.
+pub const WEIGHT_GROWTH_MAX: f64 = 2.0;
+/// Weight multiplier of a pair that does not collide (never below 1).
+pub const WEIGHT_DECAY: f64 = 0.95;
+/// A total overlap below this fraction of the previous least counts as substantial progress.
+pub const SUBSTANTIAL_PROGRESS: f64 = 0.98;
+/// Copies of the separator that run each round in parallel (rayon) from the same state, each
+/// with its own seed; the round keeps the one of least weighted overlap. Fixed, so that the
+/// result does not depend on the number of threads.
+pub const WORKERS: usize = 2;
 /// Work counted per overlap query, in collision queries: an overlap query collects every
 /// collision and measures each (and a move re-registers the part in the quadtree), about this many
-/// times the cost of a yes/no query on this machine (measured on shirts).
-pub const OVERLAP_QUERY_WORK: u64 = 4;
+/// times the cost of a yes/no query on this machine (measured on shirts). A round of parallel
+/// workers counts the work of the busiest one (its length in time on enough cores).
+pub const OVERLAP_QUERY_WORK: u64 = 2;
 
 /// A part of the separator's layout.
 #[derive(Debug, Clone, Copy)]
-struct Part {
-    copy: usize,
-    shape: ShapeId,
-    translation: DVec2,
+pub(super) struct Part {
+    pub(super) copy: usize,
+    pub(super) shape: ShapeId,
+    pub(super) translation: DVec2,
 }
 
+/// When a separation gives up: after `strikes` strikes in a row, a strike being `rounds` rounds
+/// without substantial progress that did not lower the least total overlap substantially.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Limits {
+    pub(super) rounds: u32,
+    pub(super) strikes: u32,
+}
+
+/// A collision: the part (index), what it overlaps and the unweighted overlap.
+type Collision = (usize, Obstacle, f64);
+
 /// The separator's state on one strip length.
-struct Separator<'p, 'a> {
+#[derive(Clone)]
+pub(super) struct Separator<'p, 'a> {
     problem: &'p Problem<'a>,
-    parts: Vec<Part>,
+    pub(super) parts: Vec<Part>,
     engine: JaguaEngine,
     /// Pair weights, `n × n`, symmetric; the edge weight of part `i` is at `n × n + i`.
     weights: Vec<f64>,
-    length: f64,
-}
-
-impl Problem<'_> {
-    /// Compresses the complete roll layout `best` within `budget` work (collision queries);
-    /// returns the shortest separated layout found (or `None` if none is shorter) and the work.
-    pub(super) fn compress(
-        &self,
-        best: &Solution<JaguaEngine>,
-        budget: u64,
-        random: &mut SplitMix64,
-        mut stop: impl FnMut(u64) -> bool,
-    ) -> (Option<Solution<JaguaEngine>>, u64) {
-        let mut parts: Vec<Part> = (best.placed.iter().zip(&best.order))
-            .filter_map(|(placed, &copy)| {
-                placed.map(|placed| Part {
-                    copy,
-                    shape: placed.shape,
-                    translation: placed.translation,
-                })
-            })
-            .collect();
-        if parts.len() != best.order.len() || parts.is_empty() {
-            return (None, 0);
-        }
-        let clearance = CLEARANCE_RELATIVE * self.scale;
-        let mut best_length = self.cost(best).length;
-        let mut best_parts = parts.clone();
-        let mut improved = false;
-        let mut step = COMPRESSION_STEP;
-        let mut work = 0;
-        let mut weights = vec![1.0; parts.len() * (parts.len() + 1)];
-        while work < budget && !stop(work) {
-            let length = best_length * (1.0 - step);
-            parts.clone_from(&best_parts);
-            let limit = length - clearance;
-            for part in &mut parts {
-                let right = part.translation.x + self.orientations[part.shape].max.x;
-                if right > limit {
-                    part.translation.x -= right - limit;
-                }
-            }
-            let mut separator = Separator::new(self, parts.clone(), weights.clone(), length);
-            let separated = separator.separate(random, budget - work.min(budget));
-            work += separator.engine.queries() * OVERLAP_QUERY_WORK;
-            weights = separator.weights;
-            if separated {
-                parts = separator.parts;
-                best_length = parts
-                    .iter()
-                    .map(|part| part.translation.x + self.orientations[part.shape].max.x)
-                    .fold(0.0, f64::max);
-                best_parts.clone_from(&parts);
-                improved = true;
-            } else {
-                step = (step / 2.0).max(MIN_COMPRESSION_STEP);
-            }
-        }
-        if !improved {
-            return (None, work);
-        }
-        (Some(self.solution_of(&best_parts, best_length)), work)
-    }
-
-    /// A roll solution holding `parts` on a strip `length` long (plus the inset).
-    fn solution_of(&self, parts: &[Part], length: f64) -> Solution<JaguaEngine> {
-        let mut engine = JaguaEngine::new(
-            Arc::clone(&self.library),
-            DVec2::ZERO,
-            DVec2::new(
-                length + self.library.inflation() + CLEARANCE_RELATIVE * self.scale,
-                self.height,
-            ),
-        )
-        .expect("the strip holds every part");
-        let mut placed = Vec::with_capacity(parts.len());
-        for part in parts {
-            engine.insert(part.copy as u32, part.shape, part.translation);
-            placed.push(Some(Placed {
-                bin: 0,
-                shape: part.shape,
-                translation: part.translation,
-                right: part.translation.x + self.orientations[part.shape].max.x,
-            }));
-        }
-        Solution {
-            order: parts.iter().map(|part| part.copy).collect(),
-            placed,
-            bins: vec![engine],
-        }
-    }
+    pub(super) length: f64,
+    /// Overlap queries counted before the current engine (rebuilt on every reset), and the work
+    /// of the parallel rounds beyond the kept worker's own.
+    retired: u64,
 }
 
 impl<'p, 'a> Separator<'p, 'a> {
-    fn new(problem: &'p Problem<'a>, parts: Vec<Part>, weights: Vec<f64>, length: f64) -> Self {
+    /// A separator holding `parts` on a strip `length` long, every weight 1.
+    pub(super) fn new(problem: &'p Problem<'a>, parts: Vec<Part>, length: f64) -> Self {
+        let engine = Self::engine_of(problem, &parts, length);
+        let n = parts.len();
+        Self {
+            problem,
+            parts,
+            engine,
+            weights: vec![1.0; n * (n + 1)],
+            length,
+            retired: 0,
+        }
+    }
+
+    fn engine_of(problem: &Problem, parts: &[Part], length: f64) -> JaguaEngine {
         let container = length + problem.library.inflation();
         let mut engine = JaguaEngine::new(
             Arc::clone(&problem.library),
@@ -155,17 +101,104 @@ impl<'p, 'a> Separator<'p, 'a> {
         for (index, part) in parts.iter().enumerate() {
             engine.insert(index as u32, part.shape, part.translation);
         }
-        Self {
-            problem,
-            parts,
-            engine,
-            weights,
-            length,
+        engine
+    }
+
+    /// Work spent so far, in collision queries.
+    pub(super) fn work(&self) -> u64 {
+        (self.retired + self.engine.queries()) * OVERLAP_QUERY_WORK
+    }
+
+    /// Puts `parts` on a strip `length` long; with `reset_weights`, every weight back to 1.
+    pub(super) fn reset(&mut self, parts: &[Part], length: f64, reset_weights: bool) {
+        self.retired += self.engine.queries();
+        self.parts.clear();
+        self.parts.extend_from_slice(parts);
+        self.length = length;
+        self.engine = Self::engine_of(self.problem, parts, length);
+        if reset_weights {
+            self.weights.fill(1.0);
         }
     }
 
+    /// Right end of the parts (inflated outlines).
+    pub(super) fn used_length(&self) -> f64 {
+        (self.parts.iter())
+            .map(|part| part.translation.x + self.problem.orientations[part.shape].max.x)
+            .fold(0.0, f64::max)
+    }
+
+    /// Range of translations that keep `shape` inside the strip.
+    fn range(&self, shape: ShapeId) -> (DVec2, DVec2) {
+        strip_range(self.problem, self.length, shape)
+    }
+
+    /// Cuts the strip to `length`: the parts whose centre lies right of `split` move left by the
+    /// difference, and any part still beyond the new end is pushed inside (into overlap).
+    pub(super) fn cut(&mut self, length: f64, split: f64) {
+        let delta = self.length - length;
+        let mut parts = self.parts.clone();
+        self.length = length;
+        for part in &mut parts {
+            let orientation = &self.problem.orientations[part.shape];
+            if part.translation.x + (orientation.min.x + orientation.max.x) / 2.0 > split {
+                part.translation.x -= delta;
+            }
+            let (low, high) = self.range(part.shape);
+            part.translation = part.translation.clamp(low, high);
+        }
+        self.reset(&parts, length, true);
+    }
+
+    /// Swaps the places (bounding-box centres) of two large parts of different items (large: the
+    /// largest items that hold three quarters of the parts' area): a jump out of a local minimum.
+    pub(super) fn disrupt(&mut self, random: &mut SplitMix64) {
+        let problem = self.problem;
+        let area = |part: &Part| problem.items[problem.copies[part.copy].item].area();
+        let mut areas: Vec<f64> = self.parts.iter().map(area).collect();
+        areas.sort_by(|a, b| b.total_cmp(a));
+        let total: f64 = areas.iter().sum();
+        let mut cumulative = 0.0;
+        let cutoff = (areas.iter())
+            .find(|&&part_area| {
+                cumulative += part_area;
+                cumulative > 0.75 * total
+            })
+            .copied()
+            .unwrap_or(0.0);
+        let large: Vec<usize> = (0..self.parts.len())
+            .filter(|&index| area(&self.parts[index]) >= cutoff)
+            .collect();
+        if self.parts.len() < 2 || large.is_empty() {
+            return;
+        }
+        let first = large[random.below(large.len())];
+        let first_item = problem.copies[self.parts[first].copy].item;
+        let others: Vec<usize> = (large.iter().copied())
+            .filter(|&index| problem.copies[self.parts[index].copy].item != first_item)
+            .collect();
+        let second = if others.is_empty() {
+            (first + 1 + random.below(self.parts.len() - 1)) % self.parts.len()
+        } else {
+            others[random.below(others.len())]
+        };
+        let centre = |part: &Part| {
+            let orientation = &problem.orientations[part.shape];
+            (orientation.min + orientation.max) / 2.0
+        };
+        let mut parts = self.parts.clone();
+        let (a, b) = (parts[first], parts[second]);
+        parts[first].translation = b.translation + centre(&b) - centre(&a);
+        parts[second].translation = a.translation + centre(&a) - centre(&b);
+        for index in [first, second] {
+            let (low, high) = self.range(parts[index].shape);
+            parts[index].translation = parts[index].translation.clamp(low, high);
+        }
+        self.reset(&parts, self.length, false);
+    }
+
     /// Every collision of the layout: (part, obstacle, overlap), each pair once.
-    fn collisions(&mut self) -> Vec<(usize, Obstacle, f64)> {
+    fn collisions(&mut self) -> Vec<Collision> {
         let mut found = Vec::new();
         for index in 0..self.parts.len() {
             let part = self.parts[index];
@@ -180,63 +213,191 @@ impl<'p, 'a> Separator<'p, 'a> {
         found
     }
 
-    /// Separation rounds until no part collides (true) or [`SEPARATION_PATIENCE`] rounds pass
-    /// without a lower total overlap, or `budget` work is spent (false).
-    fn separate(&mut self, random: &mut SplitMix64, budget: u64) -> bool {
-        let mut best_total = f64::INFINITY;
-        let mut patience = 0;
-        let n = self.parts.len();
-        loop {
-            let collisions = self.collisions();
-            if collisions.is_empty() {
-                return true;
-            }
-            let total: f64 = collisions.iter().map(|(_, _, overlap)| overlap).sum();
-            if total < best_total * (1.0 - 1e-3) {
-                best_total = total;
-                patience = 0;
-            } else {
-                patience += 1;
-                if patience >= SEPARATION_PATIENCE {
-                    return false;
-                }
-            }
-            if self.engine.queries() * OVERLAP_QUERY_WORK >= budget {
-                return false;
-            }
-            // Guided local search: pairs that still collide weigh more.
-            let largest = collisions
-                .iter()
-                .map(|(_, _, overlap)| *overlap)
-                .fold(0.0, f64::max);
-            for &(index, obstacle, overlap) in &collisions {
-                let growth = 1.0 + (WEIGHT_GROWTH - 1.0) * (overlap / largest).sqrt();
+    /// The collisions of the layout after the parts `moved` (sorted) moved, from those before
+    /// (`previous`, as [`Separator::collisions`] lists them): the pairs without a moved part are
+    /// kept, the moved parts queried again. Same pairs in the same order as `collisions()` would
+    /// give, at the cost of one query per moved part instead of one per part.
+    fn collisions_after(&mut self, previous: &[Collision], moved: &[usize]) -> Vec<Collision> {
+        let mut is_moved = vec![false; self.parts.len()];
+        for &index in moved {
+            is_moved[index] = true;
+        }
+        let mut found: Vec<Collision> = (previous.iter().copied())
+            .filter(|&(index, obstacle, _)| {
+                !is_moved[index]
+                    && !matches!(obstacle, Obstacle::Part(other) if is_moved[other as usize])
+            })
+            .collect();
+        for &index in moved {
+            let part = self.parts[index];
+            let overlaps = (self.engine).overlaps(part.shape, part.translation, Some(index as u32));
+            for (obstacle, overlap) in overlaps {
                 match obstacle {
-                    Obstacle::Edge => self.weights[n * n + index] *= growth,
-                    Obstacle::Part(other) => {
-                        let other = other as usize;
-                        self.weights[index * n + other] *= growth;
-                        self.weights[other * n + index] *= growth;
+                    Obstacle::Edge => found.push((index, obstacle, overlap)),
+                    // Between two moved parts, the pair is listed from the smaller index.
+                    Obstacle::Part(other)
+                        if is_moved[other as usize] && (other as usize) < index => {}
+                    Obstacle::Part(other) if (other as usize) < index => {
+                        found.push((other as usize, Obstacle::Part(index as u32), overlap));
                     }
+                    Obstacle::Part(_) => found.push((index, obstacle, overlap)),
                 }
-            }
-            let mut colliding: Vec<usize> = collisions
-                .iter()
-                .flat_map(|&(index, obstacle, _)| match obstacle {
-                    Obstacle::Edge => [Some(index), None],
-                    Obstacle::Part(other) => [Some(index), Some(other as usize)],
-                })
-                .flatten()
-                .collect();
-            colliding.sort_unstable();
-            colliding.dedup();
-            for position in (1..colliding.len()).rev() {
-                colliding.swap(position, random.below(position + 1));
-            }
-            for index in colliding {
-                self.move_part(index, random);
             }
         }
+        found.sort_by_key(|&(index, obstacle, _)| {
+            (
+                index,
+                match obstacle {
+                    Obstacle::Edge => None,
+                    Obstacle::Part(other) => Some(other),
+                },
+            )
+        });
+        found
+    }
+
+    /// Index of a collision's weight (the pair's, or the part's edge weight), and of its mirror.
+    fn weight_slots(&self, index: usize, obstacle: Obstacle) -> [usize; 2] {
+        let n = self.parts.len();
+        match obstacle {
+            Obstacle::Edge => [n * n + index; 2],
+            Obstacle::Part(other) => [index * n + other as usize, other as usize * n + index],
+        }
+    }
+
+    fn weighted_total(&self, collisions: &[Collision]) -> f64 {
+        (collisions.iter())
+            .map(|&(index, obstacle, overlap)| {
+                self.weights[self.weight_slots(index, obstacle)[0]] * overlap
+            })
+            .sum()
+    }
+
+    /// Guided local search: the weight of each colliding pair grows (more for larger overlaps),
+    /// the others decay towards 1.
+    fn update_weights(&mut self, collisions: &[Collision]) {
+        let largest = (collisions.iter())
+            .map(|(_, _, overlap)| *overlap)
+            .fold(0.0, f64::max);
+        let mut grown = vec![false; self.weights.len()];
+        for &(index, obstacle, overlap) in collisions {
+            let growth =
+                WEIGHT_GROWTH_MIN + (WEIGHT_GROWTH_MAX - WEIGHT_GROWTH_MIN) * (overlap / largest);
+            let [slot, mirror] = self.weight_slots(index, obstacle);
+            self.weights[slot] *= growth;
+            grown[slot] = true;
+            if mirror != slot {
+                self.weights[mirror] *= growth;
+                grown[mirror] = true;
+            }
+        }
+        for (weight, grown) in self.weights.iter_mut().zip(grown) {
+            if !grown {
+                *weight = (*weight * WEIGHT_DECAY).max(1.0);
+            }
+        }
+    }
+
+    /// Rounds until no part collides (returns 0) or the [`Limits`] end the separation, or the
+    /// work reaches `budget`, or `stop` says so; then the layout is the least overlapping one
+    /// found and the return value its total overlap.
+    pub(super) fn separate(
+        &mut self,
+        limits: Limits,
+        random: &mut SplitMix64,
+        budget: u64,
+        stop: &mut impl FnMut(u64) -> bool,
+    ) -> f64 {
+        let mut collisions = self.collisions();
+        let mut least = total(&collisions);
+        if least <= 0.0 {
+            return 0.0;
+        }
+        let mut least_parts = self.parts.clone();
+        let mut strikes = 0;
+        'strikes: while strikes < limits.strikes {
+            let strike_start = least;
+            let mut stale = 0;
+            while stale < limits.rounds {
+                if self.work() >= budget || stop(self.work()) {
+                    break 'strikes;
+                }
+                collisions = self.round(&collisions, random);
+                let loss = total(&collisions);
+                if loss <= 0.0 {
+                    return 0.0;
+                }
+                if loss < least {
+                    if loss < least * SUBSTANTIAL_PROGRESS {
+                        stale = 0;
+                    }
+                    least = loss;
+                    least_parts.clone_from(&self.parts);
+                } else {
+                    stale += 1;
+                }
+                self.update_weights(&collisions);
+            }
+            strikes = if least > strike_start * SUBSTANTIAL_PROGRESS {
+                strikes + 1
+            } else {
+                0
+            };
+            self.reset(&least_parts, self.length, false);
+            collisions = self.collisions();
+        }
+        self.reset(&least_parts, self.length, false);
+        least
+    }
+
+    /// One round: [`WORKERS`] copies each move every part of `collisions`, in their own random
+    /// order; the copy of least weighted overlap is kept. Returns its collisions.
+    fn round(&mut self, collisions: &[Collision], random: &mut SplitMix64) -> Vec<Collision> {
+        let mut colliding: Vec<usize> = collisions
+            .iter()
+            .flat_map(|&(index, obstacle, _)| match obstacle {
+                Obstacle::Edge => [Some(index), None],
+                Obstacle::Part(other) => [Some(index), Some(other as usize)],
+            })
+            .flatten()
+            .collect();
+        colliding.sort_unstable();
+        colliding.dedup();
+        let seeds: Vec<u64> = (0..WORKERS).map(|_| random.next()).collect();
+        let base = self.engine.queries();
+        let this = &*self;
+        let workers: Vec<(Separator<'p, 'a>, Vec<Collision>)> = seeds
+            .into_par_iter()
+            .map(|seed| {
+                let mut worker = this.clone();
+                let mut random = SplitMix64(seed);
+                let mut order = colliding.clone();
+                for position in (1..order.len()).rev() {
+                    order.swap(position, random.below(position + 1));
+                }
+                for index in order {
+                    worker.move_part(index, &mut random);
+                }
+                let collisions = worker.collisions_after(collisions, &colliding);
+                (worker, collisions)
+            })
+            .collect();
+        let busiest = (workers.iter())
+            .map(|(worker, _)| worker.engine.queries() - base)
+            .max()
+            .unwrap_or(0);
+        let mut kept = 0;
+        for (position, (worker, collisions)) in workers.iter().enumerate() {
+            let (kept_worker, kept_collisions) = &workers[kept];
+            if worker.weighted_total(collisions) < kept_worker.weighted_total(kept_collisions) {
+                kept = position;
+            }
+        }
+        let (worker, collisions) = workers.into_iter().nth(kept).expect("one worker or more");
+        self.retired += busiest - (worker.engine.queries() - base);
+        self.parts = worker.parts;
+        self.engine = worker.engine;
+        collisions
     }
 
     /// Moves part `index` to the position of least weighted overlap found: its own, random
@@ -247,13 +408,14 @@ impl<'p, 'a> Separator<'p, 'a> {
         let item = problem.copies[part.copy].item;
         let shapes = &problem.item_shapes[item];
         self.engine.remove(index as u32);
-        let inset = problem.library.inflation() + CLEARANCE_RELATIVE * problem.scale;
         let weights = &self.weights;
         let n = self.parts.len();
         let weight = move |obstacle: Obstacle| match obstacle {
             Obstacle::Edge => weights[n * n + index],
             Obstacle::Part(other) => weights[index * n + other as usize],
         };
+        let length = self.length;
+        let this_range = |shape: ShapeId| strip_range(problem, length, shape);
         let engine = &mut self.engine;
         let mut evaluate = |shape: ShapeId, translation: DVec2, bound: f64| {
             engine.overlap(shape, translation, bound, weight)
@@ -263,13 +425,6 @@ impl<'p, 'a> Separator<'p, 'a> {
             part.translation,
             evaluate(part.shape, part.translation, f64::INFINITY),
         );
-        let range = |shape: ShapeId| {
-            let orientation = &problem.orientations[shape];
-            let low = DVec2::splat(inset) - orientation.min;
-            let high =
-                DVec2::new(self.length, problem.height) - DVec2::splat(inset) - orientation.max;
-            (low, high.max(low))
-        };
         let current_size =
             problem.orientations[part.shape].max - problem.orientations[part.shape].min;
         for sample in 0..GLOBAL_SAMPLES + LOCAL_SAMPLES {
@@ -281,7 +436,7 @@ impl<'p, 'a> Separator<'p, 'a> {
             } else {
                 part.shape
             };
-            let (low, high) = range(shape);
+            let (low, high) = this_range(shape);
             let translation = if sample < GLOBAL_SAMPLES {
                 low + DVec2::new(random.unit(), random.unit()) * (high - low)
             } else {
@@ -294,7 +449,7 @@ impl<'p, 'a> Separator<'p, 'a> {
             }
         }
         // Coordinate descent from the best: steps along x and y, halved when nothing improves.
-        let (low, high) = range(best.0);
+        let (low, high) = this_range(best.0);
         let size = problem.orientations[best.0].max - problem.orientations[best.0].min;
         let mut step = size * 0.1;
         while best.2 > 0.0 && step.max_element() > size.max_element() * 1e-3 {
@@ -318,84 +473,60 @@ impl<'p, 'a> Separator<'p, 'a> {
     }
 }
 
+/// Range of translations that keep `shape` inside a strip `length` long.
+fn strip_range(problem: &Problem, length: f64, shape: ShapeId) -> (DVec2, DVec2) {
+    let inset = problem.library.inflation() + CLEARANCE_RELATIVE * problem.scale;
+    let orientation = &problem.orientations[shape];
+    let low = DVec2::splat(inset) - orientation.min;
+    let high = DVec2::new(length, problem.height) - DVec2::splat(inset) - orientation.max;
+    (low, high.max(low))
+}
+
+/// Total unweighted overlap of `collisions`.
+fn total(collisions: &[Collision]) -> f64 {
+    collisions.iter().map(|(_, _, overlap)| overlap).sum()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::nest::layout::StopReason;
     use crate::nest::options::NestOptions;
     use crate::nest::stock::Stock;
     use crate::nest::verify::tests::square;
-    use crate::nest::verify::verify;
 
-    /// Nesting on a roll `width` wide, every other option the default.
-    fn roll(width: f64) -> NestOptions {
-        NestOptions {
-            stock: Stock::Roll { width },
+    /// After a round, the collisions updated from the moved parts only are those of a full
+    /// recount: the same pairs, each once, with the same overlaps up to round-off.
+    #[test]
+    fn collisions_updated_after_moves_match_a_full_recount() {
+        let items = vec![square("square 10", 10.0, 8)];
+        let options = NestOptions {
+            stock: Stock::Roll { width: 21.0 },
             ..NestOptions::default()
-        }
-    }
-
-    /// The four copies of the problem's first shape (a 10 mm square), copy `i` at `at(i)`.
-    fn four_squares(problem: &Problem, at: impl Fn(f64) -> DVec2) -> Vec<Part> {
-        (0..4)
+        };
+        let problem = Problem::new(&items, &options).expect("valid problem");
+        let parts: Vec<Part> = (0..8)
             .map(|copy| Part {
                 copy,
                 shape: problem.item_shapes[0][0],
-                translation: at(copy as f64),
+                translation: DVec2::new(1.0 + 3.0 * copy as f64, 1.0 + (copy % 3) as f64),
             })
-            .collect()
-    }
-
-    /// Four 10 mm squares piled onto each other on a 21 mm roll 40 mm long: the separator must
-    /// spread them into a layout the independent check accepts.
-    #[test]
-    fn the_separator_resolves_piled_squares_into_a_verified_layout() {
-        let items = vec![square("square 10", 10.0, 4)];
-        let options = roll(21.0);
-        let problem = Problem::new(&items, &options).expect("valid problem");
-        let parts = four_squares(&problem, |copy| DVec2::new(1.0 + copy, 1.0 + copy));
-        let weights = vec![1.0; parts.len() * (parts.len() + 1)];
-        let mut separator = Separator::new(&problem, parts, weights, 40.0);
-        assert!(!separator.collisions().is_empty());
-        assert!(separator.separate(&mut SplitMix64(0), u64::MAX));
-        assert!(separator.collisions().is_empty());
-        let length = (separator.parts.iter())
-            .map(|part| part.translation.x + problem.orientations[part.shape].max.x)
-            .fold(0.0, f64::max);
-        let solution = problem.solution_of(&separator.parts, length);
-        let layout = problem.layout(
-            &solution,
-            &problem.fill_holes(),
-            0,
-            0,
-            StopReason::WorkBudget,
-        );
-        let violations = verify(&items, &layout);
-        assert!(violations.is_empty(), "{violations:?}");
-        assert!(layout.used_length <= 40.0 + 1e-9);
-    }
-
-    /// Compression of a loose layout (four 10 mm squares in one row on a roll wide enough for two
-    /// rows) finds a shorter verified layout.
-    #[test]
-    fn compression_shortens_a_loose_layout() {
-        let items = vec![square("square 10", 10.0, 4)];
-        let options = roll(20.5);
-        let problem = Problem::new(&items, &options).expect("valid problem");
-        let parts = four_squares(&problem, |copy| DVec2::new(0.1 + 12.0 * copy, 0.1));
-        let start = problem.solution_of(&parts, 46.2);
-        let (compressed, work) = problem.compress(&start, 2_000_000, &mut SplitMix64(1), |_| false);
-        assert!(work > 0);
-        let compressed = compressed.expect("a shorter layout");
-        assert!(problem.cost(&compressed).length < 40.0);
-        let layout = problem.layout(
-            &compressed,
-            &problem.fill_holes(),
-            0,
-            0,
-            StopReason::WorkBudget,
-        );
-        let violations = verify(&items, &layout);
-        assert!(violations.is_empty(), "{violations:?}");
+            .collect();
+        let mut separator = Separator::new(&problem, parts, 30.0);
+        let mut random = SplitMix64(11);
+        let mut collisions = separator.collisions();
+        for _ in 0..6 {
+            assert!(!collisions.is_empty());
+            collisions = separator.round(&collisions, &mut random);
+            let recount = separator.collisions();
+            assert_eq!(
+                collisions.len(),
+                recount.len(),
+                "{collisions:?} vs {recount:?}"
+            );
+            for (updated, full) in collisions.iter().zip(&recount) {
+                assert_eq!((updated.0, updated.1), (full.0, full.1));
+                assert!((updated.2 - full.2).abs() <= 1e-9 * full.2.max(1.0));
+            }
+        }
     }
 }
