@@ -13,17 +13,19 @@ pub enum IngestError {
         /// The operating system's reason.
         source: std::io::Error,
     },
-    /// The file is larger than flatcut reads ([`super::input::MAXIMUM_INPUT_BYTES`]).
+    /// The file is larger than flatcut reads (`limit`, `ingest::MAXIMUM_INPUT_BYTES`).
     #[error(
         "{path}: the file is {:.1} GiB, above the {} GiB flatcut reads; split or decimate it",
         *bytes as f64 / (1u64 << 30) as f64,
-        super::input::MAXIMUM_INPUT_BYTES >> 30
+        limit >> 30
     )]
     TooLarge {
         /// The file.
         path: PathBuf,
         /// Its size in bytes.
         bytes: u64,
+        /// The largest size read, in bytes.
+        limit: u64,
     },
     /// Neither the extension nor the content says what the file is.
     #[error(

@@ -83,6 +83,7 @@ fn read_bytes(path: &Path) -> Result<Vec<u8>, IngestError> {
         return Err(IngestError::TooLarge {
             path: path.to_path_buf(),
             bytes: size,
+            limit: MAXIMUM_INPUT_BYTES,
         });
     }
     std::fs::read(path).map_err(read_error)
