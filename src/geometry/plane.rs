@@ -126,24 +126,18 @@ pub fn deep_interior_point(outer: &[DVec2], holes: &[Vec<DVec2>]) -> DVec2 {
             (ring, ring_low, ring_high)
         })
         .collect();
-    let box_distance = |point: DVec2, ring_low: DVec2, ring_high: DVec2| {
-        (ring_low - point)
-            .max(point - ring_high)
-            .max(DVec2::ZERO)
-            .length()
-    };
     // The point's distance to the nearest ring when it is inside the region and farther than
     // `to_beat` from every ring.
     let clearance = |point: DVec2, to_beat: f64| {
         let in_hole = rings[1..].iter().any(|&(ring, ring_low, ring_high)| {
-            box_distance(point, ring_low, ring_high) == 0.0 && inside(point, ring)
+            distance_to_box(point, ring_low, ring_high) == 0.0 && inside(point, ring)
         });
         if !inside(point, outer) || in_hole {
             return None;
         }
         let mut nearest = f64::INFINITY;
         for &(ring, ring_low, ring_high) in &rings {
-            if box_distance(point, ring_low, ring_high) >= nearest {
+            if distance_to_box(point, ring_low, ring_high) >= nearest {
                 continue;
             }
             for k in 0..ring.len() {
@@ -156,22 +150,47 @@ pub fn deep_interior_point(outer: &[DVec2], holes: &[Vec<DVec2>]) -> DVec2 {
         }
         Some(nearest)
     };
-    let mut best = (0.5 * (low + high), f64::NEG_INFINITY);
+    // A strictly larger clearance wins: the first of equals stays, deterministically.
+    refined_grid_search(
+        (low, high),
+        DEEP_POINT_GRID,
+        DEEP_POINT_REFINEMENTS,
+        |point, best: Option<f64>| clearance(point, best.unwrap_or(f64::NEG_INFINITY)),
+    )
+    .map_or(0.5 * (low + high), |(point, _)| point)
+}
+
+/// The distance from `point` to the box `low`–`high` (0 inside it).
+pub fn distance_to_box(point: DVec2, low: DVec2, high: DVec2) -> f64 {
+    (low - point).max(point - high).max(DVec2::ZERO).length()
+}
+
+/// A grid search of the box `(low, high)`: `grid + 1` points a side, then a grid of the same
+/// count around the best point found, two steps wide, `refinements` times. `better(point, best)`
+/// is the point's value when it beats `best` (the best value so far, `None` before any), else
+/// `None`, so the first of equals stays: deterministic. The best point and its value, or `None`
+/// when no point had a value.
+pub fn refined_grid_search<T: Copy>(
+    (low, high): (DVec2, DVec2),
+    grid: usize,
+    refinements: usize,
+    mut better: impl FnMut(DVec2, Option<T>) -> Option<T>,
+) -> Option<(DVec2, T)> {
+    let mut best: Option<(DVec2, T)> = None;
     let (mut centre, mut half) = (0.5 * (low + high), 0.5 * (high - low));
-    for _ in 0..=DEEP_POINT_REFINEMENTS {
-        let step = 2.0 * half / DEEP_POINT_GRID as f64;
-        for i in 0..=DEEP_POINT_GRID {
-            for j in 0..=DEEP_POINT_GRID {
+    for _ in 0..=refinements {
+        let step = 2.0 * half / grid as f64;
+        for i in 0..=grid {
+            for j in 0..=grid {
                 let point = centre - half + step * DVec2::new(i as f64, j as f64);
-                // A strictly larger clearance wins: the first of equals stays, deterministically.
-                if let Some(distance) = clearance(point, best.1) {
-                    best = (point, distance);
+                if let Some(value) = better(point, best.map(|(_, value)| value)) {
+                    best = Some((point, value));
                 }
             }
         }
-        (centre, half) = (best.0, 2.0 * step);
+        (centre, half) = (best.map_or(centre, |(point, _)| point), 2.0 * step);
     }
-    best.0
+    best
 }
 
 #[cfg(test)]

@@ -7,7 +7,10 @@
 use glam::DVec2;
 
 use super::drawing::PartDrawing;
-use crate::geometry::{bounding_box, distance_to_segment, inside, long_side_of_smallest_rectangle};
+use crate::geometry::{
+    bounding_box, distance_to_box, distance_to_segment, inside, long_side_of_smallest_rectangle,
+    refined_grid_search,
+};
 
 /// Grid points per side of the search for the label's centre, in each refinement.
 const LABEL_GRID: usize = 12;
@@ -193,32 +196,28 @@ impl PartDrawing {
     }
 
     /// The point of the part's bounding box of highest `rank` of its `measure` (`None` outside
-    /// the material): a grid, refined around the best point [`LABEL_REFINEMENTS`] times.
+    /// the material), by [`refined_grid_search`]; the box's centre, measured nil, when no point
+    /// is in the material.
     fn grid_search(
         &self,
         measure: &impl Fn(DVec2) -> Option<(f64, f64)>,
         rank: impl Fn((f64, f64)) -> (f64, f64),
     ) -> (DVec2, (f64, f64)) {
         let (low, high) = bounding_box(&self.outer);
-        let mut best = (0.5 * (low + high), (0.0, 0.0));
-        let mut best_rank = (f64::NEG_INFINITY, f64::NEG_INFINITY);
-        let (mut centre, mut span) = (0.5 * (low + high), 0.5 * (high - low));
-        for _ in 0..=LABEL_REFINEMENTS {
-            let step = 2.0 * span / LABEL_GRID as f64;
-            for i in 0..=LABEL_GRID {
-                for j in 0..=LABEL_GRID {
-                    let point = centre - span + step * DVec2::new(i as f64, j as f64);
-                    // A strictly better rank wins: the first of equals stays, deterministically.
-                    if let Some(found) = measure(point)
-                        && rank(found) > best_rank
-                    {
-                        (best, best_rank) = ((point, found), rank(found));
-                    }
-                }
-            }
-            (centre, span) = (best.0, 2.0 * step);
-        }
-        best
+        refined_grid_search(
+            (low, high),
+            LABEL_GRID,
+            LABEL_REFINEMENTS,
+            |point, best: Option<((f64, f64), (f64, f64))>| {
+                let found = measure(point)?;
+                let ranked = rank(found);
+                best.is_none_or(|(_, known)| ranked > known)
+                    .then_some((found, ranked))
+            },
+        )
+        .map_or((0.5 * (low + high), (0.0, 0.0)), |(point, (found, _))| {
+            (point, found)
+        })
     }
 }
 
@@ -253,11 +252,6 @@ impl Lines {
             .collect();
         Self { chunks }
     }
-}
-
-/// The distance from `point` to the box `low`–`high` (0 inside it).
-fn distance_to_box(point: DVec2, low: DVec2, high: DVec2) -> f64 {
-    (low - point).max(point - high).max(DVec2::ZERO).length()
 }
 
 /// The distance from the origin to the segment `p`–`q` in the maximum norm: the half side of
