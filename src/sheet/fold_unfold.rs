@@ -17,7 +17,7 @@ use super::bend::{BendDirection, BendLine};
 use super::bend_rule::{AllowanceRule, BendGeometry, allowance_by_rule};
 use super::face_map::PlaneMap;
 use super::options::SheetOptions;
-use super::unfold::rest_position;
+use super::unfold::{rest_position, wound_clockwise};
 use crate::cad::{FoldBend, TriangleSoup};
 
 /// Angles below this (radians) are no bend: the two polygons continue each other.
@@ -440,19 +440,6 @@ fn check_closing(
         }
     }
     Ok(())
-}
-
-/// Whether the soup's triangles turn clockwise on the flat pattern.
-fn wound_clockwise(soup: &TriangleSoup, flat: &[DVec2]) -> bool {
-    let signed: f64 = soup
-        .triangles
-        .iter()
-        .map(|&[a, b, c]| {
-            let [a, b, c] = [a, b, c].map(|v| flat[v as usize]);
-            (b - a).perp_dot(c - a)
-        })
-        .sum();
-    signed < 0.0
 }
 
 #[cfg(test)]

@@ -308,10 +308,10 @@ fn flat_positions(skin: &TriangleSoup, maps: &[Option<FaceMap>]) -> Vec<DVec2> {
     flat.into_iter().map(|p| p.unwrap_or(DVec2::ZERO)).collect()
 }
 
-/// Whether the skin's triangles turn clockwise on the flat pattern (the shell lists its faces
-/// seen from inside).
-fn wound_clockwise(skin: &TriangleSoup, flat: &[DVec2]) -> bool {
-    let signed: f64 = skin
+/// Whether the soup's triangles turn clockwise on the flat pattern (a shell lists its faces seen
+/// from inside; a part file's polygons may face either way): the pattern is then mirrored.
+pub(super) fn wound_clockwise(soup: &TriangleSoup, flat: &[DVec2]) -> bool {
+    let signed: f64 = soup
         .triangles
         .iter()
         .map(|&[a, b, c]| {

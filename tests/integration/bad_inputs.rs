@@ -314,14 +314,7 @@ fn a_degenerate_triangle_is_named_with_its_line() {
                 f 1 2 3 4\n\nf 2 5 2\nf 2 3 5\n";
     let input = folder.path().join("sliver.obj");
     std::fs::write(&input, text.replace("f 2 5 2", "f 1 2 5")).unwrap();
-    let output = flatcut(&[
-        "flatten",
-        path(&input),
-        "-o",
-        path(&folder.path().join("out")),
-    ]);
-    let said = stderr(&output);
-    assert_eq!(output.status.code(), Some(1), "{said}");
+    let said = refused_flatten(&input, folder.path());
     assert!(
         said.contains("triangle 3 has zero area") && said.contains("[line 9]"),
         "the fanned quad's two triangles come first; the sliver is on line 9: {said}"
@@ -337,16 +330,17 @@ fn a_file_too_large_is_refused_before_it_is_read() {
     std::fs::File::create(&input)
         .and_then(|file| file.set_len(3 << 30))
         .expect("a sparse file");
-    let output = flatcut(&[
-        "flatten",
-        path(&input),
-        "-o",
-        path(&folder.path().join("out")),
-    ]);
-    let said = stderr(&output);
-    assert_eq!(output.status.code(), Some(1), "{said}");
+    let said = refused_flatten(&input, folder.path());
     assert!(
         said.contains("the file is 3.0 GiB, above the 2 GiB flatcut reads"),
         "{said}"
     );
+}
+
+/// `flatcut flatten INPUT -o FOLDER/out`, which must be refused (exit 1): its standard error.
+fn refused_flatten(input: &std::path::Path, folder: &std::path::Path) -> String {
+    let output = flatcut(&["flatten", path(input), "-o", path(&folder.join("out"))]);
+    let said = stderr(&output);
+    assert_eq!(output.status.code(), Some(1), "{said}");
+    said
 }
