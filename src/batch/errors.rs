@@ -58,7 +58,7 @@ pub enum BatchError {
         /// The part.
         name: String,
         /// What is wrong.
-        source: crate::Error,
+        source: Box<crate::Error>,
     },
     /// A worker process could not be started.
     #[error("cannot start the worker `{program}`: {source}")]

@@ -135,7 +135,7 @@ pub fn batch_tasks(config: &BatchConfig) -> Result<Vec<PartTask>, BatchError> {
         .validate()
         .map_err(|source| BatchError::Options {
             name: "(every part)".to_string(),
-            source,
+            source: Box::new(source),
         })?;
     let parts = match &config.source {
         BatchSource::Manifest(path) => read_manifest(path)?,

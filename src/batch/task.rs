@@ -87,7 +87,7 @@ impl PartTask {
             .validate()
             .map_err(|source| BatchError::Options {
                 name: part.name.clone(),
-                source,
+                source: Box::new(source),
             })?;
         Ok(task)
     }
