@@ -252,7 +252,30 @@ fn sheet_job(
     base_face: String,
     mut header: PartHeader,
 ) -> Result<Option<PartJob>, Error> {
-    let validated = validate(&unfold.skin).map_err(|defects| Error::Mesh {
+    header.attributes.thickness = Some(unfold.thickness);
+    unfolded_job(path, &unfold.skin, header, |soup_vertices| SheetPart {
+        flat: soup_vertices
+            .iter()
+            .map(|&vertex| unfold.flat[vertex as usize])
+            .collect(),
+        bends: unfold.bends,
+        thickness: unfold.thickness,
+        k_factor: unfold.k_factor,
+        rule: unfold.rule,
+        base_face,
+    })
+}
+
+/// The part of an exact unfold of `soup`: the soup validated into one facet model, its sheet
+/// made by `sheet` from the soup vertex of each model vertex; `None` when the soup is not one
+/// connected piece.
+fn unfolded_job(
+    path: &Path,
+    soup: &TriangleSoup,
+    header: PartHeader,
+    sheet: impl FnOnce(&[u32]) -> SheetPart,
+) -> Result<Option<PartJob>, Error> {
+    let validated = validate(soup).map_err(|defects| Error::Mesh {
         path: path.to_path_buf(),
         defects,
     })?;
@@ -262,11 +285,6 @@ fn sheet_job(
     ) else {
         return Ok(None);
     };
-    header.attributes.thickness = Some(unfold.thickness);
-    let flat = soup_vertices
-        .iter()
-        .map(|&vertex| unfold.flat[vertex as usize])
-        .collect();
     Ok(Some(PartJob {
         name: header.name,
         source: path.to_path_buf(),
@@ -278,15 +296,12 @@ fn sheet_job(
         stiffness: Stiffness::uniform(model),
         constraints: CutConstraints::default(),
         model: model.clone(),
-        warnings: validated.warnings.iter().map(ToString::to_string).collect(),
-        sheet: Some(SheetPart {
-            flat,
-            bends: unfold.bends,
-            thickness: unfold.thickness,
-            k_factor: unfold.k_factor,
-            rule: unfold.rule,
-            base_face,
-        }),
+        warnings: validated
+            .warnings
+            .iter()
+            .map(|warning| warning.located(&soup.source_lines))
+            .collect(),
+        sheet: Some(sheet(soup_vertices)),
     }))
 }
 
@@ -333,34 +348,12 @@ fn folded_part(path: &Path, part: &PartModel, options: &RunOptions) -> Result<Ve
         millimetres,
     };
     let unfold = unfold_folds(&folded, &options.sheet, material).map_err(refuse)?;
-    let validated = validate(tessellation.soup()).map_err(|defects| Error::Mesh {
-        path: path.to_path_buf(),
-        defects,
-    })?;
-    let ([model], [soup_vertices]) = (
-        validated.components.as_slice(),
-        validated.soup_vertices.as_slice(),
-    ) else {
-        return Err(refuse(
-            "the polygons of a part with bends must be one piece".to_owned(),
-        ));
-    };
     let mut header = template(part.name.clone(), part.units);
     header.quantity = part.quantity;
     header.attributes = part.attributes.clone();
-    Ok(vec![PartJob {
-        name: header.name,
-        source: path.to_path_buf(),
-        units: header.units,
-        quantity: header.quantity,
-        attributes: header.attributes,
-        fold_line_count: 0,
-        tessellation: Some(tessellation.figures),
-        stiffness: Stiffness::uniform(model),
-        constraints: CutConstraints::default(),
-        model: model.clone(),
-        warnings: validated.warnings.iter().map(ToString::to_string).collect(),
-        sheet: Some(SheetPart {
+    header.tessellation = Some(tessellation.figures);
+    let job = unfolded_job(path, tessellation.soup(), header, |soup_vertices| {
+        SheetPart {
             flat: soup_vertices
                 .iter()
                 .map(|&vertex| unfold.flat[vertex as usize])
@@ -370,8 +363,10 @@ fn folded_part(path: &Path, part: &PartModel, options: &RunOptions) -> Result<Ve
             k_factor: (options.sheet.rule == BendRule::KFactor).then_some(options.sheet.k_factor),
             rule: options.sheet.rule.describe(options.sheet.k_factor),
             base_face: format!("surface {}", unfold.base_surface),
-        }),
-    }])
+        }
+    })?;
+    job.map(|job| vec![job])
+        .ok_or_else(|| refuse("the polygons of a part with bends must be one piece".to_owned()))
 }
 
 /// What every part of one input file shares.
