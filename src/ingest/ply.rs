@@ -307,13 +307,14 @@ impl<'a> AsciiBody<'a> {
 
 impl Body<'_> {
     /// The next value of type `scalar`, as a float.
-    fn value(&mut self, scalar: Scalar, what: &str) -> Result<f64, FormatDefect> {
+    /// `what` names the record in an error (made only then: values are read in the millions).
+    fn value(&mut self, scalar: Scalar, what: &dyn Fn() -> String) -> Result<f64, FormatDefect> {
         match self {
             Body::Ascii(ascii) => {
                 let line = ascii.line;
-                let (word, line) = ascii
-                    .word()
-                    .ok_or_else(|| header_error(line, format!("the file ends inside {what}")))?;
+                let (word, line) = ascii.word().ok_or_else(|| {
+                    header_error(line, format!("the file ends inside {}", what()))
+                })?;
                 word.parse::<f64>()
                     .ok()
                     .filter(|value| {
@@ -322,7 +323,7 @@ impl Body<'_> {
                     .ok_or_else(|| {
                         header_error(
                             line,
-                            format!("'{word}' in {what} is not a number of its type"),
+                            format!("'{word}' in {} is not a number of its type", what()),
                         )
                     })
             }
@@ -330,7 +331,8 @@ impl Body<'_> {
                 let size = scalar.size();
                 let raw = bytes.get(*at..*at + size).ok_or_else(|| {
                     FormatDefect::Binary(format!(
-                        "the file ends inside {what} (byte {} of the body)",
+                        "the file ends inside {} (byte {} of the body)",
+                        what(),
                         *at
                     ))
                 })?;
@@ -384,9 +386,9 @@ fn read_record(
     let mut items = Vec::new();
     for (index, (_, property)) in element.properties.iter().enumerate() {
         match *property {
-            Property::Scalar(scalar) => keep(index, body.value(scalar, &what())?),
+            Property::Scalar(scalar) => keep(index, body.value(scalar, &what)?),
             Property::List { count, item } => {
-                let length = body.value(count, &what())?;
+                let length = body.value(count, &what)?;
                 if !(0.0..=u32::MAX as f64).contains(&length) || length > body.remaining() as f64 {
                     return Err(FormatDefect::Binary(format!(
                         "{} has a list of {length} items, more than the file holds",
@@ -395,7 +397,7 @@ fn read_record(
                 }
                 items.clear();
                 for _ in 0..length as usize {
-                    items.push(body.value(item, &what())?);
+                    items.push(body.value(item, &what)?);
                 }
                 list(index, &items)?;
             }

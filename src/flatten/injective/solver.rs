@@ -454,6 +454,21 @@ mod tests {
         )
     }
 
+    /// The Tutte start, which has no flipped triangle, and the flip-free flattening, which has
+    /// none either.
+    fn flattened_from_tutte(
+        model: &FacetModel,
+        springs: &SpringSystem,
+    ) -> (Vec<DVec2>, Vec<DVec2>, InjectiveOutcome) {
+        let start = tutte_embedding(model).expect("a boundary");
+        assert_eq!(flipped_triangles(model, &start), 0, "the Tutte start");
+        let (pattern, outcome) =
+            flip_free_flatten(model, springs, MAX_NEWTON_ITERATIONS, Deadline::NONE)
+                .expect("flattens");
+        assert_eq!(flipped_triangles(model, &pattern), 0, "{outcome:?}");
+        (start, pattern, outcome)
+    }
+
     #[test]
     fn the_fast_solver_folds_a_deep_bowl_and_the_flip_free_flattening_does_not() {
         let model = deep_bowl(0.85 * PI, 16, 48);
@@ -466,12 +481,7 @@ mod tests {
         let plain_flipped = flipped_triangles(&model, &plain);
         assert!(plain_flipped > 0, "the plain solver must fold this bowl");
 
-        let start = tutte_embedding(&model).expect("a boundary");
-        assert_eq!(flipped_triangles(&model, &start), 0, "the Tutte start");
-        let (pattern, outcome) =
-            flip_free_flatten(&model, &springs, MAX_NEWTON_ITERATIONS, Deadline::NONE)
-                .expect("flattens");
-        assert_eq!(flipped_triangles(&model, &pattern), 0, "{outcome:?}");
+        let (start, pattern, outcome) = flattened_from_tutte(&model, &springs);
         assert!(
             outcome.objective <= outcome.initial_objective,
             "{outcome:?}"
@@ -535,12 +545,7 @@ mod tests {
         let model = deep_bowl_with_hole(0.85 * PI, 16, 48);
         assert_eq!(model.boundary_loops().len(), 2);
         let springs = springs(&model);
-        let start = tutte_embedding(&model).expect("a boundary");
-        assert_eq!(flipped_triangles(&model, &start), 0, "the Tutte start");
-        let (pattern, outcome) =
-            flip_free_flatten(&model, &springs, MAX_NEWTON_ITERATIONS, Deadline::NONE)
-                .expect("flattens");
-        assert_eq!(flipped_triangles(&model, &pattern), 0, "{outcome:?}");
+        let (start, _, outcome) = flattened_from_tutte(&model, &springs);
         assert!(outcome.energy < springs.energy(&start), "{outcome:?}");
     }
 }
