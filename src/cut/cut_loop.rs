@@ -88,7 +88,10 @@ pub fn cut_and_flatten(
         let Some(improvement) =
             best_cut_widening(&state, &flattened, flatten_options, options, &starts)?
         else {
-            break if new_cut_allowed {
+            // Trials cut short by the deadline find nothing: that is the time limit's doing.
+            break if flatten_options.deadline.passed() {
+                CutStop::TimeLimit
+            } else if new_cut_allowed {
                 CutStop::NoBetterCut
             } else {
                 CutStop::CutBudget
