@@ -49,6 +49,14 @@ pub enum Error {
         /// Why, naming the shell and face or the surface.
         defect: crate::tessellate::BrepError,
     },
+    /// `--seams from-uv` was asked of an input without a texture layout.
+    #[error("{path}: --seams from-uv: {reason}; use the default seams (--seams auto)")]
+    SeamsFromUv {
+        /// The input file.
+        path: PathBuf,
+        /// Why the input has no texture layout.
+        reason: String,
+    },
     /// A sheet-metal solid could not be unfolded as asked (a base face that is not a flange, a
     /// bend the bend rule does not cover).
     #[error("{path}: sheet metal: {reason}")]

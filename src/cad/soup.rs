@@ -4,7 +4,7 @@
 //! reference vertices that do not exist. `crate::mesh::validate` turns it into checked
 //! facet models, one per connected component, or lists every defect.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 /// Tag of a face that came from a plain mesh file (no CAD face behind it).
 pub const NO_SOURCE_FACE: u32 = 0;
@@ -24,6 +24,20 @@ pub struct TriangleSoup {
     /// Where each vertex and triangle was written in its text file, for messages; empty for
     /// binary files and tessellations.
     pub source_lines: SourceLines,
+    /// The texture coordinates of every triangle corner, when the file gives them for every face
+    /// (an OBJ's `vt`: a garment's sewing pattern, a scan's atlas).
+    pub texture: Option<TextureCorners>,
+}
+
+/// Texture coordinates (`u`, `v`) of the corners of a soup's triangles: where each triangle lies
+/// in the file's texture layout. A corner's texture point is independent of its vertex: a vertex
+/// on a chart boundary of the layout has one texture point per chart.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TextureCorners {
+    /// The texture points.
+    pub points: Vec<DVec2>,
+    /// Per triangle, the index into `points` of each corner, in the triangle's corner order.
+    pub corners: Vec<[u32; 3]>,
 }
 
 /// The 1-based line of each vertex and triangle in the text file a soup was read from (a
@@ -67,6 +81,15 @@ impl TriangleSoup {
             face_sources,
             fold_edges: Vec::new(),
             source_lines: SourceLines::default(),
+            texture: None,
+        }
+    }
+
+    /// The soup with the texture coordinates of its triangles' corners.
+    pub fn with_texture(self, texture: TextureCorners) -> Self {
+        Self {
+            texture: Some(texture),
+            ..self
         }
     }
 

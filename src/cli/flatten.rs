@@ -7,6 +7,7 @@ use clap::Args;
 
 use flatcut::cut::CutOptions;
 use flatcut::flatten::{FlattenOptions, Solver};
+use flatcut::mesh::SeamSource;
 use flatcut::pattern::PatternOptions;
 use flatcut::pipeline::{PartOverrides, RunConfig, RunOptions};
 use flatcut::progress::Progress;
@@ -57,6 +58,11 @@ pub struct PartArgs {
     /// Units of mesh coordinates.
     #[arg(long, value_enum, default_value_t = Units::default())]
     units: Units,
+    /// Where a mesh's pieces come from: `auto` (each connected mesh is one part, opened by the
+    /// cut stage's seams) or `from-uv` (each chart of the OBJ's texture layout, `vt`, is one
+    /// part: a garment's sewing pattern pieces, their layout the start of the flattening).
+    #[arg(long, value_enum, default_value_t = SeamSource::default())]
+    seams: SeamSource,
     /// DXF version of the cut files: `r2000` (LWPOLYLINE, units in the header) or `r12` for old
     /// controllers.
     #[arg(long, value_enum, default_value_t = DxfVersionArg::R2000)]
@@ -171,6 +177,7 @@ impl PartArgs {
         };
         let options = RunOptions {
             units: self.units,
+            seams: self.seams,
             flatten,
             cut,
             tessellate: self.sizes.options()?,

@@ -68,6 +68,7 @@ pub fn split_along_edges(model: &FacetModel, cut_edges: &[usize]) -> Result<Spli
         face_sources: model.face_sources().to_vec(),
         fold_edges: copied_fold_edges(model, &original_vertex),
         source_lines: SourceLines::default(),
+        texture: None,
     };
     let mut components = validate(&soup)
         .map_err(|defects| CutError::InvalidResult(defects.to_string()))?

@@ -15,6 +15,7 @@ use super::dxf_options::DxfVersion;
 use super::energy_png::EnergyPngOptions;
 use crate::cut::{Cut, CutFigures, CutOptions, CutStop, Seam, SeamKind};
 use crate::flatten::{FlattenOptions, Solver, StopReason};
+use crate::mesh::SeamSource;
 use crate::nest::{NestLayout, Rotations, Stock};
 use crate::pattern::PatternOptions;
 use crate::sheet::{AllowanceRule, BendDirection, BendLine};
@@ -44,6 +45,9 @@ pub struct Report {
 pub struct ReportOptions {
     /// Units of mesh files (part files and STEP files carry their own).
     pub units: Units,
+    /// Where the pieces of mesh files came from, when not the default (left out otherwise).
+    #[serde(skip_serializing_if = "SeamSource::is_default")]
+    pub seams: SeamSource,
     /// Flattening options.
     pub flatten: FlattenOptions,
     /// Cutting options (seams, crest-line cuts).

@@ -5,12 +5,14 @@ mod chains;
 mod defects;
 mod facet;
 mod rows;
+mod texture_seams;
 mod validate;
 
-pub use crate::cad::{FoldEdge, NO_SOURCE_FACE, SourceLines, TriangleSoup};
+pub use crate::cad::{FoldEdge, NO_SOURCE_FACE, SourceLines, TextureCorners, TriangleSoup};
 pub use crate::geometry::tolerance::DEGENERATE_AREA_RATIO;
 pub use chains::chain_edges;
 pub use defects::{Defect, MAXIMUM_COORDINATE, MeshDefects};
 pub use facet::{FacetModel, NONE};
 pub use rows::compressed_rows;
+pub use texture_seams::{SeamSource, split_at_texture_seams};
 pub use validate::{ValidatedMesh, validate};

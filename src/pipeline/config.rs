@@ -12,6 +12,7 @@ use crate::error::Error;
 use crate::export::DxfVersion;
 use crate::export::energy_png::EnergyPngOptions;
 use crate::flatten::FlattenOptions;
+use crate::mesh::SeamSource;
 use crate::nest::{DEFAULT_SEED, MAXIMUM_STOCK_MM, NestOptions, Rotations, Stock};
 use crate::pattern::PatternOptions;
 use crate::progress::Deadline;
@@ -24,6 +25,9 @@ use crate::units::Units;
 pub struct RunOptions {
     /// Units of mesh files (part files and STEP files carry their own).
     pub units: Units,
+    /// Where a mesh file's pieces come from (echoed only when not the default).
+    #[serde(default, skip_serializing_if = "SeamSource::is_default")]
+    pub seams: SeamSource,
     /// Flattening options.
     pub flatten: FlattenOptions,
     /// Cutting options (seams, crest-line cuts).
@@ -66,6 +70,7 @@ impl Default for RunOptions {
     fn default() -> Self {
         Self {
             units: Units::default(),
+            seams: SeamSource::default(),
             flatten: FlattenOptions::default(),
             cut: CutOptions::default(),
             tessellate: TessellateOptions::default(),

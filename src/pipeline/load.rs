@@ -15,7 +15,7 @@ use crate::cut::{CutConstraints, NoCutRegion};
 use crate::error::Error;
 use crate::flatten::Stiffness;
 use crate::ingest::{CutSidecar, Input, read_cut_sidecar, read_input};
-use crate::mesh::{FacetModel, validate};
+use crate::mesh::{FacetModel, SeamSource, split_at_texture_seams, validate};
 use crate::sheet::{
     BendLine, BendRule, FoldedPart, NotASheet, SHEET_CHORD_MM, SheetOptions, SheetSurface,
     SheetUnfold, ThinSolid, base_face_index, recognise_shell, unfold_folds, unfold_skin,
@@ -100,8 +100,26 @@ fn read_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> 
     match read_input(path, options.units)? {
         Input::Mesh(mesh) => {
             let template = template(mesh.name, mesh.units);
-            split_parts(path, &mesh.soup, template, |_, _, _| {})
+            match options.seams {
+                SeamSource::Auto => split_parts(path, &mesh.soup, template, |_, _, _| {}),
+                SeamSource::FromUv => {
+                    let soup =
+                        split_at_texture_seams(&mesh.soup).ok_or_else(|| Error::SeamsFromUv {
+                            path: path.to_path_buf(),
+                            reason: "the file gives no texture point (OBJ `vt`) for every face \
+                                     corner"
+                                .into(),
+                        })?;
+                    split_parts(path, &soup, template, |_, _, _| {})
+                }
+            }
         }
+        _ if options.seams == SeamSource::FromUv => Err(Error::SeamsFromUv {
+            path: path.to_path_buf(),
+            reason: "only mesh files carry a texture layout; part and STEP files get their seams \
+                     from the cut stage"
+                .into(),
+        }),
         Input::Step(brep) => {
             let not_a_sheet = match sheet_metal_part(path, &brep, options)? {
                 Ok(job) => return Ok(vec![job]),

@@ -19,6 +19,7 @@ pub fn report_options(config: &RunConfig) -> ReportOptions {
     let options = &config.options;
     ReportOptions {
         units: options.units,
+        seams: options.seams,
         flatten: options.flatten.clone(),
         cut: options.cut.clone(),
         tessellate: options.tessellate,

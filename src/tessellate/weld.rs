@@ -80,6 +80,7 @@ pub fn weld_faces(faces: &[FaceMesh], weld: bool, tolerance: f64) -> Welded {
             face_sources,
             fold_edges,
             source_lines: SourceLines::default(),
+            texture: None,
         },
         &representative,
         &owners,
@@ -148,6 +149,7 @@ fn compact(
             face_sources: soup.face_sources,
             fold_edges,
             source_lines: SourceLines::default(),
+            texture: None,
         },
         vertex_sources: vertex_sources(representative, &new_index, owners, parameters),
     }

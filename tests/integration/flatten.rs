@@ -259,3 +259,115 @@ fn a_mesh_in_metres_gives_the_same_pattern_in_metres() {
         .expect("$INSUNITS in the header");
     assert_eq!(lines[units + 2], "6", "DXF units: metres");
 }
+
+/// A tube of radius 50 and height 100 sewn from two half panels: its OBJ gives each half its own
+/// texture chart (`vt`), as a garment's sewing pattern does.
+fn two_panel_tube_obj() -> String {
+    let (around, rows) = (24usize, 4usize);
+    let mut text = String::new();
+    for j in 0..=rows {
+        for i in 0..around {
+            let angle = std::f64::consts::TAU * i as f64 / around as f64;
+            let z = 100.0 * j as f64 / rows as f64;
+            text += &format!("v {} {} {z}\n", 50.0 * angle.cos(), 50.0 * angle.sin());
+        }
+    }
+    // Texture points: panel p's column c (0..=12) of row j; the panels lie side by side.
+    let half = around / 2;
+    let texture = |panel: usize, column: usize, row: usize| {
+        1 + panel * (half + 1) * (rows + 1) + row * (half + 1) + column
+    };
+    for panel in 0..2 {
+        for j in 0..=rows {
+            for c in 0..=half {
+                text += &format!(
+                    "vt {} {}\n",
+                    0.6 * panel as f64 + 0.04 * c as f64,
+                    0.1 * j as f64
+                );
+            }
+        }
+    }
+    for panel in 0..2 {
+        for c in 0..half {
+            for j in 0..rows {
+                let i = panel * half + c;
+                let vertex = |i: usize, j: usize| 1 + j * around + i % around;
+                let corner = |di: usize, dj: usize| {
+                    format!(
+                        "{}/{}",
+                        vertex(i + di, j + dj),
+                        texture(panel, c + di, j + dj)
+                    )
+                };
+                text += &format!(
+                    "f {} {} {} {}\n",
+                    corner(0, 0),
+                    corner(1, 0),
+                    corner(1, 1),
+                    corner(0, 1)
+                );
+            }
+        }
+    }
+    text
+}
+
+#[test]
+fn seams_from_uv_cut_a_garment_into_its_sewing_pattern_pieces() {
+    let folder = tempfile::tempdir().expect("temporary directory");
+    let input = folder.path().join("tube.obj");
+    std::fs::write(&input, two_panel_tube_obj()).expect("write input");
+    let pieces = folder.path().join("pieces");
+    let output = flatten_into(&input, &pieces, &["--seams", "from-uv"]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let report = read_report(&pieces);
+    let parts = report["parts"].as_array().expect("parts");
+    let names: Vec<&str> = parts.iter().map(|p| p["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["tube-1", "tube-2"]);
+    assert_eq!(
+        report["options"]["seams"], "from-uv",
+        "{}",
+        report["options"]
+    );
+    for part in parts {
+        assert_eq!(part["triangles"], 96, "{part}");
+        assert!(
+            part["seams"].as_array().expect("seams").is_empty(),
+            "{part}"
+        );
+        let name = part["name"].as_str().unwrap();
+        let figures = recompute(&pieces, name);
+        assert!(figures.area_error <= DEVELOPABLE_ERROR, "{figures:?}");
+        assert_eq!(figures.flipped, 0);
+        // Each piece is half the tube: a polygonal half circumference by the height.
+        let (mesh, faces) = read_obj(&pieces.join(format!("{name}.mesh.obj")));
+        assert_eq!((mesh.len(), faces.len()), (13 * 5, 96));
+    }
+    // Without it, the tube is one part opened by the cut stage's seam.
+    let whole = folder.path().join("whole");
+    let output = flatten_into(&input, &whole, &[]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let report = read_report(&whole);
+    assert_eq!(report["parts"].as_array().expect("parts").len(), 1);
+    assert!(
+        report["options"].get("seams").is_none(),
+        "the default is not echoed"
+    );
+}
+
+#[test]
+fn seams_from_uv_refuse_a_mesh_without_texture_points() {
+    let folder = tempfile::tempdir().expect("temporary directory");
+    let output = flatten_into(
+        &sample("cone_frustum.obj"),
+        &folder.path().join("out"),
+        &["--seams", "from-uv"],
+    );
+    assert_eq!(output.status.code(), Some(1), "{}", stderr(&output));
+    let message = stderr(&output);
+    assert!(
+        message.contains("--seams from-uv") && message.contains("vt"),
+        "{message}"
+    );
+}
