@@ -6,10 +6,27 @@ use crate::cut::CutError;
 use crate::export::ExportError;
 use crate::flatten::FlattenError;
 use crate::ingest::IngestError;
-use crate::mesh::MeshDefects;
+use crate::mesh::{Defect, MeshDefects};
 use crate::nest::NestError;
 use crate::nest::verify::Violation;
 use crate::pattern::{PatternError, PatternFileError};
+
+/// What to do about `defects` that `--repair` mends, if there are any.
+fn repair_hint(defects: &MeshDefects) -> &'static str {
+    let mendable = defects.defects.iter().any(|defect| {
+        matches!(
+            defect,
+            Defect::NonManifoldEdge { .. } | Defect::NonManifoldVertex { .. }
+        )
+    });
+    if mendable {
+        "\n  (--repair splits the non-manifold edges and vertices, with a warning for each; a \
+         garment with its sewing pattern as texture coordinates can also be cut into its pieces \
+         with --seams from-uv)"
+    } else {
+        ""
+    }
+}
 
 /// An error of a flatcut run.
 #[derive(Debug, thiserror::Error)]
@@ -18,7 +35,7 @@ pub enum Error {
     #[error(transparent)]
     Ingest(#[from] IngestError),
     /// An input mesh has defects that stop it from being flattened.
-    #[error("{path}: the mesh cannot be used: {defects}")]
+    #[error("{path}: the mesh cannot be used: {defects}{}", repair_hint(defects))]
     Mesh {
         /// The input file.
         path: PathBuf,

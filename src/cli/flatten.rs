@@ -63,6 +63,11 @@ pub struct PartArgs {
     /// part: a garment's sewing pattern pieces, their layout the start of the flattening).
     #[arg(long, value_enum, default_value_t = SeamSource::default())]
     seams: SeamSource,
+    /// Repair a mesh file's connectivity, with a warning for each change: weld vertices at the
+    /// same point, split edges shared by more than two triangles and vertices joining separate
+    /// fans (after `--seams from-uv` has cut the texture charts apart).
+    #[arg(long)]
+    repair: bool,
     /// DXF version of the cut files: `r2000` (LWPOLYLINE, units in the header) or `r12` for old
     /// controllers.
     #[arg(long, value_enum, default_value_t = DxfVersionArg::R2000)]
@@ -178,6 +183,7 @@ impl PartArgs {
         let options = RunOptions {
             units: self.units,
             seams: self.seams,
+            repair: self.repair,
             flatten,
             cut,
             tessellate: self.sizes.options()?,

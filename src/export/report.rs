@@ -48,6 +48,9 @@ pub struct ReportOptions {
     /// Where the pieces of mesh files came from, when not the default (left out otherwise).
     #[serde(skip_serializing_if = "SeamSource::is_default")]
     pub seams: SeamSource,
+    /// Whether mesh files were repaired (`--repair`), when they were (left out otherwise).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub repair: bool,
     /// Flattening options.
     pub flatten: FlattenOptions,
     /// Cutting options (seams, crest-line cuts).

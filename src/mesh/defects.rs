@@ -80,6 +80,27 @@ pub enum Defect {
         /// The first one.
         first: usize,
     },
+    /// A vertex at the same point as an earlier one, welded into it (`--repair`).
+    WeldedVertex {
+        /// Vertex index.
+        vertex: usize,
+        /// The earlier vertex it was welded into.
+        into: usize,
+    },
+    /// An edge shared by more than two triangles, split apart (`--repair`).
+    SplitEdge {
+        /// The edge's vertices.
+        vertices: [u32; 2],
+        /// How many triangles shared it.
+        faces: usize,
+    },
+    /// A vertex joining several fans of triangles, given one copy per fan (`--repair`).
+    SplitVertex {
+        /// Vertex index.
+        vertex: usize,
+        /// Number of copies (fans).
+        copies: usize,
+    },
 }
 
 impl Defect {
@@ -90,6 +111,9 @@ impl Defect {
             Defect::RepeatedVertex { .. }
                 | Defect::Reoriented { .. }
                 | Defect::UnreferencedVertices { .. }
+                | Defect::WeldedVertex { .. }
+                | Defect::SplitEdge { .. }
+                | Defect::SplitVertex { .. }
         )
     }
 }
@@ -109,13 +133,18 @@ impl Defect {
             Defect::NonFiniteVertex { vertex }
             | Defect::TooLargeVertex { vertex, .. }
             | Defect::NonManifoldVertex { vertex, .. }
+            | Defect::SplitVertex { vertex, .. }
             | Defect::UnreferencedVertices { first: vertex, .. } => vertex_lines(&[vertex]),
+            Defect::WeldedVertex { vertex, into } => vertex_lines(&[vertex, into]),
             Defect::IndexOutOfRange { triangle, .. }
             | Defect::RepeatedVertex { triangle }
             | Defect::ZeroArea { triangle, .. } => {
                 lines.triangle(triangle).map(|line| line.to_string())
             }
             Defect::NonManifoldEdge {
+                vertices: [a, b], ..
+            }
+            | Defect::SplitEdge {
                 vertices: [a, b], ..
             }
             | Defect::NonOrientable { vertices: [a, b] } => vertex_lines(&[a as usize, b as usize]),
@@ -201,6 +230,27 @@ impl fmt::Display for Defect {
                     n(*first)
                 )
             }
+            Defect::WeldedVertex { vertex, into } => write!(
+                f,
+                "vertex {} lies on vertex {}: welded into it (--repair)",
+                n(*vertex),
+                n(*into)
+            ),
+            Defect::SplitEdge {
+                vertices: [a, b],
+                faces,
+            } => write!(
+                f,
+                "edge {}-{} was shared by {faces} triangles: split apart (--repair)",
+                n(*a as usize),
+                n(*b as usize)
+            ),
+            Defect::SplitVertex { vertex, copies } => write!(
+                f,
+                "vertex {} joined {copies} separate fans of triangles: one copy per fan \
+                 (--repair)",
+                n(*vertex)
+            ),
         }
     }
 }

@@ -28,6 +28,10 @@ pub struct RunOptions {
     /// Where a mesh file's pieces come from (echoed only when not the default).
     #[serde(default, skip_serializing_if = "SeamSource::is_default")]
     pub seams: SeamSource,
+    /// Whether a mesh file's duplicate vertices are welded and its non-manifold edges and
+    /// vertices split, with a warning each (echoed only when set).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub repair: bool,
     /// Flattening options.
     pub flatten: FlattenOptions,
     /// Cutting options (seams, crest-line cuts).
@@ -71,6 +75,7 @@ impl Default for RunOptions {
         Self {
             units: Units::default(),
             seams: SeamSource::default(),
+            repair: false,
             flatten: FlattenOptions::default(),
             cut: CutOptions::default(),
             tessellate: TessellateOptions::default(),

@@ -15,7 +15,10 @@ use crate::cut::{CutConstraints, NoCutRegion};
 use crate::error::Error;
 use crate::flatten::Stiffness;
 use crate::ingest::{CutSidecar, Input, read_cut_sidecar, read_input};
-use crate::mesh::{FacetModel, SeamSource, split_at_texture_seams, validate};
+use crate::mesh::{
+    Defect, FacetModel, SeamSource, split_at_texture_seams, split_non_manifold, validate,
+    weld_duplicates,
+};
 use crate::sheet::{
     BendLine, BendRule, FoldedPart, NotASheet, SHEET_CHORD_MM, SheetOptions, SheetSurface,
     SheetUnfold, ThinSolid, base_face_index, recognise_shell, unfold_folds, unfold_skin,
@@ -100,19 +103,12 @@ fn read_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> 
     match read_input(path, options.units)? {
         Input::Mesh(mesh) => {
             let template = template(mesh.name, mesh.units);
-            match options.seams {
-                SeamSource::Auto => split_parts(path, &mesh.soup, template, |_, _, _| {}),
-                SeamSource::FromUv => {
-                    let soup =
-                        split_at_texture_seams(&mesh.soup).ok_or_else(|| Error::SeamsFromUv {
-                            path: path.to_path_buf(),
-                            reason: "the file gives no texture point (OBJ `vt`) for every face \
-                                     corner"
-                                .into(),
-                        })?;
-                    split_parts(path, &soup, template, |_, _, _| {})
-                }
+            let (soup, repairs) = prepared_soup(path, mesh.soup, options)?;
+            let mut jobs = split_parts(path, &soup, template, |_, _, _| {})?;
+            for job in &mut jobs {
+                job.warnings.splice(0..0, repairs.iter().cloned());
             }
+            Ok(jobs)
         }
         _ if options.seams == SeamSource::FromUv => Err(Error::SeamsFromUv {
             path: path.to_path_buf(),
@@ -144,6 +140,37 @@ fn read_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> 
         }
         Input::Part(part) => load_part_file(path, &part, &options.tessellate),
     }
+}
+
+/// A mesh file's soup as the options want it: duplicates welded (`--repair`), cut into its
+/// texture charts (`--seams from-uv`), non-manifold edges and vertices split (`--repair`); with
+/// the repairs made, as warnings.
+fn prepared_soup(
+    path: &Path,
+    mut soup: TriangleSoup,
+    options: &RunOptions,
+) -> Result<(TriangleSoup, Vec<String>), Error> {
+    let mut warnings = Vec::new();
+    let mut note = |soup: &TriangleSoup, repairs: Vec<Defect>| {
+        warnings.extend(repairs.iter().map(|r| r.located(&soup.source_lines)));
+    };
+    if options.repair {
+        let (welded, repairs) = weld_duplicates(&soup);
+        note(&soup, repairs);
+        soup = welded;
+    }
+    if options.seams == SeamSource::FromUv {
+        soup = split_at_texture_seams(&soup).ok_or_else(|| Error::SeamsFromUv {
+            path: path.to_path_buf(),
+            reason: "the file gives no texture point (OBJ `vt`) for every face corner".into(),
+        })?;
+    }
+    if options.repair {
+        let (split, repairs) = split_non_manifold(&soup);
+        note(&soup, repairs);
+        soup = split;
+    }
+    Ok((soup, warnings))
 }
 
 /// Puts the quantity, material and thickness given for the part over the file's.

@@ -20,6 +20,7 @@ pub fn report_options(config: &RunConfig) -> ReportOptions {
     ReportOptions {
         units: options.units,
         seams: options.seams,
+        repair: options.repair,
         flatten: options.flatten.clone(),
         cut: options.cut.clone(),
         tessellate: options.tessellate,

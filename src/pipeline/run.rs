@@ -79,9 +79,14 @@ pub fn load_all(config: &RunConfig, progress: &dyn Progress) -> Result<Vec<PartJ
         return Err(error);
     }
     check_distinct_names(&jobs)?;
+    // The parts of one file share its warnings: each is said once.
+    let mut said = std::collections::BTreeSet::new();
     for job in &jobs {
         for warning in &job.warnings {
-            progress.warn(&format!("{}: {warning}", job.source.display()));
+            let line = format!("{}: {warning}", job.source.display());
+            if said.insert(line.clone()) {
+                progress.warn(&line);
+            }
         }
         let triangles = job.model.triangle_count();
         if config.options.flatten.solver == Solver::Paper

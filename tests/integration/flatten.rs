@@ -371,3 +371,38 @@ fn seams_from_uv_refuse_a_mesh_without_texture_points() {
         "{message}"
     );
 }
+
+#[test]
+fn repair_splits_a_non_manifold_edge_that_stops_the_mesh_otherwise() {
+    let folder = tempfile::tempdir().expect("temporary directory");
+    let input = folder.path().join("three_panels.obj");
+    // Three squares sewn along one edge (vertices 1-2), and vertex 1 repeated as vertex 9.
+    let text = "v 0 0 0\nv 0 0 10\nv 10 0 0\nv 10 0 10\nv -10 0 0\nv -10 0 10\n\
+                v 0 10 0\nv 0 10 10\nv 0 0 0\n\
+                f 1 3 4 2\nf 2 6 5 1\nf 9 2 8 7\n";
+    std::fs::write(&input, text).expect("write input");
+    let refused = flatten_into(&input, &folder.path().join("refused"), &[]);
+    assert_eq!(refused.status.code(), Some(1), "{}", stderr(&refused));
+    let message = stderr(&refused);
+    assert!(message.contains("--repair"), "{message}");
+    let repaired_folder = folder.path().join("repaired");
+    let repaired = flatten_into(&input, &repaired_folder, &["--repair"]);
+    assert_eq!(repaired.status.code(), Some(0), "{}", stderr(&repaired));
+    let message = stderr(&repaired);
+    assert!(
+        message.contains("vertex 9 lies on vertex 1: welded into it (--repair) [lines 9 and 1]"),
+        "{message}"
+    );
+    assert!(
+        message.contains("edge 1-2 was shared by 3 triangles: split apart (--repair)"),
+        "{message}"
+    );
+    let report = read_report(&repaired_folder);
+    assert_eq!(report["options"]["repair"], true);
+    let parts = report["parts"].as_array().expect("parts");
+    assert_eq!(parts.len(), 3, "three panels");
+    for part in parts {
+        let figures = recompute(&repaired_folder, part["name"].as_str().unwrap());
+        assert!(figures.area_error <= DEVELOPABLE_ERROR, "{figures:?}");
+    }
+}
