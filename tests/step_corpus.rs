@@ -4,7 +4,8 @@
 //! pipeline's loading entry (`load_parts`). Every file must load, or be refused with its named,
 //! expected reason; no model may hold a zero-area triangle; a sheet's unfold may hold no
 //! flipped triangle, and its flat area must be the skin's area changed by each bend's
-//! allowance only (flanges are rigid): `Σ (BA − θ · R_skin) · length`.
+//! allowance only (flanges are rigid): `Σ (BA − θ · R_skin) · length` (for a conical bend, `θ`
+//! its developed angle and `BA`, `R_skin` the figures at the middle of its bend line).
 //!
 //! `FLATCUT_STEP_CORPUS=DIR` runs the same checks on every `.step` / `.stp` file under `DIR`
 //! as well (files that cannot be stored here: system libraries, other licences), printing one
@@ -56,6 +57,11 @@ const CORPUS: &[(&str, Expected)] = &[
     ("samples/sheet_z_freecad.step", Expected::Sheet { bends: 2 }),
     (
         "samples/sheet_readme_case_freecad.step",
+        Expected::Sheet { bends: 1 },
+    ),
+    // A conical bend between two flanges (its radius 2 to 6 mm along the bend line).
+    (
+        "samples/sheet_conical_bend_freecad.step",
         Expected::Sheet { bends: 1 },
     ),
     ("samples/gusset_bracket_freecad.step", Expected::Surfaces(1)),
@@ -115,7 +121,12 @@ fn sheet_defect(job: &PartJob) -> Option<String> {
         .bends
         .iter()
         .map(|bend| {
-            let angle = bend.angle_degrees.to_radians();
+            // A conical bend's allowance is its developed angle times the neutral radius.
+            let angle = bend
+                .conical
+                .as_ref()
+                .map_or(bend.angle_degrees, |cone| cone.developed_angle_degrees)
+                .to_radians();
             let skin_radius = match bend.direction {
                 BendDirection::Up => bend.inner_radius,
                 BendDirection::Down => bend.inner_radius + sheet.thickness,
@@ -249,7 +260,10 @@ fn a_sheet_with_a_conical_transition_is_refused_as_sheet_metal_with_its_reason()
     assert!(
         warning.contains("not unfolded as sheet metal (ADVANCED_FACE #")
             && warning.contains("on CONICAL_SURFACE")
-            && warning.contains("is a cone: conical bends and transitions are not unfolded"),
+            && warning.contains(
+                "is a cone that is not a bend between two flanges: conical transitions are not \
+                 unfolded"
+            ),
         "{warning}"
     );
 }

@@ -318,6 +318,38 @@ def sheet_cone_flange():
     return wall.fuse(flange).removeSplitter()
 
 
+def sheet_conical_bend():
+    # A conical bend between two flat rectangular flanges: the bend's inner skin is a cone of
+    # half-angle alpha (tan alpha = 0.1) about the z axis, apex at the origin, its outer skin the
+    # coaxial cone 2 mm away along the normal (apex 2 / sin alpha down the axis). The sheet's
+    # cross-section in the meridian plane is the rectangle {s g + d n}, s (slant from the inner
+    # apex) in [20, 60], d in [0, 2], g the generator and n the outward normal: revolved about the
+    # axis by dphi it is the bend (inner radius of curvature s tan alpha: 2 at the small end, 6 at
+    # the large one; its end walls are normal to the sheet), extruded along the circumferential
+    # direction it is a flange tangent to the bend along a generator: 50 long on one side, 30 on
+    # the other. dphi makes the flanges' dihedral angle 90 degrees: cos dphi = -tan^2 alpha.
+    # Flat at K (docs/sheet-metal.md, "Conical bends"): an annular sector of angle
+    # dphi sin alpha and radii 20 + K t cot alpha + [0, 40], a 40 x 50 and a 40 x 30 rectangle
+    # on its two straight edges.
+    vector = FreeCAD.Vector
+    tan_alpha, thickness, slant, width = 0.1, 2.0, 20.0, 40.0
+    alpha = math.atan(tan_alpha)
+    dphi = math.degrees(math.acos(-tan_alpha ** 2))
+    generator = vector(math.sin(alpha), 0, math.cos(alpha))
+    normal = vector(math.cos(alpha), 0, -math.sin(alpha))
+    corners = [generator * s + normal * d for s, d in
+               ((slant, 0.0), (slant + width, 0.0), (slant + width, thickness),
+                (slant, thickness))]
+    profile = Part.Face(Part.makePolygon(corners + [corners[0]]))
+    bend = profile.revolve(vector(0, 0, 0), vector(0, 0, 1), dphi)
+    first = profile.extrude(vector(0, -50.0, 0))
+    turned = profile.copy()
+    turned.rotate(vector(0, 0, 0), vector(0, 0, 1), dphi)
+    onward = vector(-math.sin(math.radians(dphi)), math.cos(math.radians(dphi)), 0)
+    second = turned.extrude(onward * 30.0)
+    return bend.fuse([first, second]).removeSplitter()
+
+
 def boxes_touching():
     # Two 20 mm cubes sharing one corner and two 10 x 10 x 5 plates sharing one edge: four
     # solids in one file, which must stay four parts (not welded at the shared corner and edge).
@@ -348,6 +380,8 @@ def main():
     elif SAMPLE_SET == "cone":
         export(sheet_cone_flange(), "sheet_cone_flange_freecad.step")
         export(boxes_touching(), "boxes_touching_freecad.step")
+    elif SAMPLE_SET == "conical_bend":
+        export(sheet_conical_bend(), "sheet_conical_bend_freecad.step")
     elif SAMPLE_SET == "perforated":
         export(sheet_perforated(), "sheet_perforated_freecad.step")
     elif UNIT == "mm":

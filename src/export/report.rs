@@ -212,6 +212,22 @@ pub struct BendReport {
     pub rule: Option<AllowanceRule>,
     /// Length of the bend line.
     pub length: f64,
+    /// For a bend on a cone (whose `inner_radius` and `allowance` are the figures at the middle
+    /// of its bend line): the figures at the line's two ends; left out for a bend on a cylinder.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub conical: Option<ConicalBendReport>,
+}
+
+/// What a bend on a cone adds to its report. Lengths in mm, angles in degrees.
+#[derive(Debug, Clone, Serialize)]
+pub struct ConicalBendReport {
+    /// The inner radius at the bend line's two ends.
+    pub inner_radius_ends: [f64; 2],
+    /// The allowance (the bend zone's flat width) at the two ends.
+    pub allowance_ends: [f64; 2],
+    /// The developed angle `θ_c`: the allowance is `θ_c · (R + K · t)` at every point of the
+    /// bend line.
+    pub developed_angle: f64,
 }
 
 impl BendReport {
@@ -224,6 +240,11 @@ impl BendReport {
             allowance: bend.allowance,
             rule: bend.rule.clone(),
             length: bend.length(),
+            conical: bend.conical.as_ref().map(|cone| ConicalBendReport {
+                inner_radius_ends: cone.inner_radii,
+                allowance_ends: cone.allowances,
+                developed_angle: cone.developed_angle_degrees,
+            }),
         }
     }
 }

@@ -234,10 +234,25 @@ pub const MAX_SAMPLED_CHORD_ANGLE: f64 = PI / 12.0;
 /// The fewest chords a run needs before it is taken for a sampled arc.
 pub const MIN_SAMPLED_CHORDS: usize = 4;
 
+/// A chord of a sampled arc is at most this many times the run's median chord: a mesh samples
+/// an arc in chords of about one length, and a much longer chord is a straight edge that meets
+/// the arc (a flange's side running into a conical bend's developed arc), not a sample of it.
+pub const MAX_SAMPLED_CHORD_SPREAD: f64 = 3.0;
+
+/// The median length of the chords between consecutive points.
+fn median_chord(points: &[DVec2]) -> f64 {
+    let mut lengths: Vec<f64> = points
+        .windows(2)
+        .map(|pair| pair[0].distance(pair[1]))
+        .collect();
+    lengths.sort_unstable_by(f64::total_cmp);
+    lengths.get(lengths.len() / 2).copied().unwrap_or(0.0)
+}
+
 /// The bulge of the arc through the first, middle and last points, if it fits every point
 /// within `tolerance`, visits the points in order and sweeps at most [`MAX_ARC_SWEEP`], and every
 /// chord either has its midpoint within `tolerance` of the arc or is a chord of the arc itself
-/// (a sampled arc: see [`MAX_SAMPLED_CHORD_ANGLE`]). A mesh boundary samples the true curve at
+/// (a sampled arc: see [`MAX_SAMPLED_CHORD_ANGLE`] and [`MAX_SAMPLED_CHORD_SPREAD`]). A mesh boundary samples the true curve at
 /// its vertices; the arc through them is the true development, closer to it than the chords.
 fn arc_bulge(points: &[DVec2], tolerance: f64) -> Option<f64> {
     let first = points[0];
@@ -255,12 +270,18 @@ fn arc_bulge(points: &[DVec2], tolerance: f64) -> Option<f64> {
     }
     let on_circle = |point: DVec2| ((point - center).length() - radius).abs() <= tolerance;
     let sampled = points.len() > MIN_SAMPLED_CHORDS;
+    let longest_sample = if sampled {
+        MAX_SAMPLED_CHORD_SPREAD * median_chord(points)
+    } else {
+        0.0
+    };
     let chord_of_arc = |start: DVec2, end: DVec2| {
         let half = start.distance(end) / 2.0;
         let subtended = 2.0 * (half / radius).min(1.0).asin();
         let chord_distance = (radius * radius - half * half).max(0.0).sqrt();
         let midpoint_distance = ((start + end) * 0.5 - center).length();
         sampled
+            && 2.0 * half <= longest_sample
             && subtended <= MAX_SAMPLED_CHORD_ANGLE
             && (midpoint_distance - chord_distance).abs() <= tolerance
     };

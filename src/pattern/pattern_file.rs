@@ -153,6 +153,7 @@ mod tests {
                         k: a,
                         compensation: b,
                     }),
+                    conical: None,
                 }],
             },
             grain_degrees: Some(c),

@@ -332,6 +332,7 @@ impl Fold<'_> {
             inner_radius: figures.inner_radius,
             allowance: figures.allowance,
             rule: figures.rule,
+            conical: None,
         });
         Ok(hinge)
     }

@@ -13,6 +13,7 @@ mod base_face;
 mod bend;
 mod bend_rule;
 mod bend_table;
+mod cone_bend;
 mod face_map;
 mod fold_unfold;
 mod options;
@@ -21,7 +22,7 @@ mod surfaces;
 mod unfold;
 
 pub use base_face::base_face_index;
-pub use bend::{BendDirection, BendLine};
+pub use bend::{BendDirection, BendLine, ConicalBend};
 pub use bend_rule::{
     AllowanceRule, BendAllowance, BendGeometry, BendRule, allowance_by_rule, bend_allowance,
     din6935_factor,

@@ -2,7 +2,8 @@
 //! its chosen skin.
 //!
 //! A sheet-metal solid has two skins at thickness `t` (parallel planes at distance `t`, coaxial
-//! cylinders of radii `R` and `R + t`) joined by narrow edge faces (walls) that touch both skins.
+//! cylinders of radii `R` and `R + t`, coaxial cones of one half-angle `t` apart along the
+//! normal) joined by narrow edge faces (walls) that touch both skins.
 //! The chosen skin is the side of the largest planar face: that face and every face reached from
 //! it across edges where the surface continues smoothly (a flange into its bend, a bend into the
 //! next flange). The thickness is the distance from the largest planar face to the nearest
@@ -35,10 +36,10 @@ pub struct ThinSolid {
 /// Why a shell is not a sheet of one thickness.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum NotASheet {
-    /// The shell is not a solid of planes and cylinders only (a sphere, a cone, a spline), so
-    /// it is not unfolded as sheet metal.
+    /// The shell is not a solid of planes, cylinders and cones only (a sphere, a spline), so it
+    /// is not unfolded as sheet metal.
     OtherSurfaces(String),
-    /// Planes and cylinders, but not two skins at one thickness joined by walls.
+    /// Planes, cylinders and cones, but not two skins at one thickness joined by walls.
     NoConstantThickness(String),
 }
 
@@ -53,13 +54,25 @@ impl NotASheet {
 
 /// Recognises a shell as a thin solid; `face_areas` are the faces' areas (mm²), in the shell's
 /// face order; the unfold starts from `base_face` (a planar face) when given, else from the
-/// largest planar face.
+/// largest planar face. A sheet with a cone that is not a bend between flanges is refused with
+/// that reason, a solid with cones that is no sheet without a warning ([`cone_refusal`]).
 pub fn recognise(
     shell: &BrepShell,
     face_areas: &[f64],
     base_face: Option<usize>,
 ) -> Result<ThinSolid, NotASheet> {
     let surfaces = sheet_surfaces(shell)?;
+    recognise_surfaces(shell, surfaces.clone(), face_areas, base_face)
+        .map_err(|reason| cone_refusal(shell, &surfaces, reason))
+}
+
+/// [`recognise`] on the shell's surfaces.
+fn recognise_surfaces(
+    shell: &BrepShell,
+    surfaces: Vec<SheetSurface>,
+    face_areas: &[f64],
+    base_face: Option<usize>,
+) -> Result<ThinSolid, NotASheet> {
     let neighbours = face_neighbours(shell);
     let base_face = base_face
         .or_else(|| largest_plane(&surfaces, face_areas))
@@ -101,66 +114,77 @@ pub fn recognise(
     Ok(solid)
 }
 
-/// Every face's surface, or why the shell is not made of planes and cylinders (see
-/// [`cone_refusal`] for a sheet with a conical face).
+/// Every face's surface, or why the shell is not made of planes, cylinders and cones.
 fn sheet_surfaces(shell: &BrepShell) -> Result<Vec<SheetSurface>, NotASheet> {
     let surfaces: Vec<Option<SheetSurface>> = (0..shell.shell.faces.len())
         .map(|face| SheetSurface::of(shell.surface_geometry(face)))
         .collect();
     match surfaces.iter().position(Option::is_none) {
         None => Ok(surfaces.into_iter().flatten().collect()),
-        Some(face) => Err(cone_refusal(shell, &surfaces).unwrap_or_else(|| {
-            NotASheet::OtherSurfaces(format!(
-                "{} is neither a plane nor a cylinder",
-                shell.describe_face(face)
-            ))
-        })),
+        Some(face) => Err(NotASheet::OtherSurfaces(format!(
+            "{} is neither a plane, a cylinder nor a cone",
+            shell.describe_face(face)
+        ))),
     }
 }
 
-/// The refusal of a sheet with a conical bend or transition, which is not unfolded exactly yet:
-/// when every face that is neither a plane nor a cylinder is a cone, and two parallel planes
-/// sharing a wall lie close enough to be a sheet's two skins (within
-/// [`MAXIMUM_THICKNESS_RATIO`] of the part's size). Other solids with cones (a solid cone, a
-/// turned part) are not sheets and are not refused as such.
-fn cone_refusal(shell: &BrepShell, surfaces: &[Option<SheetSurface>]) -> Option<NotASheet> {
-    let is_cone = |face: usize| {
-        matches!(
-            shell.surface_geometry(face),
-            crate::cad::SurfaceGeometry::Cone { .. }
-        )
-    };
-    let others: Vec<usize> = (0..surfaces.len())
-        .filter(|&face| surfaces[face].is_none())
-        .collect();
-    if !others.iter().all(|&face| is_cone(face)) {
-        return None;
-    }
+/// Why a shell with cones that is not recognised as a sheet is not: when it has planes close
+/// enough to be a sheet's two skins ([`has_thin_planes`]), a cone that no neighbouring plane or
+/// cone continues smoothly is named (a conical transition, such as a hopper's wall meeting its
+/// flange at an angle, is not unfolded exactly yet), and with every cone a bend between flanges
+/// the recognition's own `reason` stands. Otherwise the solid (a solid cone, a turned part) is
+/// no sheet and its reason is [`NotASheet::OtherSurfaces`], which is not worth a warning.
+fn cone_refusal(shell: &BrepShell, surfaces: &[SheetSurface], reason: NotASheet) -> NotASheet {
     let neighbours = face_neighbours(shell);
+    let cones: Vec<usize> = (0..surfaces.len())
+        .filter(|&face| matches!(surfaces[face], SheetSurface::Cone { .. }))
+        .collect();
+    if cones.is_empty() {
+        return reason;
+    }
+    if !has_thin_planes(shell, surfaces, &neighbours) {
+        return NotASheet::OtherSurfaces(reason.reason().to_owned());
+    }
+    let continued = |face: usize| {
+        neighbours[face].iter().any(|&other| {
+            !matches!(surfaces[other], SheetSurface::Cylinder { .. })
+                && surfaces[face].tangent_to(&surfaces[other])
+        })
+    };
+    match cones.into_iter().find(|&face| !continued(face)) {
+        Some(cone) => NotASheet::NoConstantThickness(format!(
+            "{} is a cone that is not a bend between two flanges: conical transitions are not unfolded exactly yet",
+            shell.describe_face(cone)
+        )),
+        None => reason,
+    }
+}
+
+/// Whether two parallel planes sharing a wall lie close enough to be a sheet's two skins
+/// (within [`MAXIMUM_THICKNESS_RATIO`] of the part's size).
+fn has_thin_planes(
+    shell: &BrepShell,
+    surfaces: &[SheetSurface],
+    neighbours: &[Vec<usize>],
+) -> bool {
     let planes: Vec<(usize, SheetSurface)> = surfaces
         .iter()
         .enumerate()
         .filter_map(|(face, surface)| match surface {
-            Some(plane @ SheetSurface::Plane { .. }) => Some((face, *plane)),
+            plane @ SheetSurface::Plane { .. } => Some((face, *plane)),
             _ => None,
         })
         .collect();
     let size = super::surfaces::vertices_extent(shell);
-    let thin = planes.iter().any(|&(a, plane)| {
+    planes.iter().any(|&(a, plane)| {
         planes.iter().any(|&(b, other)| {
             a < b
-                && share_a_wall(&neighbours, a, b)
+                && share_a_wall(neighbours, a, b)
                 && plane.opposite_distance(&other).is_some_and(|distance| {
                     distance > super::surfaces::LENGTH_TOLERANCE_MM
                         && distance <= MAXIMUM_THICKNESS_RATIO * size
                 })
         })
-    });
-    thin.then(|| {
-        NotASheet::NoConstantThickness(format!(
-            "{} is a cone: conical bends and transitions are not unfolded exactly yet",
-            shell.describe_face(others[0])
-        ))
     })
 }
 

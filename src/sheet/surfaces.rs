@@ -1,4 +1,4 @@
-//! The two surface kinds a sheet-metal solid is made of, planes and cylinders, and the relations
+//! The surface kinds a sheet-metal solid is made of, planes, cylinders and cones, and the relations
 //! between two faces that recognition and unfolding ask about: is one the continuation of the
 //! other across a shared edge (tangent), and are they the two sides of the sheet (opposite, at
 //! what thickness).
@@ -15,7 +15,7 @@ pub const LENGTH_TOLERANCE_MM: f64 = 1e-4;
 /// that are perpendicular.
 pub const DIRECTION_TOLERANCE: f64 = 1e-7;
 
-/// A face's surface, when it is a plane or a cylinder (world coordinates, mm).
+/// A face's surface, when it is a plane, a cylinder or a cone (world coordinates, mm).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SheetSurface {
     /// A plane through `origin` with unit `normal` (either side).
@@ -33,6 +33,16 @@ pub enum SheetSurface {
         axis: DVec3,
         /// Radius.
         radius: f64,
+    },
+    /// A cone with its apex at `apex`, opening along unit `axis`: a point at distance `s` from
+    /// the apex along a generator is `s · sin(half_angle)` from the axis.
+    Cone {
+        /// The apex.
+        apex: DVec3,
+        /// Unit axis, from the apex into the cone.
+        axis: DVec3,
+        /// Half the apex angle, radians, in `(0, π/2)`.
+        half_angle: f64,
     },
 }
 
@@ -53,7 +63,7 @@ pub fn same_length(a: f64, b: f64) -> bool {
 }
 
 impl SheetSurface {
-    /// The surface of a face, or `None` when it is neither a plane nor a cylinder.
+    /// The surface of a face, or `None` when it is neither a plane, a cylinder nor a cone.
     pub fn of(geometry: SurfaceGeometry) -> Option<Self> {
         match geometry {
             SurfaceGeometry::Plane { origin, normal } => Some(Self::Plane { origin, normal }),
@@ -66,14 +76,29 @@ impl SheetSurface {
                 axis,
                 radius,
             }),
+            SurfaceGeometry::Cone {
+                origin,
+                axis,
+                radius,
+                half_angle,
+            } if half_angle != 0.0 => {
+                let opening = axis * half_angle.signum();
+                Some(Self::Cone {
+                    apex: origin - opening * (radius / half_angle.abs().tan()),
+                    axis: opening,
+                    half_angle: half_angle.abs(),
+                })
+            }
             _ => None,
         }
     }
 
     /// Whether `other` continues this surface smoothly across a shared edge: the same plane, the
-    /// same cylinder, or a plane tangent to a cylinder (parallel to its axis at its radius).
+    /// same cylinder, the same cone, or a plane tangent to a cylinder (parallel to its axis at
+    /// its radius) or to a cone (through its apex, along a generator).
     pub fn tangent_to(&self, other: &Self) -> bool {
         match (*self, *other) {
+            (Self::Cone { .. }, _) | (_, Self::Cone { .. }) => cone_tangent_to(self, other),
             (
                 Self::Plane { origin, normal },
                 Self::Plane {
@@ -106,9 +131,28 @@ impl SheetSurface {
     }
 
     /// The thickness between this surface and `other` when they can be the two sides of a sheet:
-    /// parallel planes (their distance) or coaxial cylinders (the difference of their radii).
+    /// parallel planes (their distance), coaxial cylinders (the difference of their radii) or
+    /// coaxial cones of one half-angle opening the same way (their distance along the normal,
+    /// [`cone_offset`]).
     pub fn opposite_distance(&self, other: &Self) -> Option<f64> {
         match (*self, *other) {
+            (
+                Self::Cone {
+                    apex,
+                    axis,
+                    half_angle,
+                },
+                Self::Cone {
+                    apex: other_apex,
+                    axis: other_axis,
+                    half_angle: other_half_angle,
+                },
+            ) if axis.dot(other_axis) > 0.0
+                && coaxial(apex, axis, other_apex, other_axis)
+                && same_angle(half_angle, other_half_angle) =>
+            {
+                Some(cone_offset(apex, axis, half_angle, other_apex).abs())
+            }
             (
                 Self::Plane { origin, normal },
                 Self::Plane {
@@ -150,6 +194,63 @@ pub fn vertices_extent(shell: &BrepShell) -> f64 {
         (high - low).length()
     } else {
         0.0
+    }
+}
+
+/// Whether two half-angles are the same (within [`DIRECTION_TOLERANCE`] radians).
+fn same_angle(a: f64, b: f64) -> bool {
+    (a - b).abs() <= DIRECTION_TOLERANCE
+}
+
+/// The signed distance along the normal from a cone (`apex`, unit `axis`, `half_angle`) to the
+/// coaxial cone of the same half-angle whose apex is `other_apex`: positive when the other lies
+/// outside it (away from the axis). Offsetting a cone by `d` along its outward normal moves its
+/// apex by `−d / sin(half_angle)` along the axis.
+pub fn cone_offset(apex: DVec3, axis: DVec3, half_angle: f64, other_apex: DVec3) -> f64 {
+    (apex - other_apex).dot(axis) * half_angle.sin()
+}
+
+/// Whether two surfaces, one of them a cone, continue each other smoothly: the same cone, or a
+/// plane through the cone's apex whose normal makes the angle `π/2 − half_angle` with its axis
+/// (tangent along a generator). A cone never continues a cylinder.
+fn cone_tangent_to(one: &SheetSurface, other: &SheetSurface) -> bool {
+    match (*one, *other) {
+        (
+            SheetSurface::Cone {
+                apex,
+                axis,
+                half_angle,
+            },
+            SheetSurface::Cone {
+                apex: other_apex,
+                axis: other_axis,
+                half_angle: other_half_angle,
+            },
+        ) => {
+            apex.distance(other_apex) <= LENGTH_TOLERANCE_MM
+                && 1.0 - axis.dot(other_axis) <= DIRECTION_TOLERANCE
+                && same_angle(half_angle, other_half_angle)
+        }
+        (
+            SheetSurface::Cone {
+                apex,
+                axis,
+                half_angle,
+            },
+            SheetSurface::Plane { origin, normal },
+        )
+        | (
+            SheetSurface::Plane { origin, normal },
+            SheetSurface::Cone {
+                apex,
+                axis,
+                half_angle,
+            },
+        ) => {
+            (normal.dot(axis).abs() - half_angle.sin()).abs() <= DIRECTION_TOLERANCE
+                && (apex - origin).dot(normal).abs() <= LENGTH_TOLERANCE_MM
+        }
+        _ => false,
     }
 }
 

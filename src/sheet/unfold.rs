@@ -1,6 +1,7 @@
 //! The exact unfold of a thin solid's chosen skin, on the B-rep: the base flange fixed, every
 //! other flange placed rigidly, every bend unrolled at its neutral fibre (`R_inner + K · t`), so
-//! that the flat length across a bend is its bend allowance. The skin's triangles (from the
+//! that the flat length across a bend is its bend allowance (a bend on a cone developed at its
+//! neutral cone, `cone_bend.rs`). The skin's triangles (from the
 //! tessellation) carry the unfold to the flat pattern: each vertex goes where its face's map puts
 //! it, so holes and cut-outs come out as the inner boundaries of the flat skin.
 
@@ -8,7 +9,8 @@ use glam::{DVec2, DVec3};
 
 use super::bend::{BendDirection, BendLine};
 use super::bend_rule::{BendAllowance, BendGeometry, BendRule, allowance_by_rule};
-use super::face_map::{BendMap, FaceMap, PlaneMap};
+use super::cone_bend::{ConeFigures, enter_cone_bend};
+use super::face_map::{BendMap, BendSurfaceMap, FaceMap, PlaneMap};
 use super::options::SheetOptions;
 use super::recognise::ThinSolid;
 use super::surfaces::SheetSurface;
@@ -39,7 +41,7 @@ pub struct SheetUnfold {
 /// A bend met by the unfold: its map and whether the skin is on its inside.
 #[derive(Debug, Clone, Copy)]
 struct BendZone {
-    map: BendMap,
+    map: BendSurfaceMap,
     inner_radius: f64,
     skin_inside: bool,
 }
@@ -62,17 +64,17 @@ pub fn unfold_skin(
         .iter()
         .enumerate()
         .map(|(index, zone)| {
-            let bend = BendGeometry {
-                thickness: solid.thickness,
-                inner_radius: zone.inner_radius,
-                angle: bend_angle(&zone.map, &bend_points(&skin, &maps, index)),
-            };
+            let bend = bend_geometry(solid.thickness, zone, &bend_points(&skin, &maps, index));
+            if matches!(zone.map, BendSurfaceMap::Cone(_)) && options.rule != BendRule::KFactor {
+                return Err(conical_rule_refusal(options, &bend));
+            }
             allowance_by_rule(&options.rule, options.k_factor, bend, material)
                 .map(|allowance| (bend.angle, allowance))
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let rule_neutral = |index: usize, inner: f64| match allowances.get(index) {
-        Some(&(angle, ref allowance)) if angle > 0.0 => allowance.allowance / angle,
+    let rule_neutral = |index: usize, inner: f64| match (zones.get(index), allowances.get(index)) {
+        (Some(zone), _) if matches!(zone.map, BendSurfaceMap::Cone(_)) => k_neutral(index, inner),
+        (_, Some(&(angle, ref allowance))) if angle > 0.0 => allowance.allowance / angle,
         _ => k_neutral(index, inner),
     };
     let (maps, zones) = face_maps(solid, &skin, &face_vertices, &rule_neutral);
@@ -87,7 +89,12 @@ pub fn unfold_skin(
         .zip(allowances)
         .enumerate()
         .map(|(index, (zone, (_, allowance)))| {
-            bend_line(zone, bend_points(&skin, &maps, index), allowance)
+            bend_line(
+                zone,
+                solid.thickness,
+                bend_points(&skin, &maps, index),
+                allowance,
+            )
         })
         .collect();
     let mut flat = flat;
@@ -171,6 +178,28 @@ fn face_maps(
             let surface = solid.surfaces[other];
             maps[other] = Some(match (map, surface) {
                 (FaceMap::Flange(plane), SheetSurface::Plane { .. }) => FaceMap::Flange(plane),
+                (FaceMap::Flange(plane), SheetSurface::Cone { .. }) => {
+                    let positions = face_vertices[other]
+                        .iter()
+                        .map(|&v| skin.positions[v as usize]);
+                    let partner = solid.skin.iter().position(|&f| f == other).unwrap_or(0);
+                    let entry = enter_cone_bend(
+                        &plane,
+                        &solid.surfaces[face],
+                        &surface,
+                        &solid.surfaces[solid.partners[partner]],
+                        positions,
+                        solid.thickness,
+                        &|inner| neutral(zones.len(), inner),
+                    );
+                    let map = BendSurfaceMap::Cone(entry.map);
+                    zones.push(BendZone {
+                        map,
+                        inner_radius: entry.inner_radius,
+                        skin_inside: entry.skin_inside,
+                    });
+                    FaceMap::Bend(zones.len() - 1, map)
+                }
                 (FaceMap::Flange(plane), SheetSurface::Cylinder { .. }) => {
                     let positions = face_vertices[other]
                         .iter()
@@ -186,10 +215,14 @@ fn face_maps(
                     zones.push(zone);
                     FaceMap::Bend(zones.len() - 1, zone.map)
                 }
-                (FaceMap::Bend(_, bend), SheetSurface::Plane { .. }) => {
+                (FaceMap::Bend(_, BendSurfaceMap::Cylinder(bend)), SheetSurface::Plane { .. }) => {
                     FaceMap::Flange(bend.flange_at(bend.angle(tangent_point(&bend, &surface))))
                 }
-                (bend @ FaceMap::Bend(..), SheetSurface::Cylinder { .. }) => bend,
+                (
+                    FaceMap::Bend(_, BendSurfaceMap::Cone(cone)),
+                    SheetSurface::Plane { normal, .. },
+                ) => FaceMap::Flange(cone.flange_at(cone.tangent_angle(normal))),
+                (bend @ FaceMap::Bend(..), _) => bend,
             });
             queue.push(other);
         }
@@ -261,12 +294,12 @@ fn enter_bend(
     let skin_position = solid.skin.iter().position(|&f| f == face).unwrap_or(0);
     let partner_radius = match solid.surfaces[solid.partners[skin_position]] {
         SheetSurface::Cylinder { radius, .. } => radius,
-        SheetSurface::Plane { .. } => radius,
+        _ => radius,
     };
     let skin_inside = radius < partner_radius;
     let inner_radius = radius.min(partner_radius);
     BendZone {
-        map: BendMap {
+        map: BendSurfaceMap::Cylinder(BendMap {
             axis_origin: origin,
             axis,
             start,
@@ -276,7 +309,7 @@ fn enter_bend(
             flat_origin: plane.point(origin + start * radius),
             flat_axis: plane.direction(axis),
             flat_across: plane.direction(towards),
-        },
+        }),
         inner_radius,
         skin_inside,
     }
@@ -333,18 +366,57 @@ fn bend_points(skin: &TriangleSoup, maps: &[Option<FaceMap>], bend: usize) -> Ve
 }
 
 /// A bend's angle: the largest angle of its points from its start line.
-fn bend_angle(map: &BendMap, points: &[DVec3]) -> f64 {
+fn bend_angle(map: &BendSurfaceMap, points: &[DVec3]) -> f64 {
     points.iter().map(|&p| map.angle(p)).fold(0.0, f64::max)
+}
+
+/// What a bend's allowance is computed from: a cylinder's inner radius and angle, a cone's
+/// inner radius at the middle of its bend line and its developed angle.
+fn bend_geometry(thickness: f64, zone: &BendZone, points: &[DVec3]) -> BendGeometry {
+    match &zone.map {
+        BendSurfaceMap::Cylinder(_) => BendGeometry {
+            thickness,
+            inner_radius: zone.inner_radius,
+            angle: bend_angle(&zone.map, points),
+        },
+        BendSurfaceMap::Cone(map) => {
+            let figures = ConeFigures::of(map, zone.skin_inside, thickness, points);
+            BendGeometry {
+                thickness,
+                inner_radius: figures.middle_inner_radius(),
+                angle: figures.developed_angle,
+            }
+        }
+    }
+}
+
+/// Why a conical bend is not unfolded by a rule other than the K-factor: its inner radius
+/// varies along the bend line, and only a neutral fibre at one depth `K · t` is a cone that
+/// develops exactly.
+fn conical_rule_refusal(options: &SheetOptions, bend: &BendGeometry) -> String {
+    format!(
+        "a conical bend (inner radius {:.4} mm at the middle of its bend line, varying along it) is unfolded exactly with the K-factor only, not by {}: give --k-factor",
+        bend.inner_radius,
+        options.rule.describe(options.k_factor)
+    )
 }
 
 /// A bend's line on the flat pattern (its centre, from end to end along the axis), angle, inner
 /// radius and allowance.
-fn bend_line(zone: &BendZone, points: Vec<DVec3>, allowance: BendAllowance) -> BendLine {
+fn bend_line(
+    zone: &BendZone,
+    thickness: f64,
+    points: Vec<DVec3>,
+    allowance: BendAllowance,
+) -> BendLine {
     let map = &zone.map;
+    if let BendSurfaceMap::Cone(cone) = map {
+        return conical_bend_line(zone, cone, thickness, &points, allowance);
+    }
     let angle = bend_angle(map, &points);
     let (low, high) = points
         .iter()
-        .map(|&p| map.axial(p))
+        .map(|&p| map.along(p))
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), a| {
             (low.min(a), high.max(a))
         });
@@ -360,6 +432,33 @@ fn bend_line(zone: &BendZone, points: Vec<DVec3>, allowance: BendAllowance) -> B
         inner_radius,
         allowance: allowance.allowance,
         rule: Some(allowance.rule),
+        conical: None,
+    }
+}
+
+/// A conical bend's line on the flat pattern (the developed generator halfway through it), the
+/// angle its flange turns, its inner radius and allowance at the middle and at the ends.
+fn conical_bend_line(
+    zone: &BendZone,
+    map: &super::face_map::ConeMap,
+    thickness: f64,
+    points: &[DVec3],
+    allowance: BendAllowance,
+) -> BendLine {
+    let figures = ConeFigures::of(map, zone.skin_inside, thickness, points);
+    let (line, conical) = figures.line(map);
+    BendLine {
+        line,
+        direction: if zone.skin_inside {
+            BendDirection::Up
+        } else {
+            BendDirection::Down
+        },
+        angle_degrees: figures.turn.to_degrees(),
+        inner_radius: figures.middle_inner_radius(),
+        allowance: allowance.allowance,
+        rule: Some(allowance.rule),
+        conical: Some(conical),
     }
 }
 
@@ -377,6 +476,6 @@ pub fn rest_position(flat: &mut [DVec2], bends: &mut [BendLine]) {
         *p = place(*p);
     }
     for bend in bends.iter_mut() {
-        bend.line = bend.line.map(place);
+        bend.move_points(place);
     }
 }

@@ -11,4 +11,5 @@ mod nesting;
 mod outputs;
 mod sheet_metal;
 mod sheet_metal_bends;
+mod sheet_metal_cone;
 mod util;
