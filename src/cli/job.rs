@@ -53,11 +53,16 @@ pub fn execute(
                 )
             } else if part.rejected.is_empty() {
                 "within tolerance".to_string()
-            } else {
+            } else if output.join(format!("{}.REJECTED.dxf", part.name)).exists() {
                 format!(
                     "REJECTED: {}; cut file {}.REJECTED.dxf",
                     part.rejected.join(", "),
                     part.name
+                )
+            } else {
+                format!(
+                    "REJECTED: {}; no cut file (its outline cannot be drawn)",
+                    part.rejected.join(", ")
                 )
             }
         );

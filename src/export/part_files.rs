@@ -75,13 +75,19 @@ pub fn write_part_files(
         positions,
         triangles,
     );
-    let dxf = write_part_dxf(&part.pattern.drawing, &options.dxf).map_err(|source| {
-        ExportError::Drawing {
-            path: part.source.to_path_buf(),
-            part: name.clone(),
-            source: Box::new(source),
+    // A rejected part's outline can be too broken to draw (a hole collapsed to nothing): it then
+    // gets no cut file, and its report says why it is rejected.
+    let dxf = match write_part_dxf(&part.pattern.drawing, &options.dxf) {
+        Ok(bytes) => Some(bytes),
+        Err(_) if part.pattern_file.rejected => None,
+        Err(source) => {
+            return Err(ExportError::Drawing {
+                path: part.source.to_path_buf(),
+                part: name.clone(),
+                source: Box::new(source),
+            });
         }
-    })?;
+    };
     let png = energy_png(part, &options.energy).map_err(|source| ExportError::EnergyMap {
         path: part.source.to_path_buf(),
         part: name.clone(),
@@ -93,14 +99,14 @@ pub fn write_part_files(
     } else {
         "dxf"
     };
-    let files: [(&str, &[u8]); 5] = [
-        ("mesh.obj", mesh.as_bytes()),
-        ("pattern.obj", pattern.as_bytes()),
-        ("pattern.json", pattern_json.as_bytes()),
-        (cut_file, &dxf),
-        ("energy.png", &png),
+    let files: [(&str, Option<&[u8]>); 5] = [
+        ("mesh.obj", Some(mesh.as_bytes())),
+        ("pattern.obj", Some(pattern.as_bytes())),
+        ("pattern.json", Some(pattern_json.as_bytes())),
+        (cut_file, dxf.as_deref()),
+        ("energy.png", Some(&png)),
     ];
-    for (suffix, bytes) in files {
+    for (suffix, bytes) in files.iter().filter_map(|&(s, b)| Some((s, b?))) {
         let path = directory.join(format!("{name}.{suffix}"));
         write_atomically(&path, bytes).map_err(|source| ExportError::Write { path, source })?;
     }
