@@ -13,7 +13,9 @@ use super::result::{Cut, CutFigures, CutResult, CutStop, UncutPattern};
 use super::seam;
 use super::state::{CutState, polyline};
 use super::trials::{Starts, best_cut_widening};
-use crate::flatten::{FastOptions, FlattenOptions, Stiffness, flatten_from};
+use crate::flatten::{
+    FastOptions, FlattenOptions, Flattened, Stiffness, flatten_from, overlap_free_flatten,
+};
 use crate::mesh::FacetModel;
 use crate::progress::Progress;
 
@@ -56,6 +58,9 @@ pub fn cut_and_flatten(
     if !flattened.stats.accuracy.within(flatten_options.tolerance) && max_cuts > 0 {
         let start = flattened.positions.clone();
         flattened = flatten_from(&state.model, &state.stiffness, &start, &loop_options)?;
+    }
+    if flattened.stats.accuracy.overlap {
+        flattened = without_overlap(&state, flattened, &loop_options, None)?;
     }
     let flatten_options = &loop_options;
     let mut cuts: Vec<Cut> = Vec::new();
@@ -141,6 +146,10 @@ pub fn cut_and_flatten(
     if reporting {
         progress.finish();
     }
+    if flattened.stats.accuracy.overlap {
+        let tolerance = Some(flatten_options.tolerance);
+        flattened = without_overlap(&state, flattened, flatten_options, tolerance)?;
+    }
     let cut_edges = cut_sides(&state, &cuts);
     Ok(CutResult {
         cut_edges,
@@ -152,6 +161,32 @@ pub fn cut_and_flatten(
         cuts,
         stop,
         uncut,
+    })
+}
+
+/// The part's pattern made again with its outline kept from crossing itself
+/// ([`overlap_free_flatten`]) when the first flattening or the cut loop ends on a pattern that
+/// overlaps itself (the loop then cuts from a valid pattern, and never takes a cut whose
+/// pattern overlaps: [`is_better`](super::trials::is_better)). The new pattern is kept when it
+/// neither overlaps nor has a flipped triangle (and, given a `tolerance`, is within it: a valid
+/// pattern far over the tolerance tells less than the overlapping one it would replace); else
+/// the pattern stays as it was, and the part is rejected for its overlap.
+fn without_overlap(
+    state: &CutState,
+    flattened: Flattened,
+    options: &FlattenOptions,
+    tolerance: Option<f64>,
+) -> Result<Flattened, CutError> {
+    let remade = overlap_free_flatten(&state.model, &state.stiffness, options)?;
+    Ok(match remade {
+        Some(remade)
+            if !remade.stats.accuracy.overlap
+                && remade.stats.accuracy.flipped == 0
+                && tolerance.is_none_or(|t| remade.stats.accuracy.within(t)) =>
+        {
+            remade
+        }
+        _ => flattened,
     })
 }
 

@@ -11,7 +11,7 @@ use super::errors::FlattenError;
 use super::fast::{FastOptions, fast_solve};
 use super::flattened::{FlattenStats, Flattened};
 use super::init_flatten::{InitRelease, NEIGHBOURHOOD_SWEEPS, init_flatten};
-use super::injective::flip_free_flatten;
+use super::injective::{Outline, flip_free_flatten};
 use super::options::{FlattenOptions, Solver};
 use super::orient::move_to_origin;
 use super::springs::SpringSystem;
@@ -101,6 +101,40 @@ pub fn flatten_from(
         Repair::FlipFree,
         started,
     )
+}
+
+/// The flip-free flattening with the outline kept from crossing itself: a Tutte start (no
+/// flipped triangle, no crossing), then the shaping and orientation stages of
+/// [`flip_free_flatten`] with the boundary barrier ([`Outline::Kept`]). For a part whose pattern
+/// overlaps itself; `None` when the minimiser cannot run (a system that does not factor).
+pub fn overlap_free_flatten(
+    model: &FacetModel,
+    stiffness: &Stiffness,
+    options: &FlattenOptions,
+) -> Result<Option<Flattened>, FlattenError> {
+    let started = Instant::now();
+    check_input(model, stiffness)?;
+    let springs = SpringSystem::new(model, stiffness.factors(), options.spring_constant);
+    let Ok((mut positions, outcome)) = flip_free_flatten(
+        model,
+        &springs,
+        options.fast.max_iterations,
+        options.deadline,
+        Outline::Kept,
+    ) else {
+        return Ok(None);
+    };
+    move_to_origin(&mut positions);
+    let accuracy = Accuracy::measure(model, &positions);
+    let stats = FlattenStats {
+        accuracy,
+        initial_accuracy: accuracy,
+        energy: springs.energy(&positions),
+        iterations: outcome.iterations,
+        stop_reason: outcome.stop_reason,
+        seconds: started.elapsed().as_secs_f64(),
+    };
+    Ok(Some(Flattened { positions, stats }))
 }
 
 /// Refuses closed surfaces and stiffness maps of another model.
@@ -199,6 +233,7 @@ fn minimise(
             springs,
             options.fast.max_iterations,
             options.deadline,
+            Outline::Free,
         ) {
             Ok((pattern, injective)) => {
                 *positions = pattern;
@@ -214,11 +249,15 @@ fn minimise(
 
 #[cfg(test)]
 mod tests {
+    use glam::{DVec2, DVec3};
+
+    use crate::cad::TriangleSoup;
     use crate::flatten::accuracy::Accuracy;
-    use crate::flatten::entry::flatten;
+    use crate::flatten::entry::{flatten, overlap_free_flatten};
     use crate::flatten::options::{FlattenOptions, Solver};
     use crate::flatten::samples::{deep_bowl, sample};
     use crate::flatten::stiffness::Stiffness;
+    use crate::mesh::{FacetModel, validate};
     use crate::progress::NoProgress;
 
     #[test]
@@ -255,5 +294,73 @@ mod tests {
             flattened.stats.initial_accuracy.flipped > 0,
             "phase one folds the bowl"
         );
+    }
+
+    /// A fan of 16 triangles around a saddle vertex (the rim waves up and down three times), slit
+    /// along one spoke: its angles at the centre add up to more than a full turn, so any
+    /// near-isometric flattening lays the slit's two sides over each other.
+    fn slit_saddle_fan() -> (FacetModel, f64) {
+        let n = 16;
+        let mut positions = vec![DVec3::ZERO];
+        for i in 0..=n {
+            let angle = std::f64::consts::TAU * i as f64 / n as f64;
+            positions.push(DVec3::new(
+                angle.cos(),
+                angle.sin(),
+                0.7 * (3.0 * angle).cos(),
+            ));
+        }
+        let triangles: Vec<[u32; 3]> = (1..=n as u32).map(|i| [0, i, i + 1]).collect();
+        let model = validate(&TriangleSoup::new(positions, triangles))
+            .expect("valid")
+            .components
+            .remove(0);
+        let turn: f64 = (1..=n)
+            .map(|i| {
+                let (a, b) = (model.positions()[i], model.positions()[i + 1]);
+                (a.dot(b) / (a.length() * b.length())).acos()
+            })
+            .sum();
+        (model, turn)
+    }
+
+    /// True if two boundary edges that share no vertex cross (checked pair by pair).
+    fn outline_crosses(model: &FacetModel, pattern: &[DVec2]) -> bool {
+        let edges: Vec<[u32; 2]> = model
+            .boundary_loops()
+            .iter()
+            .flat_map(|ring| (0..ring.len()).map(move |i| [ring[i], ring[(i + 1) % ring.len()]]))
+            .collect();
+        let side = |a: DVec2, b: DVec2, c: DVec2| (b - a).perp_dot(c - a);
+        edges.iter().enumerate().any(|(i, &[a, b])| {
+            edges[i + 1..].iter().any(|&[c, d]| {
+                if [c, d].contains(&a) || [c, d].contains(&b) {
+                    return false;
+                }
+                let [p, q, r, s] = [a, b, c, d].map(|v| pattern[v as usize]);
+                side(p, q, r) * side(p, q, s) <= 0.0 && side(r, s, p) * side(r, s, q) <= 0.0
+            })
+        })
+    }
+
+    #[test]
+    fn the_overlap_free_flattening_keeps_a_slit_saddle_from_overlapping() {
+        let (model, turn) = slit_saddle_fan();
+        assert!(turn > 1.15 * std::f64::consts::TAU, "a saddle: {turn}");
+        let stiffness = Stiffness::uniform(&model);
+        let options = FlattenOptions::default();
+        let plain = flatten(&model, &stiffness, &options, &NoProgress).expect("flattens");
+        assert!(
+            outline_crosses(&model, &plain.positions),
+            "the plain flattening overlaps: the test means something"
+        );
+        let kept = overlap_free_flatten(&model, &stiffness, &options)
+            .expect("flattens")
+            .expect("the minimiser runs");
+        assert!(!outline_crosses(&model, &kept.positions));
+        assert!(!kept.stats.accuracy.overlap && kept.stats.accuracy.flipped == 0);
+        let recomputed = Accuracy::measure(&model, &kept.positions);
+        assert_eq!(recomputed, kept.stats.accuracy);
+        assert!(kept.stats.accuracy.area_error < 0.5, "{:?}", kept.stats);
     }
 }

@@ -22,6 +22,7 @@
 //! See `docs/injective.md`.
 
 mod barrier;
+mod boundary;
 mod errors;
 mod solver;
 mod sparse;
@@ -29,10 +30,11 @@ mod step;
 mod tutte;
 
 pub use barrier::{Barrier, ORIENTATION_BARRIER, SHAPING_BARRIER};
+pub use boundary::{BOUNDARY_REACH, BoundaryBarrier, Contact, point_segment_distance};
 pub use errors::InjectiveError;
 pub use solver::{
     FLIP_FREE_FRACTION, InjectiveOutcome, MAX_NEWTON_ITERATIONS, NEWTON_DECREMENT_TOLERANCE,
-    NEWTON_ENERGY_TOLERANCE, NEWTON_WINDOW, flip_free_flatten, flip_free_solve,
+    NEWTON_ENERGY_TOLERANCE, NEWTON_WINDOW, Outline, flip_free_flatten, flip_free_solve,
 };
 pub use step::{max_flip_free_step, smallest_positive_root, triangle_flip_step};
 pub use tutte::{SMALLEST_WEIGHT, tutte_embedding};

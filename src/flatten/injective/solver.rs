@@ -5,6 +5,7 @@ use faer::Mat;
 use glam::DVec2;
 
 use super::barrier::{Barrier, ORIENTATION_BARRIER, SHAPING_BARRIER};
+use super::boundary::BoundaryBarrier;
 use super::errors::InjectiveError;
 use super::sparse::{Factor, SparsePattern};
 use super::step::max_flip_free_step;
@@ -69,6 +70,7 @@ pub fn flip_free_flatten(
     springs: &SpringSystem,
     max_iterations: usize,
     deadline: Deadline,
+    outline: Outline,
 ) -> Result<(Vec<DVec2>, InjectiveOutcome), InjectiveError> {
     let mut positions = tutte_embedding(model)?;
     let mut iterations = 0;
@@ -81,6 +83,7 @@ pub fn flip_free_flatten(
             barrier,
             max_iterations,
             deadline,
+            outline,
         )?;
         iterations += stage.iterations;
         outcome = Some(InjectiveOutcome {
@@ -91,10 +94,22 @@ pub fn flip_free_flatten(
     Ok((positions, outcome.expect("two stages")))
 }
 
-/// Minimises the spring energy plus `barrier` from `positions` (every triangle positively
-/// oriented, else [`InjectiveError::StartNotInjective`]), in place, with at most
-/// `max_iterations` (and [`MAX_NEWTON_ITERATIONS`]) Newton iterations, none started after
-/// `deadline`; no triangle of any iterate is flipped or degenerate.
+/// Whether the flip-free minimiser also keeps the pattern's outline from crossing itself.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Outline {
+    /// Only triangles are kept from flipping (the outline may cross itself).
+    Free,
+    /// The [`BoundaryBarrier`] keeps the outline, holes included, from crossing itself too (the
+    /// start must not cross itself).
+    Kept,
+}
+
+/// Minimises the spring energy plus `barrier` (and the [`BoundaryBarrier`] with
+/// [`Outline::Kept`]) from `positions` (every triangle positively oriented, else
+/// [`InjectiveError::StartNotInjective`]), in place, with at most `max_iterations` (and
+/// [`MAX_NEWTON_ITERATIONS`]) Newton iterations, none started after `deadline`; no triangle of
+/// any iterate is flipped or degenerate (nor does its outline cross itself, with
+/// [`Outline::Kept`] and a start whose outline does not).
 pub fn flip_free_solve(
     model: &FacetModel,
     springs: &SpringSystem,
@@ -102,13 +117,18 @@ pub fn flip_free_solve(
     barrier: Barrier,
     max_iterations: usize,
     deadline: Deadline,
+    outline: Outline,
 ) -> Result<InjectiveOutcome, InjectiveError> {
     let max_iterations = max_iterations.min(MAX_NEWTON_ITERATIONS);
     let flipped = flipped_triangles(model, positions);
     if flipped > 0 {
         return Err(InjectiveError::StartNotInjective { flipped });
     }
-    let objective = Objective::new(model, springs, barrier);
+    let boundary = match outline {
+        Outline::Free => None,
+        Outline::Kept => BoundaryBarrier::new(model, springs),
+    };
+    let objective = Objective::new(model, springs, barrier, boundary);
     let layout = Layout::new(model);
     let pattern = SparsePattern::new(layout.unknowns, &layout.positions)?;
     let mut value = objective.value(positions);
@@ -138,7 +158,10 @@ pub fn flip_free_solve(
             (stop_reason, iterations) = (StopReason::Converged, iteration);
             break;
         }
-        let bound = max_flip_free_step(model, positions, &direction);
+        let mut bound = max_flip_free_step(model, positions, &direction);
+        if let Some(boundary) = &objective.boundary {
+            bound = bound.min(boundary.max_contact_free_step(positions, &direction));
+        }
         let mut step = (FLIP_FREE_FRACTION * bound).min(1.0);
         let mut accepted = None;
         for _ in 0..MAX_HALVINGS {
@@ -238,10 +261,17 @@ struct Objective<'a> {
     /// Barrier weight of each triangle: the barrier's weight times its edges' mean spring
     /// constant times its rest area.
     weights: Vec<f64>,
+    /// The boundary barrier, when the outline is kept from crossing itself.
+    boundary: Option<BoundaryBarrier>,
 }
 
 impl<'a> Objective<'a> {
-    fn new(model: &'a FacetModel, springs: &'a SpringSystem, barrier: Barrier) -> Self {
+    fn new(
+        model: &'a FacetModel,
+        springs: &'a SpringSystem,
+        barrier: Barrier,
+        boundary: Option<BoundaryBarrier>,
+    ) -> Self {
         let rest_areas: Vec<f64> = (0..model.triangle_count())
             .map(|f| model.triangle_area(f))
             .collect();
@@ -264,6 +294,7 @@ impl<'a> Objective<'a> {
             barrier,
             rest_areas,
             weights,
+            boundary,
         }
     }
 
@@ -285,6 +316,9 @@ impl<'a> Objective<'a> {
             let corners = self.model.triangles()[f].map(|v| positions[v as usize]);
             let ratio = signed_area(corners[0], corners[1], corners[2]) / self.rest_areas[f];
             total += self.weights[f] * self.barrier.at(ratio)[0];
+        }
+        if let Some(boundary) = &self.boundary {
+            total += boundary.value(positions);
         }
         total
     }
@@ -308,6 +342,15 @@ impl<'a> Objective<'a> {
             let scale = self.weights[f] * slope / self.rest_areas[f];
             for (&v, g) in t.iter().zip(area_gradient) {
                 gradient[v as usize] += g * scale;
+            }
+        }
+        if let Some(boundary) = &self.boundary {
+            for contact in boundary.contacts(positions) {
+                let slope = boundary.at(contact.distance)[1];
+                let [a, b] = contact.edge;
+                for (v, g) in [contact.vertex, a, b].into_iter().zip(contact.gradient) {
+                    gradient[v as usize] += g * slope;
+                }
             }
         }
     }
@@ -367,6 +410,19 @@ impl<'a> Objective<'a> {
                     })
                     .expect("a triangle's sides are edges") as usize;
                 layout.add_edge(values, e, outer(area_gradient[high], area_gradient[low]));
+            }
+        }
+        if let Some(boundary) = &self.boundary {
+            for contact in boundary.contacts(positions) {
+                let curvature = boundary.at(contact.distance)[2];
+                let [a, b] = contact.edge;
+                for (v, g) in [contact.vertex, a, b].into_iter().zip(contact.gradient) {
+                    let block = [
+                        [curvature * g.x * g.x, curvature * g.x * g.y],
+                        [curvature * g.y * g.x, curvature * g.y * g.y],
+                    ];
+                    layout.add_diagonal(values, v, block);
+                }
             }
         }
     }
@@ -462,9 +518,14 @@ mod tests {
     ) -> (Vec<DVec2>, Vec<DVec2>, InjectiveOutcome) {
         let start = tutte_embedding(model).expect("a boundary");
         assert_eq!(flipped_triangles(model, &start), 0, "the Tutte start");
-        let (pattern, outcome) =
-            flip_free_flatten(model, springs, MAX_NEWTON_ITERATIONS, Deadline::NONE)
-                .expect("flattens");
+        let (pattern, outcome) = flip_free_flatten(
+            model,
+            springs,
+            MAX_NEWTON_ITERATIONS,
+            Deadline::NONE,
+            Outline::Free,
+        )
+        .expect("flattens");
         assert_eq!(flipped_triangles(model, &pattern), 0, "{outcome:?}");
         (start, pattern, outcome)
     }
@@ -502,9 +563,16 @@ mod tests {
         // One Newton iteration at a time: every iterate is checked.
         for barrier in [SHAPING_BARRIER, ORIENTATION_BARRIER] {
             for _ in 0..15 {
-                let outcome =
-                    flip_free_solve(&model, &springs, &mut positions, barrier, 1, Deadline::NONE)
-                        .expect("solves");
+                let outcome = flip_free_solve(
+                    &model,
+                    &springs,
+                    &mut positions,
+                    barrier,
+                    1,
+                    Deadline::NONE,
+                    Outline::Free,
+                )
+                .expect("solves");
                 assert!(
                     outcome.objective <= outcome.initial_objective,
                     "{outcome:?}"
@@ -531,6 +599,7 @@ mod tests {
             ORIENTATION_BARRIER,
             10,
             Deadline::NONE,
+            Outline::Free,
         );
         assert_eq!(
             refused,
