@@ -54,6 +54,7 @@ mod placement;
 mod problem;
 mod random;
 mod separator;
+mod sheets;
 mod solution;
 mod validation;
 

@@ -474,7 +474,7 @@ impl<'p, 'a> Separator<'p, 'a> {
 }
 
 /// Range of translations that keep `shape` inside a strip `length` long.
-fn strip_range(problem: &Problem, length: f64, shape: ShapeId) -> (DVec2, DVec2) {
+pub(super) fn strip_range(problem: &Problem, length: f64, shape: ShapeId) -> (DVec2, DVec2) {
     let inset = problem.library.inflation() + CLEARANCE_RELATIVE * problem.scale;
     let orientation = &problem.orientations[shape];
     let low = DVec2::splat(inset) - orientation.min;
