@@ -5,7 +5,9 @@
 //!    sheet, largest first, are taken one at a time into an earlier sheet (those with the least
 //!    area used first) at a random position and that sheet is separated; a part that separates
 //!    stays there. When the last sheet is emptied it is dropped and the next last sheet is tried.
-//!    A part moved off the last sheet never makes its used length longer.
+//!    A part moved off the last sheet never makes its used length longer. Then, while the last
+//!    sheet is about as long as its widest part alone, that part is traded (half the budget left at
+//!    most) for a part of an earlier sheet that is narrower alone, if both sheets separate.
 //! 2. **Shorter last sheet** (the rest): the last sheet's parts are compressed like a strip
 //!    (`compression.rs`: exploration, then compression), never beyond the sheet's width.
 
@@ -14,11 +16,11 @@ use std::sync::Arc;
 use glam::DVec2;
 
 use super::compression::parts_of;
-use super::problem::Problem;
+use super::problem::{LENGTH_TOLERANCE_RELATIVE, Problem};
 use super::random::SplitMix64;
 use super::separator::{Limits, Part, Separator, strip_range};
 use super::solution::{Placed, Solution};
-use crate::nest::collision::{CollisionEngine, JaguaEngine};
+use crate::nest::collision::{CollisionEngine, JaguaEngine, ShapeId};
 
 /// Largest share of the budget of the search through overlap spent on emptying the last sheet.
 pub const SHEET_REDUCTION_SHARE: f64 = 0.5;
@@ -39,6 +41,10 @@ struct Attempt<'w> {
     budget: u64,
     work: &'w mut u64,
 }
+
+/// A last sheet within this fraction of its widest part's length alone is traded from (no
+/// compression could shorten it much).
+pub const TRADE_SLACK: f64 = 0.05;
 
 /// The parts of each sheet, in order.
 type Sheets = Vec<Vec<Part>>;
@@ -67,6 +73,12 @@ impl Problem<'_> {
         let reduction_budget = (budget as f64 * SHEET_REDUCTION_SHARE) as u64;
         let (mut improved, mut work) =
             self.empty_last_sheets(&mut sheets, reduction_budget, random, &mut stop);
+        let attempt = Attempt {
+            limits: INSERTION_LIMITS,
+            budget: work + budget.saturating_sub(work) / 2,
+            work: &mut work,
+        };
+        improved |= self.trade_widest_part(&mut sheets, attempt, random, &mut stop);
         if improved {
             on_best(sheets.len(), self.sheet_length(&sheets));
         }
@@ -140,6 +152,116 @@ impl Problem<'_> {
             }
         }
         (moved_any, work)
+    }
+
+    /// While the last sheet's length is within [`TRADE_SLACK`] of its widest part's alone (no
+    /// compression can go below that), trades that part for a part of an earlier sheet that is narrower alone (the
+    /// largest such part first): the earlier sheet takes the wide part at a random position and
+    /// the last sheet the narrow one at the wide one's place, in its narrowest orientation; the
+    /// trade stands if both sheets separate. Returns whether a trade was made.
+    fn trade_widest_part(
+        &self,
+        sheets: &mut Sheets,
+        attempt: Attempt,
+        random: &mut SplitMix64,
+        stop: &mut impl FnMut(u64) -> bool,
+    ) -> bool {
+        let width = self.sheet_width.expect("sheets have a width");
+        let tolerance = LENGTH_TOLERANCE_RELATIVE * self.scale;
+        let Attempt {
+            limits,
+            budget,
+            work,
+        } = attempt;
+        let area = |part: &Part| self.items[self.copies[part.copy].item].area();
+        let alone_right = |part: &Part| {
+            let alone = self.alone_at_left(part);
+            alone.translation.x + self.orientations[alone.shape].max.x
+        };
+        let mut traded = false;
+        'trades: while sheets.len() > 1 {
+            let last = sheets.len() - 1;
+            let right = self.sheet_length(&sheets[last..]);
+            let Some(widest) = (0..sheets[last].len()).max_by(|&a, &b| {
+                alone_right(&sheets[last][a]).total_cmp(&alone_right(&sheets[last][b]))
+            }) else {
+                break;
+            };
+            let wide = sheets[last][widest];
+            if alone_right(&wide) < right * (1.0 - TRADE_SLACK) {
+                break;
+            }
+            let mut offers: Vec<(usize, usize)> = Vec::new();
+            for (sheet, parts) in sheets[..last].iter().enumerate() {
+                for (index, other) in parts.iter().enumerate() {
+                    if alone_right(other) < right - tolerance {
+                        offers.push((sheet, index));
+                    }
+                }
+            }
+            offers.sort_by(|&(a_sheet, a), &(b_sheet, b)| {
+                let (a, b) = (&sheets[a_sheet][a], &sheets[b_sheet][b]);
+                area(b).total_cmp(&area(a)).then(a.copy.cmp(&b.copy))
+            });
+            for (sheet, index) in offers {
+                let narrow = sheets[sheet][index];
+                let (low, high) = strip_range(self, width, wide.shape);
+                let mut earlier = sheets[sheet].clone();
+                earlier[index] = Part {
+                    translation: low + DVec2::new(random.unit(), random.unit()) * (high - low),
+                    ..wide
+                };
+                let turned = self.alone_at_left(&narrow);
+                let (low, high) = strip_range(self, right, turned.shape);
+                let mut later = sheets[last].clone();
+                later[widest] = Part {
+                    translation: wide.translation.clamp(low, high),
+                    ..turned
+                };
+                let mut separated = Vec::with_capacity(2);
+                for (parts, length) in [(earlier, width), (later, right)] {
+                    if *work >= budget || stop(*work) {
+                        break 'trades;
+                    }
+                    let mut separator = Separator::new(self, parts, length);
+                    let before = *work;
+                    let loss = separator.separate(limits, random, budget - before, &mut |spent| {
+                        stop(before + spent)
+                    });
+                    *work += separator.work();
+                    if loss > 0.0 {
+                        break;
+                    }
+                    separated.push(separator.parts);
+                }
+                if let [earlier, later] = &separated[..] {
+                    sheets[sheet].clone_from(earlier);
+                    sheets[last].clone_from(later);
+                    traded = true;
+                    continue 'trades;
+                }
+            }
+            break;
+        }
+        traded
+    }
+
+    /// `part` alone on a sheet: at the bottom-left corner, in its narrowest allowed orientation.
+    fn alone_at_left(&self, part: &Part) -> Part {
+        let width = self.sheet_width.expect("sheets have a width");
+        let extent = |shape: ShapeId| {
+            let orientation = &self.orientations[shape];
+            orientation.max.x - orientation.min.x
+        };
+        let shapes = &self.item_shapes[self.copies[part.copy].item];
+        let shape = (shapes.iter().copied())
+            .min_by(|&a, &b| extent(a).total_cmp(&extent(b)).then(a.cmp(&b)))
+            .unwrap_or(part.shape);
+        Part {
+            shape,
+            translation: strip_range(self, width, shape).0,
+            ..*part
+        }
     }
 
     /// Tries to separate `part` into each sheet but the last, those with the least area used
@@ -295,6 +417,43 @@ mod tests {
         let layout = verified(&problem, &items, &improved);
         assert_eq!(layout.sheets.len(), 1);
         assert_eq!(layout.sheets[0].placements.len(), 4);
+    }
+
+    /// A 20 × 10 mm bar alone on the last 25 mm sheet, which the first sheet (another bar and a
+    /// 10 mm square) has no room for: the bar trades places with the square, and the last sheet
+    /// is used over about 10 mm instead of 20.
+    #[test]
+    fn a_wide_part_alone_on_the_last_sheet_trades_places_with_a_narrower_one() {
+        let mut bar = square("bar", 10.0, 2);
+        bar.outer = vec![
+            DVec2::ZERO,
+            DVec2::new(20.0, 0.0),
+            DVec2::new(20.0, 10.0),
+            DVec2::new(0.0, 10.0),
+        ];
+        let items = vec![bar, square("square 10", 10.0, 1)];
+        let options = sheets_25();
+        let problem = Problem::new(&items, &options).expect("valid problem");
+        let copy_of = |item: usize| {
+            (problem.copies.iter())
+                .position(|copy| copy.item == item)
+                .expect("a copy")
+        };
+        let at = |copy: usize, x: f64, y: f64| Part {
+            copy,
+            shape: problem.item_shapes[problem.copies[copy].item][0],
+            translation: DVec2::new(x, y),
+        };
+        let (bar, square) = (copy_of(0), copy_of(1));
+        let first = vec![at(bar, 0.5, 0.5), at(square, 0.5, 12.0)];
+        let start = problem.solution_of_sheets(&[first, vec![at(bar + 1, 0.5, 0.5)]]);
+        assert!(verified(&problem, &items, &start).used_length > 20.0);
+        let (improved, _) =
+            problem.improve_sheets(&start, 2_000_000, &mut SplitMix64(4), |_| false, |_, _| ());
+        let layout = verified(&problem, &items, &improved.expect("a shorter last sheet"));
+        assert_eq!(layout.sheets.len(), 2);
+        assert!(layout.used_length < 11.0, "{}", layout.used_length);
+        assert_eq!(layout.sheets[1].placements[0].item, 1, "the square is last");
     }
 
     /// Two 10 mm squares side by side on a 25 × 25 mm sheet with room for them one above the
