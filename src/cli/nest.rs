@@ -8,6 +8,7 @@ use std::time::Instant;
 
 use clap::Args;
 
+use flatcut::export::sheets::SHEETS_FOLDER;
 use flatcut::nest::{Rotations, Stock};
 use flatcut::pipeline::{
     BenchmarkConfig, NestInputKind, NestingConfig, PatternNestConfig, nest_benchmark,
@@ -27,7 +28,8 @@ pub struct NestArgs {
     /// (JSON, as in jagua-rs/sparrow); one kind at a time. Their parts are nested together.
     #[arg(required = true, value_name = "INPUT")]
     inputs: Vec<PathBuf>,
-    /// Output directory; `nest.json` (and for patterns the sheet files) is written there.
+    /// Output directory; `nest.json` and the sheet files (`sheet-NNN.dxf` and `.png`) are written
+    /// there.
     #[arg(short, long, value_name = "OUT")]
     output: PathBuf,
     /// Nest on identical sheets WIDTHxHEIGHT in mm (filled along the width).
@@ -189,7 +191,7 @@ fn run_patterns(args: &NestArgs, progress: &dyn Progress) -> anyhow::Result<Outc
     })
 }
 
-/// Nests benchmark instances and writes `nest.json`.
+/// Nests benchmark instances and writes their sheets and `nest.json`.
 fn run_benchmark(args: &NestArgs, progress: &dyn Progress) -> anyhow::Result<Outcome> {
     let started = Instant::now();
     let config = args.benchmark_config();
@@ -204,8 +206,9 @@ fn run_benchmark(args: &NestArgs, progress: &dyn Progress) -> anyhow::Result<Out
         Stock::Roll { .. } => "roll".to_string(),
     };
     say!(
-        "flatcut nest: {}: {stock_word}, length used {:.3} mm, utilisation {:.2} %, {:.1} s, seed {}, {} evaluations, stopped by {:?}, verified",
+        "flatcut nest: {}: {stock_word} in {}, length used {:.3} mm, density {:.2} %, {:.1} s, seed {}, {} evaluations, stopped by {:?}, verified",
         output.names.join("+"),
+        args.output.join(SHEETS_FOLDER).display(),
         layout.used_length,
         layout.utilisation * 100.0,
         started.elapsed().as_secs_f64(),

@@ -29,6 +29,9 @@ pub struct NestReport<'a> {
     #[serde(flatten)]
     layout: &'a NestLayout,
     density: f64,
+    /// The sheets' DXF files, relative to the output folder, in sheet order (each with a PNG
+    /// preview of the same name).
+    sheet_files: Vec<String>,
 }
 
 /// The options recorded in `nest.json`.
@@ -60,12 +63,14 @@ struct NestReportPart<'a> {
 }
 
 impl<'a> NestReport<'a> {
-    /// The report of a checked layout of `items` from the instances `names`.
+    /// The report of a checked layout of `items` from the instances `names`, whose sheets were
+    /// written to `sheet_files` (relative to the output folder).
     pub fn new(
         names: &[String],
         options: NestReportOptions<'a>,
         items: &'a [NestItem],
         layout: &'a NestLayout,
+        sheet_files: &[std::path::PathBuf],
     ) -> Self {
         Self {
             schema_version: NEST_SCHEMA_VERSION,
@@ -83,6 +88,9 @@ impl<'a> NestReport<'a> {
             verified: true,
             layout,
             density: layout.utilisation,
+            sheet_files: (sheet_files.iter())
+                .map(|file| file.to_string_lossy().replace('\\', "/"))
+                .collect(),
         }
     }
 

@@ -1,18 +1,24 @@
 //! Nesting benchmark instances (ESICUP JSON, as in jagua-rs and sparrow) from the library: their
-//! items nested together on sheets or a roll and checked independently, for `flatcut nest`.
+//! items nested together on sheets or a roll and checked independently, for `flatcut nest`, which
+//! writes the sheets as `flatcut run` draws them (`sheets/sheet-NNN.dxf` and `.png`) and
+//! `nest.json`.
 
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use crate::error::Error;
+use crate::export::DxfOptions;
 use crate::export::nest_report::{NestReport, NestReportOptions};
+use crate::export::sheets::{SHEETS_FOLDER, sheet_drawings, write_sheet_files};
 use crate::nest::instance::read_instance;
 use crate::nest::verify::verify;
 use crate::nest::{
     DEFAULT_GAP, DEFAULT_SEED, DEFAULT_TIME_LIMIT, NestItem, NestLayout, NestOptions, Rotations,
     Stock, nest,
 };
+use crate::pattern::PartDrawing;
 use crate::progress::Progress;
+use crate::units::Units;
 
 /// A benchmark nesting job. `Default` is the only source of defaults (the nester's).
 #[derive(Debug, Clone, PartialEq)]
@@ -122,13 +128,22 @@ pub fn nest_benchmark(
     })
 }
 
-/// Writes `nest.json` for a nested benchmark into `directory` (created if missing) and returns
-/// its text.
+/// Writes the sheets of a nested benchmark (`sheets/sheet-NNN.dxf` and `.png`: each item's
+/// outline and holes as drawn by `flatcut run`, named on the preview) and `nest.json` into
+/// `directory` (created if missing), and returns the text of `nest.json`.
 pub fn write_benchmark(
     output: &BenchmarkOutput,
     config: &BenchmarkConfig,
     directory: &Path,
 ) -> Result<String, Error> {
+    let drawings: Vec<PartDrawing> = output.items.iter().map(item_drawing).collect();
+    let sheets = sheet_drawings(&drawings, &output.layout);
+    let files = write_sheet_files(
+        directory,
+        Path::new(SHEETS_FOLDER),
+        &sheets,
+        &DxfOptions::default(),
+    )?;
     let options = NestReportOptions {
         stock: output.options.stock,
         gap: output.options.gap,
@@ -139,6 +154,27 @@ pub fn write_benchmark(
         mirror: config.mirror,
         in_holes: config.in_holes,
     };
-    let report = NestReport::new(&output.names, options, &output.items, &output.layout);
+    let report = NestReport::new(
+        &output.names,
+        options,
+        &output.items,
+        &output.layout,
+        &files,
+    );
     Ok(report.write(directory)?)
+}
+
+/// The drawing of a benchmark item: its outline and holes in millimetres, nothing else.
+fn item_drawing(item: &NestItem) -> PartDrawing {
+    PartDrawing {
+        name: item.name.clone(),
+        units: Units::Millimetres,
+        quantity: item.quantity,
+        material: None,
+        outer: item.outer.clone(),
+        holes: item.holes.clone(),
+        fold_lines: Vec::new(),
+        grain: None,
+        bends: Vec::new(),
+    }
 }

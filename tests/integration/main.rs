@@ -3,6 +3,7 @@
 mod architecture;
 mod bad_inputs;
 mod batch;
+mod benchmark_nest;
 mod energy_png;
 mod fan_in;
 mod flatten;

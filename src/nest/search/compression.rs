@@ -51,22 +51,33 @@ impl Problem<'_> {
         best: &Solution<JaguaEngine>,
         budget: u64,
         random: &mut SplitMix64,
-        mut stop: impl FnMut(u64) -> bool,
-        mut on_best: impl FnMut(f64),
+        stop: impl FnMut(u64) -> bool,
+        on_best: impl FnMut(f64),
     ) -> (Option<Solution<JaguaEngine>>, u64) {
-        let parts: Vec<Part> = (best.placed.iter().zip(&best.order))
-            .filter_map(|(placed, &copy)| {
-                placed.map(|placed| Part {
-                    copy,
-                    shape: placed.shape,
-                    translation: placed.translation,
-                })
-            })
-            .collect();
-        if parts.len() != best.order.len() || parts.is_empty() {
+        let parts = parts_of(best);
+        if parts.len() != best.order.len() || parts.len() < 2 {
             return (None, 0);
         }
-        let mut separator = Separator::new(self, parts, self.cost(best).length);
+        let length = self.cost(best).length;
+        let (compressed, work) = self.compress_parts(parts, length, budget, random, stop, on_best);
+        let solution = compressed.map(|(parts, length)| self.solution_of(&parts, length));
+        (solution, work)
+    }
+
+    /// Searches through overlap for a shorter strip holding `parts` (separated, on a strip
+    /// `length` long: the roll, or the last sheet): exploration, then compression, within
+    /// `budget` work. Returns the shortest separated layout found and its length (or `None` if
+    /// none is shorter), and the work.
+    pub(super) fn compress_parts(
+        &self,
+        parts: Vec<Part>,
+        length: f64,
+        budget: u64,
+        random: &mut SplitMix64,
+        mut stop: impl FnMut(u64) -> bool,
+        mut on_best: impl FnMut(f64),
+    ) -> (Option<(Vec<Part>, f64)>, u64) {
+        let mut separator = Separator::new(self, parts, length);
         let mut best_parts = separator.parts.clone();
         let mut best_length = separator.used_length();
         let mut improved = false;
@@ -119,10 +130,7 @@ impl Problem<'_> {
             }
         }
         let work = separator.work();
-        if !improved {
-            return (None, work);
-        }
-        (Some(self.solution_of(&best_parts, best_length)), work)
+        (improved.then_some((best_parts, best_length)), work)
     }
 
     /// A roll solution holding `parts` on a strip `length` long (plus the inset).
@@ -152,6 +160,19 @@ impl Problem<'_> {
             bins: vec![engine],
         }
     }
+}
+
+/// The placed copies of a solution as the separator's parts, in the solution's order.
+pub(super) fn parts_of(solution: &Solution<JaguaEngine>) -> Vec<Part> {
+    (solution.placed.iter().zip(&solution.order))
+        .filter_map(|(placed, &copy)| {
+            placed.map(|placed| Part {
+                copy,
+                shape: placed.shape,
+                translation: placed.translation,
+            })
+        })
+        .collect()
 }
 
 /// Cuts the separator's strip to `length` at a uniformly drawn split.

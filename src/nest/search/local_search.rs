@@ -30,9 +30,13 @@ pub const MIN_SHRINK_FRACTION: f64 = 0.0025;
 /// Rounds without a strict decrease of the area left out after which the shrinking search goes
 /// back to the best complete layout and cuts it by half the previous fraction.
 pub const STALL_ROUNDS: u32 = 40;
-/// On a roll, the share of the work budget given to the sequence search; the rest goes to the
-/// compression through overlap (`separator.rs`), which starts from its best layout.
+/// The share of the work budget given to the sequence search; the rest goes to the search
+/// through overlap (`compression.rs` on a roll, `sheets.rs` on sheets), which starts from its
+/// best layout.
 pub const SEQUENCE_SEARCH_SHARE: f64 = 0.05;
+/// On sheets, the share of the work budget given to the sequence search (it decides the number
+/// of sheets first); the rest goes to the search through overlap (`sheets.rs`).
+pub const SHEETS_SEQUENCE_SEARCH_SHARE: f64 = 0.5;
 /// How many times the roll length of the construction may double before the search gives up.
 const MAX_ROLL_DOUBLINGS: u32 = 8;
 /// Roll length of the first attempt, as a multiple of (net area / roll width) plus the largest part.
@@ -51,11 +55,12 @@ impl Problem<'_> {
         progress.start("nest", budget);
         let shrinking = self.sheet_width.is_none();
         let total_budget = budget;
-        let budget = if shrinking {
-            (budget as f64 * SEQUENCE_SEARCH_SHARE) as u64
+        let share = if shrinking {
+            SEQUENCE_SEARCH_SHARE
         } else {
-            budget
+            SHEETS_SEQUENCE_SEARCH_SHARE
         };
+        let budget = (budget as f64 * share) as u64;
         let mut random = SplitMix64(self.options.seed);
         let mut pass = Pass {
             roll_length: self.initial_roll_length(),
@@ -147,31 +152,37 @@ impl Problem<'_> {
         let mut stop_reason = stop_reason;
         if shrinking {
             self.pull_in_rightmost(&mut best, &mut work, &mut random);
-            if stop_reason == StopReason::WorkBudget || stop_reason == StopReason::Complete {
-                let start_work = work;
-                let (compressed, spent) = self.compress(
-                    &best,
-                    total_budget.saturating_sub(work),
-                    &mut random,
-                    |spent| {
-                        progress.advance((start_work + spent).min(total_budget));
-                        started.elapsed() >= self.options.time_limit
-                    },
-                    |length| self.report_best(progress, length),
-                );
-                work += spent;
-                if started.elapsed() >= self.options.time_limit {
-                    stop_reason = StopReason::TimeLimit;
-                } else {
-                    stop_reason = StopReason::WorkBudget;
+        }
+        if stop_reason == StopReason::WorkBudget || stop_reason == StopReason::Complete {
+            let start_work = work;
+            let stop = |spent: u64| {
+                progress.advance((start_work + spent).min(total_budget));
+                started.elapsed() >= self.options.time_limit
+            };
+            let remaining = total_budget.saturating_sub(work);
+            let (improved, spent) = if shrinking {
+                self.compress(&best, remaining, &mut random, stop, |length| {
+                    self.report_best(progress, length);
+                })
+            } else {
+                self.improve_sheets(&best, remaining, &mut random, stop, |sheets, length| {
+                    report_sheets(progress, sheets, length);
+                })
+            };
+            work += spent;
+            stop_reason = if started.elapsed() >= self.options.time_limit {
+                StopReason::TimeLimit
+            } else {
+                StopReason::WorkBudget
+            };
+            if let Some(mut improved) = improved {
+                if shrinking {
+                    self.pull_in_rightmost(&mut improved, &mut work, &mut random);
                 }
-                if let Some(mut compressed) = compressed {
-                    self.pull_in_rightmost(&mut compressed, &mut work, &mut random);
-                    let layout = self.layout(&compressed, &guests, work, evaluations, stop_reason);
-                    if crate::nest::verify::verify(self.items, &layout).is_empty() {
-                        progress.finish();
-                        return Ok(layout);
-                    }
+                let layout = self.layout(&improved, &guests, work, evaluations, stop_reason);
+                if crate::nest::verify::verify(self.items, &layout).is_empty() {
+                    progress.finish();
+                    return Ok(layout);
                 }
             }
         }
@@ -282,4 +293,10 @@ impl Problem<'_> {
             .fold(0.0, f64::max);
         INITIAL_ROLL_FACTOR * (area / self.height + largest) + 2.0 * self.options.gap
     }
+}
+
+/// Shows the sheets and the last sheet's used length of a better sheet layout as the stage's
+/// status (the length of the inflated outlines, a hair above the final figure).
+fn report_sheets(progress: &dyn Progress, sheets: usize, length: f64) {
+    progress.status(&format!("best {sheets} sheet(s), last {length:.1} mm used"));
 }

@@ -20,7 +20,7 @@
 //!      threshold accepting: a neighbour up to [`ACCEPTANCE_THRESHOLD`](local_search::ACCEPTANCE_THRESHOLD) longer is accepted at the
 //!      start, falling linearly to zero.
 //!
-//! 3. **Search through overlap (roll only, `separator`, `compression`).** The sequence search gets
+//! 3. **Search through overlap on a roll (`separator`, `compression`).** The sequence search gets
 //!    [`SEQUENCE_SEARCH_SHARE`](local_search::SEQUENCE_SEARCH_SHARE) of the budget; the rest cuts
 //!    the best layout's strip shorter at a random split (the parts right of it move left, into
 //!    overlap) and separates them by guided local search on the pole-based overlap measure of the
@@ -30,6 +30,12 @@
 //!    exploration a separated layout is cut again and a failed one is pooled, disrupted and
 //!    separated again at the same length; compression then cuts the best by ever smaller steps.
 //!    The result is returned only if the independent check accepts it.
+//! 4. **Search through overlap on sheets (`sheets`).** The sequence search gets
+//!    [`SHEETS_SEQUENCE_SEARCH_SHARE`](local_search::SHEETS_SEQUENCE_SEARCH_SHARE) of the budget;
+//!    the rest separates the last sheet's parts into the earlier sheets, one at a time (dropping
+//!    the last sheet when it empties), trades its widest part for a narrower one when that is
+//!    what holds its length, then compresses the last sheet like a strip. Also checked
+//!    independently before it is returned.
 //!
 //! Determinism: the work is counted in collision queries and the search stops after
 //! `work_limit` of them (default `time_limit × NOMINAL_QUERIES_PER_SECOND`), so the result depends
@@ -40,7 +46,7 @@
 //!
 //! Files: `problem` (validated input and oriented shapes, checked by `validation`), `placement`
 //! (bottom-left, with `compaction`), `moves`, `objective`, `local_search` (the loop and its
-//! budget), `separator` and `compression` (search through overlap), `holes` (parts in holes), `measure` (the
+//! budget), `separator`, `compression` and `sheets` (search through overlap), `holes` (parts in holes), `measure` (the
 //! public layout), `solution` and `random`.
 
 mod compaction;
@@ -54,6 +60,7 @@ mod placement;
 mod problem;
 mod random;
 mod separator;
+mod sheets;
 mod solution;
 mod validation;
 

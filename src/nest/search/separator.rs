@@ -1,11 +1,11 @@
-//! The separator (roll only): parts on a strip, possibly overlapping, moved one colliding part at
-//! a time to the position of least weighted overlap (sampled, then refined by coordinate
-//! descent), with the weights of pairs that keep colliding raised and those of pairs that stopped
-//! colliding decayed (guided local search). Each round runs [`WORKERS`] independent copies in
-//! parallel from the same state, each with its own seed, and keeps the one of least weighted
-//! overlap; rounds continue until nothing collides or no substantial progress is made
-//! ([`Limits`]: rounds without progress per strike, strikes, each strike restarting from the
-//! least-overlapping state found).
+//! The separator: parts on a strip (the roll, a sheet, or the used part of the last sheet),
+//! possibly overlapping, moved one colliding part at a time to the position of least weighted
+//! overlap (sampled, then refined by coordinate descent), with the weights of pairs that keep
+//! colliding raised and those of pairs that stopped colliding decayed (guided local search).
+//! Each round runs [`WORKERS`] independent copies in parallel from the same state, each with its
+//! own seed, and keeps the one of least weighted overlap; rounds continue until nothing
+//! collides or no substantial progress is made ([`Limits`]: rounds without progress per strike,
+//! strikes, each strike restarting from the least-overlapping state found).
 //!
 //! The overlap measure is [`JaguaEngine::overlap`] (pole-based, see `collision.rs`); a layout is
 //! separated when no part collides with anything (the same test as the bottom-left placement).
@@ -474,7 +474,7 @@ impl<'p, 'a> Separator<'p, 'a> {
 }
 
 /// Range of translations that keep `shape` inside a strip `length` long.
-fn strip_range(problem: &Problem, length: f64, shape: ShapeId) -> (DVec2, DVec2) {
+pub(super) fn strip_range(problem: &Problem, length: f64, shape: ShapeId) -> (DVec2, DVec2) {
     let inset = problem.library.inflation() + CLEARANCE_RELATIVE * problem.scale;
     let orientation = &problem.orientations[shape];
     let low = DVec2::splat(inset) - orientation.min;
