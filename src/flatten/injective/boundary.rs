@@ -85,7 +85,14 @@ impl BoundaryBarrier {
     /// Every boundary vertex within the reach of a boundary edge not ending at it, in a fixed
     /// order (by vertex, then by edge).
     pub fn contacts(&self, positions: &[DVec2]) -> Vec<Contact> {
-        let cell = self.reach;
+        // Cells about an edge long (at least the reach), so an edge covers a few cells.
+        let mean_length = self
+            .edges
+            .iter()
+            .map(|&[a, b]| positions[a as usize].distance(positions[b as usize]))
+            .sum::<f64>()
+            / self.edges.len() as f64;
+        let cell = mean_length.max(self.reach);
         let key = |p: DVec2| ((p.x / cell).floor() as i64, (p.y / cell).floor() as i64);
         let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
         for (index, &[a, b]) in self.edges.iter().enumerate() {
@@ -143,28 +150,73 @@ impl BoundaryBarrier {
     }
 
     /// The largest step along `direction` at which no boundary vertex has reached a boundary
-    /// edge not ending at it (infinity if none ever does): for every pair that could meet within
-    /// a unit step, the first time the vertex lies on the segment.
+    /// edge not ending at it (infinity if none ever does): for every pair whose boxes swept over
+    /// a unit step overlap (found by sweeping along x), the first time the vertex lies on the
+    /// segment.
     pub fn max_contact_free_step(&self, positions: &[DVec2], direction: &[DVec2]) -> f64 {
-        let mut bound = f64::INFINITY;
-        for &v in &self.vertices {
-            let (p, dp) = (positions[v as usize], direction[v as usize]);
-            for &edge in &self.edges {
-                if edge.contains(&v) {
-                    continue;
-                }
-                let [a, b] = edge.map(|e| positions[e as usize]);
-                let [da, db] = edge.map(|e| direction[e as usize]);
-                let travel = dp.length() + da.length().max(db.length());
-                let (distance, _) = point_segment_distance(p, a, b);
-                if distance > travel * bound.min(1.0) {
-                    continue;
-                }
-                bound = bound.min(first_contact(p, a, b, dp, da, db));
+        let swept = |points: &[u32]| {
+            let mut low = DVec2::splat(f64::INFINITY);
+            let mut high = DVec2::splat(f64::NEG_INFINITY);
+            for &v in points {
+                let (p, d) = (positions[v as usize], direction[v as usize]);
+                low = low.min(p).min(p + d);
+                high = high.max(p).max(p + d);
             }
+            (low, high)
+        };
+        let vertex_boxes: Vec<(DVec2, DVec2)> =
+            self.vertices.iter().map(|&v| swept(&[v])).collect();
+        let edge_boxes: Vec<(DVec2, DVec2)> = self.edges.iter().map(|e| swept(e)).collect();
+        let mut bound = f64::INFINITY;
+        for (vi, ei) in overlapping_boxes(&vertex_boxes, &edge_boxes) {
+            let v = self.vertices[vi];
+            let edge = self.edges[ei];
+            if edge.contains(&v) {
+                continue;
+            }
+            let [a, b] = edge.map(|e| positions[e as usize]);
+            let [da, db] = edge.map(|e| direction[e as usize]);
+            let (p, dp) = (positions[v as usize], direction[v as usize]);
+            bound = bound.min(first_contact(p, a, b, dp, da, db));
         }
         bound
     }
+}
+
+/// The pairs (first list, second list) of boxes `(low, high)` that overlap, by a sweep along x.
+fn overlapping_boxes(first: &[(DVec2, DVec2)], second: &[(DVec2, DVec2)]) -> Vec<(usize, usize)> {
+    let mut events: Vec<(f64, bool, usize)> = first
+        .iter()
+        .enumerate()
+        .map(|(i, b)| (b.0.x, false, i))
+        .chain(second.iter().enumerate().map(|(i, b)| (b.0.x, true, i)))
+        .collect();
+    events.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)).then(x.2.cmp(&y.2)));
+    let (mut active_first, mut active_second): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
+    let mut pairs = Vec::new();
+    let overlap_y = |a: &(DVec2, DVec2), b: &(DVec2, DVec2)| a.0.y <= b.1.y && b.0.y <= a.1.y;
+    for (x, in_second, i) in events {
+        active_first.retain(|&j| first[j].1.x >= x);
+        active_second.retain(|&j| second[j].1.x >= x);
+        if in_second {
+            pairs.extend(
+                active_first
+                    .iter()
+                    .filter(|&&j| overlap_y(&first[j], &second[i]))
+                    .map(|&j| (j, i)),
+            );
+            active_second.push(i);
+        } else {
+            pairs.extend(
+                active_second
+                    .iter()
+                    .filter(|&&j| overlap_y(&first[i], &second[j]))
+                    .map(|&j| (i, j)),
+            );
+            active_first.push(i);
+        }
+    }
+    pairs
 }
 
 /// The distance from `p` to the segment `ab` and its gradient with respect to `p`, `a` and `b`.
@@ -232,6 +284,35 @@ mod tests {
                 .wrapping_add(1442695040888963407);
             ((state >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
         }
+    }
+
+    #[test]
+    fn the_sweep_finds_exactly_the_overlapping_boxes() {
+        let mut next = numbers(3);
+        let mut boxes = |count: usize| -> Vec<(DVec2, DVec2)> {
+            (0..count)
+                .map(|_| {
+                    let low = DVec2::new(next(), next());
+                    (
+                        low,
+                        low + DVec2::new(0.3 * next().abs(), 0.3 * next().abs()),
+                    )
+                })
+                .collect()
+        };
+        let (first, second) = (boxes(200), boxes(150));
+        let mut swept = overlapping_boxes(&first, &second);
+        swept.sort_unstable();
+        let mut brute = Vec::new();
+        for (i, a) in first.iter().enumerate() {
+            for (j, b) in second.iter().enumerate() {
+                if a.0.x <= b.1.x && b.0.x <= a.1.x && a.0.y <= b.1.y && b.0.y <= a.1.y {
+                    brute.push((i, j));
+                }
+            }
+        }
+        assert!(!brute.is_empty());
+        assert_eq!(swept, brute);
     }
 
     #[test]
