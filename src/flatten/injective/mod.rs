@@ -24,6 +24,7 @@
 mod barrier;
 mod boundary;
 mod errors;
+mod lscm;
 mod solver;
 mod sparse;
 mod step;
@@ -32,6 +33,7 @@ mod tutte;
 pub use barrier::{Barrier, ORIENTATION_BARRIER, SHAPING_BARRIER};
 pub use boundary::{BOUNDARY_REACH, BoundaryBarrier, Contact, point_segment_distance};
 pub use errors::InjectiveError;
+pub use lscm::conformal_map;
 pub use solver::{
     FLIP_FREE_FRACTION, InjectiveOutcome, MAX_NEWTON_ITERATIONS, NEWTON_DECREMENT_TOLERANCE,
     NEWTON_ENERGY_TOLERANCE, NEWTON_WINDOW, Outline, flip_free_flatten, flip_free_solve,

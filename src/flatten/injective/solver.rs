@@ -7,10 +7,11 @@ use glam::DVec2;
 use super::barrier::{Barrier, ORIENTATION_BARRIER, SHAPING_BARRIER};
 use super::boundary::BoundaryBarrier;
 use super::errors::InjectiveError;
+use super::lscm::conformal_map;
 use super::sparse::{Factor, SparsePattern};
 use super::step::max_flip_free_step;
 use super::tutte::tutte_embedding;
-use crate::flatten::accuracy::{flipped_triangles, signed_area};
+use crate::flatten::accuracy::{boundary_self_intersects, flipped_triangles, signed_area};
 use crate::flatten::energy_release::StopReason;
 use crate::flatten::springs::SpringSystem;
 use crate::mesh::FacetModel;
@@ -59,12 +60,17 @@ pub struct InjectiveOutcome {
     pub energy: f64,
 }
 
-/// The flip-free flattening of a part with a boundary: its Tutte embedding ([`tutte_embedding`]) minimised by
+/// The flip-free flattening of a part with a boundary, from two starts: its Tutte embedding
+/// ([`tutte_embedding`]) and, when it has no flipped triangle (nor, with [`Outline::Kept`], a
+/// crossing outline), its least-squares conformal map ([`conformal_map`]), which follows a long,
+/// narrow part's shape where the Tutte start puts it on a circle. Each is minimised by
 /// [`flip_free_solve`] in two stages of at most `max_iterations` Newton iterations each, with the
 /// [`SHAPING_BARRIER`] (the Tutte start is far too small in places: the pattern unfolds without
 /// collapsing triangles) and then the [`ORIENTATION_BARRIER`] (the spring energy's own minimum,
-/// triangles kept from degenerating). Every triangle of the returned pattern is positively
-/// oriented; the outcome's iterations count both stages, its objectives are the last stage's.
+/// triangles kept from degenerating); the pattern of lower spring energy is kept (the Tutte one
+/// on a tie). Every triangle of the returned pattern is positively oriented; the outcome's
+/// iterations count every stage of both starts, its objectives are the kept pattern's last
+/// stage's.
 pub fn flip_free_flatten(
     model: &FacetModel,
     springs: &SpringSystem,
@@ -72,7 +78,31 @@ pub fn flip_free_flatten(
     deadline: Deadline,
     outline: Outline,
 ) -> Result<(Vec<DVec2>, InjectiveOutcome), InjectiveError> {
-    let mut positions = tutte_embedding(model)?;
+    let minimise =
+        |start: Vec<DVec2>| two_stages(model, springs, start, max_iterations, deadline, outline);
+    let mut best = minimise(tutte_embedding(model)?)?;
+    if let Some(start) = conformal_start(model, outline) {
+        // A conformal start that does not factor or stalls leaves the Tutte pattern.
+        if let Ok(other) = minimise(start) {
+            let iterations = best.1.iterations + other.1.iterations;
+            if other.1.energy < best.1.energy {
+                best = other;
+            }
+            best.1.iterations = iterations;
+        }
+    }
+    Ok(best)
+}
+
+/// The shaping then the orientation stage of [`flip_free_flatten`] from `positions`.
+fn two_stages(
+    model: &FacetModel,
+    springs: &SpringSystem,
+    mut positions: Vec<DVec2>,
+    max_iterations: usize,
+    deadline: Deadline,
+    outline: Outline,
+) -> Result<(Vec<DVec2>, InjectiveOutcome), InjectiveError> {
     let mut iterations = 0;
     let mut outcome = None;
     for barrier in [SHAPING_BARRIER, ORIENTATION_BARRIER] {
@@ -92,6 +122,17 @@ pub fn flip_free_flatten(
         });
     }
     Ok((positions, outcome.expect("two stages")))
+}
+
+/// The least-squares conformal map of `model` ([`conformal_map`]) when it can start the flip-free
+/// minimiser: no flipped or degenerate triangle (and, with [`Outline::Kept`], an outline that
+/// does not cross itself).
+fn conformal_start(model: &FacetModel, outline: Outline) -> Option<Vec<DVec2>> {
+    let map = conformal_map(model).ok()?;
+    let valid = map.iter().all(|p| p.is_finite())
+        && flipped_triangles(model, &map) == 0
+        && (outline == Outline::Free || !boundary_self_intersects(model, &map));
+    valid.then_some(map)
 }
 
 /// Whether the flip-free minimiser also keeps the pattern's outline from crossing itself.
