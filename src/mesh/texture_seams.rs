@@ -160,8 +160,8 @@ mod tests {
         let texture = split.texture.as_ref().expect("texture kept");
         assert_eq!(texture.corners, split.triangles);
         for (t, split_triangle) in split.triangles.iter().enumerate() {
-            for k in 0..3 {
-                let v = split_triangle[k] as usize;
+            for (k, &v) in split_triangle.iter().enumerate() {
+                let v = v as usize;
                 let input = soup.triangles[t][k] as usize;
                 assert_eq!(split.positions[v], soup.positions[input]);
                 let point = soup.texture.as_ref().unwrap().corners[t][k] as usize;
