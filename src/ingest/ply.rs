@@ -1,8 +1,9 @@
 //! PLY (Stanford polygon files), ASCII and binary of either byte order, as scanners and
 //! photogrammetry tools write them: the `vertex` element's `x`, `y`, `z` and the `face`
 //! element's index list (`vertex_indices` or `vertex_index`); polygons are fan-triangulated from
-//! their first corner. Every other element and property (normals, colours, edges, materials) is
-//! read past and ignored.
+//! their first corner. A `tristrips` element's index lists are triangle strips (`-1` starts a
+//! new strip; every other triangle of a strip is turned so all face the same way). Every other
+//! element and property (normals, colours, edges, materials) is read past and ignored.
 
 use glam::DVec3;
 
@@ -33,7 +34,13 @@ pub fn parse_ply(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
                 positions = read_vertices(&mut body, element, axes)?;
             }
             Role::Faces(list) => {
-                triangles = read_faces(&mut body, element, list, positions.len())?;
+                let faces = read_faces(&mut body, element, list, positions.len(), face_corners)?;
+                triangles.extend(faces);
+            }
+            Role::Strips(list) => {
+                let strips =
+                    read_faces(&mut body, element, list, positions.len(), strip_triangles)?;
+                triangles.extend(strips);
             }
             Role::Other => skip_element(&mut body, element)?,
         }
@@ -109,6 +116,8 @@ enum Role {
     Vertices([usize; 3]),
     /// `face`, with the index of its vertex list property.
     Faces(usize),
+    /// `tristrips`, with the index of its vertex list property.
+    Strips(usize),
     Other,
 }
 
@@ -249,17 +258,24 @@ fn role_of(element: &Element, line: usize) -> Result<Role, FormatDefect> {
             }
             Ok(Role::Vertices(axes))
         }
-        "face" => {
+        name @ ("face" | "tristrips") => {
             let index = find(&["vertex_indices", "vertex_index"]).ok_or_else(|| {
-                header_error(line, "the face element has no 'vertex_indices' list")
+                header_error(
+                    line,
+                    format!("the {name} element has no 'vertex_indices' list"),
+                )
             })?;
             match element.properties[index].1 {
                 Property::List { item, .. } if !matches!(item, Scalar::F32 | Scalar::F64) => {
-                    Ok(Role::Faces(index))
+                    Ok(if name == "face" {
+                        Role::Faces(index)
+                    } else {
+                        Role::Strips(index)
+                    })
                 }
                 _ => Err(header_error(
                     line,
-                    "face 'vertex_indices' must be a list of integers",
+                    format!("{name} 'vertex_indices' must be a list of integers"),
                 )),
             }
         }
@@ -445,11 +461,14 @@ fn read_vertices(
     Ok(positions)
 }
 
+/// The triangles of a `face` or `tristrips` element, each record's index list made into
+/// triangles by `triangulate` (given the list, the vertex count and the record).
 fn read_faces(
     body: &mut Body<'_>,
     element: &Element,
     list_property: usize,
     vertices: usize,
+    triangulate: fn(&[f64], usize, usize) -> Result<Vec<[u32; 3]>, FormatDefect>,
 ) -> Result<Vec<[u32; 3]>, FormatDefect> {
     check_count(body, element)?;
     let mut triangles = Vec::with_capacity(element.count);
@@ -463,10 +482,7 @@ fn read_faces(
                 if index != list_property {
                     return Ok(());
                 }
-                let corners = face_corners(items, vertices, record)?;
-                for k in 1..corners.len() - 1 {
-                    triangles.push([corners[0], corners[k], corners[k + 1]]);
-                }
+                triangles.extend(triangulate(items, vertices, record)?);
                 Ok(())
             },
         )?;
@@ -474,8 +490,43 @@ fn read_faces(
     Ok(triangles)
 }
 
+/// A polygon's triangles, fanned from its first corner.
+fn face_corners(
+    items: &[f64],
+    vertices: usize,
+    record: usize,
+) -> Result<Vec<[u32; 3]>, FormatDefect> {
+    let corners = polygon_corners(items, vertices, record)?;
+    Ok((1..corners.len() - 1)
+        .map(|k| [corners[0], corners[k], corners[k + 1]])
+        .collect())
+}
+
+/// The triangles of a record of triangle strips: `-1` ends a strip; in each strip, triangle `k`
+/// is `(s[k], s[k+1], s[k+2])`, its two first corners swapped for odd `k` so that every triangle
+/// keeps the strip's orientation. A strip of fewer than 3 indices makes no triangle.
+fn strip_triangles(
+    items: &[f64],
+    vertices: usize,
+    record: usize,
+) -> Result<Vec<[u32; 3]>, FormatDefect> {
+    let mut triangles = Vec::new();
+    for strip in items.split(|&index| index == -1.0) {
+        let corners = checked_indices(strip, vertices, record, "triangle strip")?;
+        for k in 0..corners.len().saturating_sub(2) {
+            let [a, b, c] = [corners[k], corners[k + 1], corners[k + 2]];
+            triangles.push(if k % 2 == 0 { [a, b, c] } else { [b, a, c] });
+        }
+    }
+    Ok(triangles)
+}
+
 /// A face's corners as vertex indices, checked against the vertex count.
-fn face_corners(items: &[f64], vertices: usize, record: usize) -> Result<Vec<u32>, FormatDefect> {
+fn polygon_corners(
+    items: &[f64],
+    vertices: usize,
+    record: usize,
+) -> Result<Vec<u32>, FormatDefect> {
     if items.len() < 3 {
         return Err(FormatDefect::Binary(format!(
             "face {} has {} vertices; a face needs at least 3",
@@ -483,6 +534,16 @@ fn face_corners(items: &[f64], vertices: usize, record: usize) -> Result<Vec<u32
             items.len()
         )));
     }
+    checked_indices(items, vertices, record, "face")
+}
+
+/// The indices of a record, each checked against the vertex count.
+fn checked_indices(
+    items: &[f64],
+    vertices: usize,
+    record: usize,
+    what: &str,
+) -> Result<Vec<u32>, FormatDefect> {
     items
         .iter()
         .map(|&index| {
@@ -490,7 +551,7 @@ fn face_corners(items: &[f64], vertices: usize, record: usize) -> Result<Vec<u32
                 Ok(index as u32)
             } else {
                 Err(FormatDefect::Binary(format!(
-                    "face {} refers to vertex {index}, but the file has {vertices} vertices (numbered from 0)",
+                    "{what} {} refers to vertex {index}, but the file has {vertices} vertices (numbered from 0)",
                     record + 1
                 )))
             }
@@ -558,6 +619,26 @@ mod tests {
         assert_eq!(soup.positions.len(), 4);
         assert_eq!(soup.positions[2], DVec3::new(1.0, 1.0, 0.0));
         assert_eq!(soup.triangles, [[0, 1, 2], [0, 2, 3]]);
+    }
+
+    #[test]
+    fn triangle_strips_are_split_at_minus_one_and_keep_one_orientation() {
+        let text = "ply\nformat ascii 1.0\nelement vertex 7\nproperty float x\nproperty float y\n\
+                    property float z\nelement tristrips 1\nproperty list int int vertex_indices\n\
+                    end_header\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n5 0 0\n6 0 0\n5 1 0\n\
+                    8 0 1 2 3 -1 4 5 6\n";
+        let soup = parse_ply(text.as_bytes()).expect("parses");
+        assert_eq!(soup.triangles, [[0, 1, 2], [2, 1, 3], [4, 5, 6]]);
+        // Every triangle faces +z: counter-clockwise in the plane.
+        for t in &soup.triangles {
+            let [a, b, c] = t.map(|v| soup.positions[v as usize]);
+            assert!((b - a).cross(c - a).z > 0.0, "{t:?}");
+        }
+        let bad = text.replace("-1 4 5 6", "-1 4 5 9");
+        let error = parse_ply(bad.as_bytes())
+            .expect_err("out of range")
+            .to_string();
+        assert!(error.contains("triangle strip 1"), "{error}");
     }
 
     #[test]
