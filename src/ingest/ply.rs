@@ -461,6 +461,9 @@ fn read_vertices(
     Ok(positions)
 }
 
+/// Makes one record's index list into triangles, given the vertex count and the record's index.
+type Triangulate = fn(&[f64], usize, usize) -> Result<Vec<[u32; 3]>, FormatDefect>;
+
 /// The triangles of a `face` or `tristrips` element, each record's index list made into
 /// triangles by `triangulate` (given the list, the vertex count and the record).
 fn read_faces(
@@ -468,7 +471,7 @@ fn read_faces(
     element: &Element,
     list_property: usize,
     vertices: usize,
-    triangulate: fn(&[f64], usize, usize) -> Result<Vec<[u32; 3]>, FormatDefect>,
+    triangulate: Triangulate,
 ) -> Result<Vec<[u32; 3]>, FormatDefect> {
     check_count(body, element)?;
     let mut triangles = Vec::with_capacity(element.count);
