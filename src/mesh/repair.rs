@@ -32,7 +32,9 @@ pub fn weld_duplicates(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
         *triangle = triangle.map(|v| representative.get(v as usize).copied().unwrap_or(v));
     }
     for edge in &mut welded.fold_edges {
-        edge.vertices = edge.vertices.map(|v| representative[v as usize]);
+        edge.vertices = edge
+            .vertices
+            .map(|v| representative.get(v as usize).copied().unwrap_or(v));
     }
     (welded, warnings)
 }
@@ -43,7 +45,7 @@ pub fn weld_duplicates(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
 /// vertex's position and file line. Returns the warnings, one [`Defect::SplitEdge`] per edge
 /// and one [`Defect::SplitVertex`] per vertex split.
 pub fn split_non_manifold(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
-    let faces_of_edge = edge_faces(&soup.triangles);
+    let faces_of_edge = edge_faces(&soup.triangles, soup.positions.len());
     let mut warnings: Vec<Defect> = faces_of_edge
         .iter()
         .filter(|(_, faces)| faces.len() > 2)
@@ -80,12 +82,14 @@ pub fn split_non_manifold(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
     (split, warnings)
 }
 
-/// The triangles around each edge `(min, max)` of the soup (a triangle repeating a vertex is left
-/// out: validation drops it).
-fn edge_faces(triangles: &[[u32; 3]]) -> BTreeMap<(u32, u32), Vec<u32>> {
+/// The triangles around each edge `(min, max)` of the soup (a triangle repeating a vertex or
+/// naming one of the `vertex_count` vertices that does not exist is left out: validation drops
+/// or refuses it).
+fn edge_faces(triangles: &[[u32; 3]], vertex_count: usize) -> BTreeMap<(u32, u32), Vec<u32>> {
     let mut faces: BTreeMap<(u32, u32), Vec<u32>> = BTreeMap::new();
     for (f, t) in triangles.iter().enumerate() {
-        if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+        let repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+        if repeated || t.iter().any(|&v| v as usize >= vertex_count) {
             continue;
         }
         for k in 0..3 {
@@ -230,6 +234,18 @@ mod tests {
         );
         assert_eq!(split.triangles, vec![[0, 1, 2], [5, 3, 4]]);
         assert_eq!(validate(&split).expect("valid").components.len(), 2);
+    }
+
+    #[test]
+    fn a_triangle_naming_a_missing_vertex_is_left_for_validation_to_refuse() {
+        let mut soup = three_panels();
+        soup.triangles.push([0, 1, 99]);
+        let (split, _) = split_non_manifold(&soup);
+        assert_eq!(split.triangles[3], [0, 1, 99], "left as it was");
+        assert!(
+            validate(&split).is_err(),
+            "the missing vertex is still refused"
+        );
     }
 
     #[test]
