@@ -108,11 +108,7 @@ pub fn flipped_triangles(model: &FacetModel, pattern: &[DVec2]) -> usize {
 
 /// True if two boundary segments that share no vertex intersect (touching counts).
 pub fn boundary_self_intersects(model: &FacetModel, pattern: &[DVec2]) -> bool {
-    let segments: Vec<[u32; 2]> = model
-        .boundary_loops()
-        .iter()
-        .flat_map(|ring| (0..ring.len()).map(move |i| [ring[i], ring[(i + 1) % ring.len()]]))
-        .collect();
+    let segments: Vec<[u32; 2]> = model.boundary_sides().collect();
     any_segments_cross(&segments, pattern)
 }
 

@@ -140,6 +140,13 @@ impl FacetModel {
         &self.boundary_loops
     }
 
+    /// The sides of the boundary loops, each `[from, to]` in its loop's order.
+    pub fn boundary_sides(&self) -> impl Iterator<Item = [u32; 2]> + '_ {
+        self.boundary_loops
+            .iter()
+            .flat_map(|ring| (0..ring.len()).map(move |i| [ring[i], ring[(i + 1) % ring.len()]]))
+    }
+
     /// True when the surface has no boundary and must be cut open before it can be flattened.
     pub fn is_closed(&self) -> bool {
         self.boundary_loops.is_empty()

@@ -6,6 +6,7 @@
 use std::collections::BTreeMap;
 
 use super::defects::Defect;
+use super::validate::{corner_fans, edge_groups, sorted_half_edges};
 use crate::cad::TriangleSoup;
 
 /// The soup with every vertex that lies exactly on an earlier one replaced by it in the
@@ -41,22 +42,40 @@ pub fn weld_duplicates(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
 
 /// The soup with its non-manifold edges and vertices split: triangles stop being neighbours
 /// across an edge that more than two of them share, and each vertex gets one copy per fan of
-/// triangles that meet there (neighbours across the vertex's other edges). Copies keep their
-/// vertex's position and file line. Returns the warnings, one [`Defect::SplitEdge`] per edge
-/// and one [`Defect::SplitVertex`] per vertex split.
+/// triangles that meet there ([`corner_fans`]; fans ordered by their lowest triangle, the first
+/// keeping the vertex). Copies keep their vertex's position and file line. A triangle that
+/// repeats a vertex or names a missing one is left as it is, for validation. Returns the
+/// warnings, one [`Defect::SplitEdge`] per edge and one [`Defect::SplitVertex`] per vertex split.
 pub fn split_non_manifold(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
-    let faces_of_edge = edge_faces(&soup.triangles, soup.positions.len());
-    let mut warnings: Vec<Defect> = faces_of_edge
-        .iter()
-        .filter(|(_, faces)| faces.len() > 2)
-        .map(|(&(a, b), faces)| Defect::SplitEdge {
-            vertices: [a, b],
-            faces: faces.len(),
+    let vertex_count = soup.positions.len();
+    let usable: Vec<usize> = (0..soup.triangles.len())
+        .filter(|&t| {
+            let [a, b, c] = soup.triangles[t];
+            a != b && b != c && a != c && [a, b, c].iter().all(|&v| (v as usize) < vertex_count)
         })
         .collect();
-    let fans = vertex_fans(soup, &faces_of_edge);
+    let triangles: Vec<[u32; 3]> = usable.iter().map(|&t| soup.triangles[t]).collect();
+    let half_edges = sorted_half_edges(&triangles);
+    let mut warnings: Vec<Defect> = edge_groups(&half_edges)
+        .filter(|group| group.len() > 2)
+        .map(|group| Defect::SplitEdge {
+            vertices: [group[0].0, group[0].1],
+            faces: group.len(),
+        })
+        .collect();
+    let fans = corner_fans(&triangles, &half_edges);
+    // Per vertex, its fans in the order of their lowest triangle, each with its corners.
+    let mut fans_of_vertex: Vec<Vec<(u32, Vec<usize>)>> = vec![Vec::new(); vertex_count];
+    for (corner, &fan) in fans.iter().enumerate() {
+        let vertex = triangles[corner / 3][corner % 3] as usize;
+        let groups = &mut fans_of_vertex[vertex];
+        match groups.iter_mut().find(|(known, _)| *known == fan) {
+            Some((_, corners)) => corners.push(corner),
+            None => groups.push((fan, vec![corner])),
+        }
+    }
     let mut split = soup.clone();
-    for (vertex, groups) in fans.iter().enumerate() {
+    for (vertex, groups) in fans_of_vertex.iter().enumerate() {
         if groups.len() < 2 {
             continue;
         }
@@ -64,110 +83,18 @@ pub fn split_non_manifold(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
             vertex,
             copies: groups.len(),
         });
-        for group in &groups[1..] {
+        for (_, corners) in &groups[1..] {
             let copy = split.positions.len() as u32;
             split.positions.push(soup.positions[vertex]);
             if let Some(line) = soup.source_lines.vertex(vertex) {
                 split.source_lines.vertices.push(line);
             }
-            for &face in group {
-                for corner in &mut split.triangles[face as usize] {
-                    if *corner == vertex as u32 {
-                        *corner = copy;
-                    }
-                }
+            for &corner in corners {
+                split.triangles[usable[corner / 3]][corner % 3] = copy;
             }
         }
     }
     (split, warnings)
-}
-
-/// The triangles around each edge `(min, max)` of the soup (a triangle repeating a vertex or
-/// naming one of the `vertex_count` vertices that does not exist is left out: validation drops
-/// or refuses it).
-fn edge_faces(triangles: &[[u32; 3]], vertex_count: usize) -> BTreeMap<(u32, u32), Vec<u32>> {
-    let mut faces: BTreeMap<(u32, u32), Vec<u32>> = BTreeMap::new();
-    for (f, t) in triangles.iter().enumerate() {
-        let repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
-        if repeated || t.iter().any(|&v| v as usize >= vertex_count) {
-            continue;
-        }
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            faces
-                .entry((a.min(b), a.max(b)))
-                .or_default()
-                .push(f as u32);
-        }
-    }
-    faces
-}
-
-/// Per vertex, its triangles grouped into fans: triangles joined through an edge of the vertex
-/// that exactly two triangles share. Groups are ordered by their lowest triangle.
-fn vertex_fans(
-    soup: &TriangleSoup,
-    faces_of_edge: &BTreeMap<(u32, u32), Vec<u32>>,
-) -> Vec<Vec<Vec<u32>>> {
-    let mut around: Vec<Vec<u32>> = vec![Vec::new(); soup.positions.len()];
-    for faces in faces_of_edge.values() {
-        for &f in faces {
-            for v in soup.triangles[f as usize] {
-                let list = &mut around[v as usize];
-                if list.last() != Some(&f) && !list.contains(&f) {
-                    list.push(f);
-                }
-            }
-        }
-    }
-    around
-        .iter()
-        .enumerate()
-        .map(|(v, faces)| fans_at(v as u32, faces, soup, faces_of_edge))
-        .collect()
-}
-
-/// The fans of the triangles `faces` around vertex `v` (union-find over the manifold edges of
-/// `v`).
-fn fans_at(
-    v: u32,
-    faces: &[u32],
-    soup: &TriangleSoup,
-    faces_of_edge: &BTreeMap<(u32, u32), Vec<u32>>,
-) -> Vec<Vec<u32>> {
-    let mut sorted = faces.to_vec();
-    sorted.sort_unstable();
-    let mut parent: Vec<usize> = (0..sorted.len()).collect();
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
-    for (i, &f) in sorted.iter().enumerate() {
-        for w in soup.triangles[f as usize] {
-            if w == v {
-                continue;
-            }
-            let Some(pair) = faces_of_edge.get(&(v.min(w), v.max(w))) else {
-                continue;
-            };
-            if let [a, b] = pair[..] {
-                let other = if a == f { b } else { a };
-                if let Ok(j) = sorted.binary_search(&other) {
-                    let (ri, rj) = (root(&mut parent, i), root(&mut parent, j));
-                    parent[ri.max(rj)] = ri.min(rj);
-                }
-            }
-        }
-    }
-    let mut groups: BTreeMap<usize, Vec<u32>> = BTreeMap::new();
-    for (i, &f) in sorted.iter().enumerate() {
-        let r = root(&mut parent, i);
-        groups.entry(r).or_default().push(f);
-    }
-    groups.into_values().collect()
 }
 
 #[cfg(test)]

@@ -8,7 +8,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
 
-use crate::cad::{FoldEdge, SourceLines, TextureCorners, TriangleSoup};
+use crate::cad::{SourceLines, TextureCorners, TriangleSoup};
 
 /// Where a mesh file's pieces and seams come from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, clap::ValueEnum)]
@@ -63,7 +63,8 @@ pub fn split_at_texture_seams(soup: &TriangleSoup) -> Option<TriangleSoup> {
             .iter()
             .map(|&v| soup.positions.get(v as usize).copied().unwrap_or_default())
             .collect(),
-        fold_edges: split_fold_edges(soup, &triangles, &original),
+        // Mesh files, the only soups with texture points, have no fold lines.
+        fold_edges: Vec::new(),
         face_sources: soup.face_sources.clone(),
         source_lines: SourceLines {
             vertices: original
@@ -89,39 +90,6 @@ fn corner_pairs<'a>(
         .iter()
         .zip(&texture.corners)
         .flat_map(|(vertices, points)| (0..3).map(move |k| (vertices[k], points[k])))
-}
-
-/// The fold edges of the split soup: every edge of its triangles whose input edge was one.
-fn split_fold_edges(
-    soup: &TriangleSoup,
-    triangles: &[[u32; 3]],
-    original: &[u32],
-) -> Vec<FoldEdge> {
-    if soup.fold_edges.is_empty() {
-        return Vec::new();
-    }
-    let key = |[a, b]: [u32; 2]| (a.min(b), a.max(b));
-    let fold_line: BTreeMap<(u32, u32), u32> = soup
-        .fold_edges
-        .iter()
-        .map(|edge| (key(edge.vertices), edge.fold_line))
-        .collect();
-    let mut split = BTreeMap::new();
-    for t in triangles {
-        for k in 0..3 {
-            let edge = [t[k], t[(k + 1) % 3]];
-            if let Some(&line) = fold_line.get(&key(edge.map(|v| original[v as usize]))) {
-                split.insert(key(edge), line);
-            }
-        }
-    }
-    split
-        .into_iter()
-        .map(|((a, b), fold_line)| FoldEdge {
-            vertices: [a, b],
-            fold_line,
-        })
-        .collect()
 }
 
 #[cfg(test)]

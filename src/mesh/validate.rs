@@ -128,7 +128,7 @@ fn check_areas(soup: &TriangleSoup, kept: &[usize], errors: &mut Vec<Defect>) {
 
 /// Half-edges `(min, max, face, forward)` sorted by edge; `forward` is true when the face runs
 /// from `min` to `max`.
-fn sorted_half_edges(triangles: &[[u32; 3]]) -> Vec<(u32, u32, u32, bool)> {
+pub(super) fn sorted_half_edges(triangles: &[[u32; 3]]) -> Vec<(u32, u32, u32, bool)> {
     let mut half_edges = Vec::with_capacity(triangles.len() * 3);
     for (f, t) in triangles.iter().enumerate() {
         for k in 0..3 {
@@ -141,7 +141,7 @@ fn sorted_half_edges(triangles: &[[u32; 3]]) -> Vec<(u32, u32, u32, bool)> {
 }
 
 /// Groups of half-edges that share an undirected edge.
-fn edge_groups(
+pub(super) fn edge_groups(
     half_edges: &[(u32, u32, u32, bool)],
 ) -> impl Iterator<Item = &[(u32, u32, u32, bool)]> {
     half_edges.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1))
@@ -217,6 +217,32 @@ fn orient_and_label(
 /// Flags vertices whose faces form several fans: corners are joined across shared edges, and a
 /// vertex must end with all its corners in one group.
 fn check_vertex_fans(vertex_count: usize, triangles: &[[u32; 3]], errors: &mut Vec<Defect>) {
+    let fans = corner_fans(triangles, &sorted_half_edges(triangles));
+    let mut roots_of_vertex: Vec<Vec<u32>> = vec![Vec::new(); vertex_count];
+    for (f, t) in triangles.iter().enumerate() {
+        for (k, &v) in t.iter().enumerate() {
+            roots_of_vertex[v as usize].push(fans[f * 3 + k]);
+        }
+    }
+    for (vertex, roots) in roots_of_vertex.iter_mut().enumerate() {
+        roots.sort_unstable();
+        roots.dedup();
+        if roots.len() > 1 {
+            errors.push(Defect::NonManifoldVertex {
+                vertex,
+                fans: roots.len(),
+            });
+        }
+    }
+}
+
+/// The fan of every triangle corner (corner `3 f + k` is corner `k` of triangle `f`), as one
+/// representative corner per fan: a vertex's corners are joined across each edge that exactly
+/// two triangles share (`half_edges` from [`sorted_half_edges`]). Triangles repeat no vertex.
+pub(super) fn corner_fans(
+    triangles: &[[u32; 3]],
+    half_edges: &[(u32, u32, u32, bool)],
+) -> Vec<u32> {
     let mut parent: Vec<u32> = (0..triangles.len() as u32 * 3).collect();
     fn root(parent: &mut [u32], mut x: u32) -> u32 {
         while parent[x as usize] != x {
@@ -233,8 +259,7 @@ fn check_vertex_fans(vertex_count: usize, triangles: &[[u32; 3]], errors: &mut V
             .expect("vertex of face");
         f * 3 + k as u32
     };
-    let half_edges = sorted_half_edges(triangles);
-    for group in edge_groups(&half_edges) {
+    for group in edge_groups(half_edges) {
         if let [x, y] = group {
             for v in [x.0, x.1] {
                 let (ra, rb) = (
@@ -245,23 +270,9 @@ fn check_vertex_fans(vertex_count: usize, triangles: &[[u32; 3]], errors: &mut V
             }
         }
     }
-    let mut roots_of_vertex: Vec<Vec<u32>> = vec![Vec::new(); vertex_count];
-    for (f, t) in triangles.iter().enumerate() {
-        for (k, &v) in t.iter().enumerate() {
-            let r = root(&mut parent, (f * 3 + k) as u32);
-            roots_of_vertex[v as usize].push(r);
-        }
-    }
-    for (vertex, roots) in roots_of_vertex.iter_mut().enumerate() {
-        roots.sort_unstable();
-        roots.dedup();
-        if roots.len() > 1 {
-            errors.push(Defect::NonManifoldVertex {
-                vertex,
-                fans: roots.len(),
-            });
-        }
-    }
+    (0..parent.len() as u32)
+        .map(|c| root(&mut parent, c))
+        .collect()
 }
 
 /// One facet model per component label, vertices renumbered in ascending input order, each with

@@ -54,11 +54,7 @@ pub struct BoundaryBarrier {
 impl BoundaryBarrier {
     /// The barrier of `model`'s boundary loops, `None` for a closed model.
     pub fn new(model: &FacetModel, springs: &SpringSystem) -> Option<Self> {
-        let edges: Vec<[u32; 2]> = model
-            .boundary_loops()
-            .iter()
-            .flat_map(|ring| (0..ring.len()).map(move |i| [ring[i], ring[(i + 1) % ring.len()]]))
-            .collect();
+        let edges: Vec<[u32; 2]> = model.boundary_sides().collect();
         if edges.is_empty() {
             return None;
         }

@@ -5,7 +5,7 @@ use faer::Mat;
 use glam::DVec2;
 
 use super::barrier::{Barrier, ORIENTATION_BARRIER, SHAPING_BARRIER};
-use super::boundary::BoundaryBarrier;
+use super::boundary::{BoundaryBarrier, Contact};
 use super::errors::InjectiveError;
 use super::lscm::conformal_map;
 use super::sparse::{Factor, SparsePattern};
@@ -186,8 +186,9 @@ pub fn flip_free_solve(
             (stop_reason, iterations) = (StopReason::TimeLimit, iteration);
             break;
         }
-        objective.gradient(positions, &mut gradient);
-        objective.hessian(positions, &layout, &mut hessian);
+        let contacts = objective.contacts(positions);
+        objective.gradient(positions, &contacts, &mut gradient);
+        objective.hessian(positions, &contacts, &layout, &mut hessian);
         let factor = factor_damped(&pattern, &layout, &mut hessian)?;
         newton_direction(&factor, &gradient, &mut direction);
         let descent: f64 = gradient
@@ -350,6 +351,14 @@ impl<'a> Objective<'a> {
         (ratio, gradient)
     }
 
+    /// The boundary barrier's contacts at `positions` (none without the barrier), for the
+    /// gradient and the Hessian of one iteration.
+    fn contacts(&self, positions: &[DVec2]) -> Vec<Contact> {
+        self.boundary
+            .as_ref()
+            .map_or_else(Vec::new, |boundary| boundary.contacts(positions))
+    }
+
     /// The objective at `positions`; infinite if a triangle is flipped or degenerate.
     fn value(&self, positions: &[DVec2]) -> f64 {
         let mut total = self.springs.energy(positions);
@@ -365,7 +374,7 @@ impl<'a> Objective<'a> {
     }
 
     /// The objective's gradient at `positions` (every triangle positively oriented).
-    fn gradient(&self, positions: &[DVec2], gradient: &mut [DVec2]) {
+    fn gradient(&self, positions: &[DVec2], contacts: &[Contact], gradient: &mut [DVec2]) {
         gradient.fill(DVec2::ZERO);
         for e in 0..self.springs.len() {
             let [a, b] = self.springs.edges[e];
@@ -386,7 +395,7 @@ impl<'a> Objective<'a> {
             }
         }
         if let Some(boundary) = &self.boundary {
-            for contact in boundary.contacts(positions) {
+            for contact in contacts {
                 let slope = boundary.at(contact.distance)[1];
                 let [a, b] = contact.edge;
                 for (v, g) in [contact.vertex, a, b].into_iter().zip(contact.gradient) {
@@ -400,7 +409,13 @@ impl<'a> Objective<'a> {
     /// to be positive semi-definite, and the barrier's Gauss-Newton part `w b''(x) ∇x ∇xᵀ`
     /// (positive semi-definite since the barrier is convex; its term in `b'(x) ∇²x` is
     /// indefinite and left out).
-    fn hessian(&self, positions: &[DVec2], layout: &Layout, values: &mut [f64]) {
+    fn hessian(
+        &self,
+        positions: &[DVec2],
+        contacts: &[Contact],
+        layout: &Layout,
+        values: &mut [f64],
+    ) {
         values.fill(0.0);
         for (e, &[a, b]) in self.springs.edges.iter().enumerate() {
             let delta = positions[b as usize] - positions[a as usize];
@@ -454,7 +469,7 @@ impl<'a> Objective<'a> {
             }
         }
         if let Some(boundary) = &self.boundary {
-            for contact in boundary.contacts(positions) {
+            for contact in contacts {
                 let curvature = boundary.at(contact.distance)[2];
                 let [a, b] = contact.edge;
                 for (v, g) in [contact.vertex, a, b].into_iter().zip(contact.gradient) {
