@@ -87,9 +87,9 @@ pub fn write_outputs(
     let sheets = match &output.nesting {
         Some(nested) => {
             let drawings: Vec<PartDrawing> = output
-                .patterns
+                .nested_parts
                 .iter()
-                .map(|pattern| pattern.sheet_drawing())
+                .map(|&part| output.patterns[part].sheet_drawing())
                 .collect();
             write_sheets(directory, Path::new(SHEETS_FOLDER), &drawings, nested, &dxf)?
         }

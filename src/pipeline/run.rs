@@ -7,7 +7,7 @@ use crate::flatten::Solver;
 use crate::nest::parts::items_from_patterns;
 use crate::nest::verify::verify;
 use crate::nest::{NestItem, NestLayout, Stock, nest};
-use crate::pattern::PatternFile;
+use crate::pattern::{PatternFile, part_contours};
 use crate::progress::Progress;
 
 use super::config::{NestingConfig, RunConfig};
@@ -29,12 +29,14 @@ pub struct RunOutput {
     pub patterns: Vec<PatternFile>,
     /// The nested layout, when the run had stock.
     pub nesting: Option<NestedLayout>,
+    /// The parts on the stock, in the layout's item order ([`nestable_parts`]).
+    pub nested_parts: Vec<usize>,
 }
 
 /// The patterns nested on the stock, checked independently.
 #[derive(Debug, Clone)]
 pub struct NestedLayout {
-    /// The nesting items, one per part (item `i` is part `i`), in mm.
+    /// The nesting items, one per pattern nested, in mm.
     pub items: Vec<NestItem>,
     /// Where every copy of every item went.
     pub layout: NestLayout,
@@ -126,15 +128,39 @@ pub fn run_loaded(
         .iter()
         .map(|part| part.pattern_file(&config.pattern, tolerance))
         .collect();
+    let nested_parts = nestable_parts(&patterns, progress);
     let nesting = match config.stock {
-        Some(stock) => Some(nest_checked(&patterns, stock, &config.nesting, progress)?),
+        Some(stock) => {
+            let nested = nested_parts.iter().map(|&part| &patterns[part]);
+            Some(nest_checked(nested, stock, &config.nesting, progress)?)
+        }
         None => None,
     };
     Ok(RunOutput {
         parts,
         patterns,
         nesting,
+        nested_parts,
     })
+}
+
+/// The parts that go on the stock: every part but a rejected one whose outline cannot be drawn
+/// (a hole collapsed to nothing, seen on a real garment panel), which has no cut file either
+/// and is named in a warning. A rejected part that can be drawn goes on the sheets marked
+/// [`crate::pattern::REJECTED_MARK`].
+pub fn nestable_parts(patterns: &[PatternFile], progress: &dyn Progress) -> Vec<usize> {
+    let mut nestable = Vec::with_capacity(patterns.len());
+    for (part, pattern) in patterns.iter().enumerate() {
+        if !pattern.rejected || part_contours(&pattern.drawing, &pattern.options).is_ok() {
+            nestable.push(part);
+        } else {
+            progress.warn(&format!(
+                "{}: not nested, its outline cannot be drawn (the part is rejected)",
+                pattern.drawing.name
+            ));
+        }
+    }
+    nestable
 }
 
 /// Nests `patterns` on `stock` ([`items_from_patterns`], [`nest`]) and checks the layout
@@ -194,5 +220,70 @@ impl Progress for PartProgress<'_> {
 
     fn status(&self, status: &str) {
         self.inner.status(status);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Mutex;
+
+    use glam::DVec2;
+
+    use crate::pattern::{PartDrawing, PatternOptions};
+    use crate::pipeline::run::*;
+    use crate::units::Units;
+
+    /// Records warnings.
+    #[derive(Default)]
+    struct Warnings(Mutex<Vec<String>>);
+
+    impl Progress for Warnings {
+        fn start(&self, _stage: &str, _total: u64) {}
+        fn advance(&self, _done: u64) {}
+        fn finish(&self) {}
+        fn warn(&self, message: &str) {
+            self.0.lock().unwrap().push(message.to_owned());
+        }
+    }
+
+    /// A 100 x 50 plate named `name` with the given holes.
+    fn plate(name: &str, holes: Vec<Vec<DVec2>>, rejected: bool) -> PatternFile {
+        let corners = [(0.0, 0.0), (100.0, 0.0), (100.0, 50.0), (0.0, 50.0)];
+        PatternFile {
+            drawing: PartDrawing {
+                name: name.into(),
+                units: Units::Millimetres,
+                quantity: 1,
+                material: None,
+                outer: corners.iter().map(|&(x, y)| DVec2::new(x, y)).collect(),
+                holes,
+                fold_lines: Vec::new(),
+                grain: None,
+                bends: Vec::new(),
+            },
+            grain_degrees: None,
+            thickness_mm: None,
+            options: PatternOptions::default(),
+            rejected,
+        }
+    }
+
+    #[test]
+    fn a_rejected_part_whose_outline_cannot_be_drawn_is_left_off_the_sheets() {
+        let collapsed = vec![vec![DVec2::new(20.0, 20.0); 3]];
+        let broken = plate("broken", collapsed.clone(), true);
+        assert!(part_contours(&broken.drawing, &broken.options).is_err());
+        let patterns = [
+            plate("good", Vec::new(), false),
+            broken,
+            plate("over tolerance", Vec::new(), true),
+            plate("broken but accepted", collapsed, false),
+        ];
+        let warnings = Warnings::default();
+        assert_eq!(nestable_parts(&patterns, &warnings), [0, 2, 3]);
+        assert_eq!(
+            warnings.0.into_inner().unwrap(),
+            ["broken: not nested, its outline cannot be drawn (the part is rejected)"]
+        );
     }
 }
