@@ -12,7 +12,7 @@ use super::bend_rule::{BendAllowance, BendGeometry, BendRule, allowance_by_rule}
 use super::cone_bend::{ConeFigures, enter_cone_bend};
 use super::face_map::{BendMap, BendSurfaceMap, FaceMap, PlaneMap};
 use super::options::SheetOptions;
-use super::recognise::ThinSolid;
+use super::recognise::{ThinSolid, formed_groups};
 use super::surfaces::SheetSurface;
 use crate::cad::TriangleSoup;
 use crate::geometry::long_side_of_smallest_rectangle;
@@ -36,6 +36,34 @@ pub struct SheetUnfold {
     pub flat: Vec<DVec2>,
     /// The bends, in the order the unfold met them, in the flat pattern's frame.
     pub bends: Vec<BendLine>,
+    /// The skin's formed regions, each drawn as its projection onto its flange.
+    pub formed: Vec<FormedRegion>,
+}
+
+/// A formed region of the skin (a dimple, a louvre: faces that are not developable) drawn as
+/// its projection onto the plane of the one flange it lies in: the flat blank a stretch-formed
+/// feature is pressed from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FormedRegion {
+    /// Its faces, ascending, in the shell's face order.
+    pub faces: Vec<usize>,
+    /// A face of the flange it lies in.
+    pub flange: usize,
+}
+
+/// Why a thin solid's skin is not unfolded exactly.
+#[derive(Debug, Clone, PartialEq)]
+pub enum UnfoldRefusal {
+    /// The bend rule does not cover a bend (the reason): the part is refused.
+    Rule(String),
+    /// A formed region cannot be drawn as its projection onto one flange (`reason`): the skin
+    /// is flattened by the energy model instead.
+    FormedRegion {
+        /// The region's faces, in the shell's face order.
+        faces: Vec<usize>,
+        /// Why its projection does not do.
+        reason: String,
+    },
 }
 
 /// A bend met by the unfold: its map and whether the skin is on its inside.
@@ -48,15 +76,16 @@ struct BendZone {
 
 /// Unfolds the chosen skin of `solid`, whose triangles are those of `soup` tagged with the
 /// skin's faces (a soup's face source is the shell's face index), each bend's allowance by the
-/// options' rule (a table's rows picked by `material`); an error when the rule does not cover a
-/// bend.
+/// options' rule (a table's rows picked by `material`), each formed region projected onto its
+/// flange ([`FormedRegion`]); refused when the rule does not cover a bend or a formed region
+/// cannot be projected.
 pub fn unfold_skin(
     solid: &ThinSolid,
     soup: &TriangleSoup,
     options: &SheetOptions,
     material: Option<&str>,
-) -> Result<SheetUnfold, String> {
-    let mut skin = skin_soup(solid, soup);
+) -> Result<SheetUnfold, UnfoldRefusal> {
+    let mut skin = skin_triangles(solid, soup);
     let face_vertices = vertices_by_face(&skin, solid.surfaces.len());
     let k_neutral = |_: usize, inner: f64| inner + options.k_factor * solid.thickness;
     let (maps, zones) = face_maps(solid, &skin, &face_vertices, &k_neutral);
@@ -71,19 +100,22 @@ pub fn unfold_skin(
             allowance_by_rule(&options.rule, options.k_factor, bend, material)
                 .map(|allowance| (bend.angle, allowance))
         })
-        .collect::<Result<Vec<_>, _>>()?;
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(UnfoldRefusal::Rule)?;
     let rule_neutral = |index: usize, inner: f64| match (zones.get(index), allowances.get(index)) {
         (Some(zone), _) if matches!(zone.map, BendSurfaceMap::Cone(_)) => k_neutral(index, inner),
         (_, Some(&(angle, ref allowance))) if angle > 0.0 => allowance.allowance / angle,
         _ => k_neutral(index, inner),
     };
-    let (maps, zones) = face_maps(solid, &skin, &face_vertices, &rule_neutral);
+    let (mut maps, zones) = face_maps(solid, &skin, &face_vertices, &rule_neutral);
+    let formed = project_formed(solid, &mut maps)?;
     let flat = flat_positions(&skin, &maps);
     if wound_clockwise(&skin, &flat) {
         for triangle in &mut skin.triangles {
             triangle.swap(1, 2);
         }
     }
+    check_formed_projections(&skin, &flat, &formed)?;
     let mut bends: Vec<BendLine> = zones
         .iter()
         .zip(allowances)
@@ -107,13 +139,99 @@ pub fn unfold_skin(
         skin,
         flat,
         bends,
+        formed,
     })
 }
 
-/// The triangles of `soup` on the skin's faces, with only the vertices they use.
-fn skin_soup(solid: &ThinSolid, soup: &TriangleSoup) -> TriangleSoup {
+/// Maps each formed region of the skin onto the plane of the flange it lies in (orthogonal
+/// projection, [`FaceMap::Flange`]): every skin face it touches must be a face of that one
+/// flange (a region running into a bend or joining two flanges is refused).
+fn project_formed(
+    solid: &ThinSolid,
+    maps: &mut [Option<FaceMap>],
+) -> Result<Vec<FormedRegion>, UnfoldRefusal> {
+    let groups = formed_groups(&solid.surfaces, &solid.neighbours);
+    let mut regions = Vec::new();
+    for mut faces in groups
+        .into_iter()
+        .filter(|group| solid.formed.contains(&group[0]))
+    {
+        faces.sort_unstable();
+        let mut touched: Vec<usize> = faces
+            .iter()
+            .flat_map(|&face| solid.neighbours[face].iter().copied())
+            .filter(|face| solid.skin.contains(face))
+            .collect();
+        touched.sort_unstable();
+        touched.dedup();
+        let refuse = |reason: &str| UnfoldRefusal::FormedRegion {
+            faces: faces.clone(),
+            reason: reason.to_owned(),
+        };
+        let flange_maps: Vec<Option<PlaneMap>> = touched
+            .iter()
+            .map(|&face| match maps[face] {
+                Some(FaceMap::Flange(map)) => Some(map),
+                _ => None,
+            })
+            .collect();
+        let Some(&Some(map)) = flange_maps.first() else {
+            return Err(refuse(if touched.is_empty() {
+                "it touches no flange"
+            } else {
+                "it runs into a bend"
+            }));
+        };
+        if flange_maps.iter().any(|other| *other != Some(map)) {
+            return Err(refuse(
+                "it runs into a bend or joins flanges that do not lie in one plane",
+            ));
+        }
+        for &face in &faces {
+            maps[face] = Some(FaceMap::Flange(map));
+        }
+        regions.push(FormedRegion {
+            faces,
+            flange: touched[0],
+        });
+    }
+    Ok(regions)
+}
+
+/// Refuses a formed region whose projection folds over: one of its triangles turned over (or
+/// flat) on the pattern, whose triangles all turn counter-clockwise; the form is then not a
+/// height field over its flange.
+fn check_formed_projections(
+    skin: &TriangleSoup,
+    flat: &[DVec2],
+    formed: &[FormedRegion],
+) -> Result<(), UnfoldRefusal> {
+    for region in formed {
+        let folds_over = skin
+            .triangles
+            .iter()
+            .zip(&skin.face_sources)
+            .filter(|&(_, face)| region.faces.contains(&(*face as usize)))
+            .any(|(&[a, b, c], _)| {
+                let [a, b, c] = [a, b, c].map(|v| flat[v as usize]);
+                (b - a).perp_dot(c - a) <= 0.0
+            });
+        if folds_over {
+            return Err(UnfoldRefusal::FormedRegion {
+                faces: region.faces.clone(),
+                reason: "its projection onto its flange folds over".to_owned(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The triangles of `soup` (a tessellation of the solid, each triangle tagged with its face's
+/// index in the shell) on the chosen skin's faces and its formed faces, with only the vertices
+/// they use.
+pub fn skin_triangles(solid: &ThinSolid, soup: &TriangleSoup) -> TriangleSoup {
     let mut on_skin = vec![false; solid.surfaces.len()];
-    for &face in &solid.skin {
+    for &face in solid.skin.iter().chain(&solid.formed) {
         on_skin[face] = true;
     }
     let mut index = vec![u32::MAX; soup.positions.len()];
@@ -177,7 +295,10 @@ fn face_maps(
             }
             let surface = solid.surfaces[other];
             maps[other] = Some(match (map, surface) {
-                (FaceMap::Flange(plane), SheetSurface::Plane { .. }) => FaceMap::Flange(plane),
+                // A formed face continues no face, so it is never reached here.
+                (FaceMap::Flange(plane), SheetSurface::Plane { .. } | SheetSurface::Formed) => {
+                    FaceMap::Flange(plane)
+                }
                 (FaceMap::Flange(plane), SheetSurface::Cone { .. }) => {
                     let positions = face_vertices[other]
                         .iter()
