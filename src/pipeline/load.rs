@@ -218,7 +218,7 @@ pub fn tessellate_step(
 /// at most [`SHEET_CHORD_MM`], its faces triangulated from their boundaries
 /// ([`tessellate_brep_for_unfold`]); it is recognised on that tessellation's face areas. A
 /// skin whose formed region cannot be projected is flattened as a surface, that skin only
-/// ([`formed_skin_parts`]). A base face that cannot be used (no such face, not a flange, the
+/// ([`skin_surface_parts`]). A base face that cannot be used (no such face, not a flange, the
 /// part not a sheet) is an error.
 fn sheet_metal_part(
     path: &Path,
@@ -264,7 +264,16 @@ fn sheet_metal_part(
                 describe_faces(shell, &faces),
                 shell.describe_face(solid.base_face)
             );
-            return formed_skin_parts(path, brep, &solid, options, warning).map(Ok);
+            return skin_surface_parts(path, brep, &solid, options, warning).map(Ok);
+        }
+        Err(UnfoldRefusal::Disagreement { faces, gap }) => {
+            let warning = format!(
+                "the skin does not unfold as one piece ({} and {} put a common point {gap:.4} mm apart: a conical bend meeting a cylindrical one, or bends closing a loop, is not unfolded exactly): the skin of {} flattened as a surface, its bends without bend allowance",
+                shell.describe_face(faces[0]),
+                shell.describe_face(faces[1]),
+                shell.describe_face(solid.base_face)
+            );
+            return skin_surface_parts(path, brep, &solid, options, warning).map(Ok);
         }
     };
     let warnings: Vec<String> = unfold
@@ -294,10 +303,11 @@ fn describe_faces(shell: &BrepShell, faces: &[usize]) -> String {
     described.join(", ")
 }
 
-/// The parts of a thin solid's chosen skin (with its formed faces) flattened as a surface: the
+/// The parts of a thin solid's chosen skin (with its formed faces) flattened as a surface (it
+/// does not unfold exactly, `warning` says why): the
 /// solid tessellated the usual way and only the skin's triangles kept, so that one skin is
 /// flattened, never the closed solid's two; each part carries `warning`.
-fn formed_skin_parts(
+fn skin_surface_parts(
     path: &Path,
     brep: &Brep,
     solid: &ThinSolid,

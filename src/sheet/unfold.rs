@@ -64,7 +64,20 @@ pub enum UnfoldRefusal {
         /// Why its projection does not do.
         reason: String,
     },
+    /// Two faces of the skin put a vertex they share `gap` mm apart on the flat: the skin does
+    /// not develop as one piece (a conical bend meeting a cylindrical one, bends closing a
+    /// loop); it is flattened by the energy model instead.
+    Disagreement {
+        /// The two faces, in the shell's face order.
+        faces: [usize; 2],
+        /// How far apart they put their common vertex, mm.
+        gap: f64,
+    },
 }
+
+/// Largest distance, in mm, between the flat positions two faces of the skin give a vertex
+/// they share (an exact unfold puts it at one point, to round-off).
+const FLAT_AGREEMENT_MM: f64 = 1e-3;
 
 /// A bend met by the unfold: its map and whether the skin is on its inside.
 #[derive(Debug, Clone, Copy)]
@@ -109,7 +122,7 @@ pub fn unfold_skin(
     };
     let (mut maps, zones) = face_maps(solid, &skin, &face_vertices, &rule_neutral);
     let formed = project_formed(solid, &mut maps)?;
-    let flat = flat_positions(&skin, &maps);
+    let flat = flat_positions(&skin, &maps)?;
     if wound_clockwise(&skin, &flat) {
         for triangle in &mut skin.triangles {
             triangle.swap(1, 2);
@@ -445,21 +458,36 @@ fn tangent_point(bend: &BendMap, plane: &SheetSurface) -> DVec3 {
     bend.axis_origin - normal * distance
 }
 
-/// Every skin vertex's flat position, from the first face that uses it.
-fn flat_positions(skin: &TriangleSoup, maps: &[Option<FaceMap>]) -> Vec<DVec2> {
-    let mut flat = vec![None; skin.positions.len()];
+/// Every skin vertex's flat position, from the first face that uses it; refused when two faces
+/// put a vertex they share more than [`FLAT_AGREEMENT_MM`] apart: the skin does not develop as
+/// one piece (a conical bend meeting a cylindrical one, bends closing a loop).
+fn flat_positions(
+    skin: &TriangleSoup,
+    maps: &[Option<FaceMap>],
+) -> Result<Vec<DVec2>, UnfoldRefusal> {
+    let mut flat: Vec<Option<(DVec2, u32)>> = vec![None; skin.positions.len()];
     for (triangle, &face) in skin.triangles.iter().zip(&skin.face_sources) {
         let Some(map) = maps[face as usize] else {
             continue;
         };
         for &vertex in triangle {
-            let slot = &mut flat[vertex as usize];
-            if slot.is_none() {
-                *slot = Some(map.point(skin.positions[vertex as usize]));
+            let point = map.point(skin.positions[vertex as usize]);
+            match flat[vertex as usize] {
+                None => flat[vertex as usize] = Some((point, face)),
+                Some((first, first_face)) if first.distance(point) > FLAT_AGREEMENT_MM => {
+                    return Err(UnfoldRefusal::Disagreement {
+                        faces: [first_face as usize, face as usize],
+                        gap: first.distance(point),
+                    });
+                }
+                Some(_) => {}
             }
         }
     }
-    flat.into_iter().map(|p| p.unwrap_or(DVec2::ZERO)).collect()
+    Ok(flat
+        .into_iter()
+        .map(|p| p.map_or(DVec2::ZERO, |(point, _)| point))
+        .collect())
 }
 
 /// Whether the soup's triangles turn clockwise on the flat pattern (a shell lists its faces seen
@@ -598,5 +626,51 @@ pub fn rest_position(flat: &mut [DVec2], bends: &mut [BendLine]) {
     }
     for bend in bends.iter_mut() {
         bend.move_points(place);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The map of the plane z = 0 moved by `shift` on the flat.
+    fn shifted(shift: DVec2) -> Option<FaceMap> {
+        Some(FaceMap::Flange(PlaneMap {
+            origin: DVec3::ZERO,
+            axes: [DVec3::X, DVec3::Y],
+            flat_origin: shift,
+            flat_axes: [DVec2::X, DVec2::Y],
+        }))
+    }
+
+    /// A unit square of two triangles, one on face 0 and one on face 1, sharing a diagonal.
+    fn square() -> TriangleSoup {
+        TriangleSoup {
+            positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 0.0)],
+            triangles: vec![[0, 1, 2], [1, 3, 2]],
+            face_sources: vec![0, 1],
+            ..TriangleSoup::default()
+        }
+    }
+
+    #[test]
+    fn faces_agreeing_on_their_common_vertices_give_each_vertex_one_flat_position() {
+        let flat = flat_positions(&square(), &[shifted(DVec2::ZERO), shifted(DVec2::ZERO)])
+            .expect("one piece");
+        assert_eq!(flat[3], DVec2::ONE);
+    }
+
+    #[test]
+    fn faces_putting_a_common_vertex_apart_are_refused_naming_them_and_the_gap() {
+        let maps = [shifted(DVec2::ZERO), shifted(DVec2::new(0.0, 0.01))];
+        match flat_positions(&square(), &maps) {
+            Err(UnfoldRefusal::Disagreement { faces, gap }) => {
+                assert_eq!(faces, [0, 1]);
+                assert!((gap - 0.01).abs() < 1e-12, "{gap}");
+            }
+            other => panic!("not refused: {other:?}"),
+        }
+        let within = [shifted(DVec2::ZERO), shifted(DVec2::new(0.0, 1e-4))];
+        assert!(flat_positions(&square(), &within).is_ok());
     }
 }
