@@ -52,29 +52,44 @@ fn polygon_area(points: &[[f64; 2]]) -> f64 {
 #[test]
 fn a_dimple_in_a_flange_is_drawn_as_its_projection_and_the_rest_unfolds_exactly() {
     let allowance = FRAC_PI_2 * (RADIUS + 0.44 * THICKNESS);
-    let (part, entities) = run(&sample("sheet_dimple_freecad.step"), &[]);
-    let sheet = &part["sheet_metal"];
-    let size = [number(&sheet["flat_width"]), number(&sheet["flat_height"])];
-    let expected = [LEGS + allowance, WIDTH];
-    for (found, wanted) in size.iter().zip(expected) {
-        assert!((found - wanted).abs() <= FLAT_TOLERANCE_MM, "{size:?}");
-    }
-    // The dimple adds no area: its blank is the flange under it.
-    let area = number(&sheet["flat_area"]);
-    assert!((area - expected[0] * expected[1]).abs() < 1e-6, "{area}");
-    assert_eq!(sheet["bends"].as_array().expect("bends").len(), 1);
-    assert_eq!(part["flipped"], 0);
-    assert_eq!(part["overlap"], false);
-    let said = warnings(&part);
-    for words in [
-        "SPHERICAL_SURFACE",
-        "SURFACE_OF_REVOLUTION",
-        "is not developable: drawn as its projection onto its flange (ADVANCED_FACE #",
+    // From the base face (#782, the inner side of the 50 mm leg: the dimple's inner side is on
+    // its skin) and from the 30 mm leg's outer side (#547: the dimple's outer side, its flange
+    // reached through the bend).
+    for (base_face, direction, dimple) in [
+        (None, "up", "ADVANCED_FACE #884 on SPHERICAL_SURFACE"),
+        (
+            Some("547"),
+            "down",
+            "ADVANCED_FACE #697 on SPHERICAL_SURFACE",
+        ),
     ] {
-        assert!(said.contains(words), "{said}");
+        let extra: Vec<&str> = base_face.map_or(vec![], |id| vec!["--base-face", id]);
+        let (part, entities) = run(&sample("sheet_dimple_freecad.step"), &extra);
+        let sheet = &part["sheet_metal"];
+        let size = [number(&sheet["flat_width"]), number(&sheet["flat_height"])];
+        let expected = [LEGS + allowance, WIDTH];
+        for (found, wanted) in size.iter().zip(expected) {
+            assert!((found - wanted).abs() <= FLAT_TOLERANCE_MM, "{size:?}");
+        }
+        // The dimple adds no area: its blank is the flange under it.
+        let area = number(&sheet["flat_area"]);
+        assert!((area - expected[0] * expected[1]).abs() < 1e-6, "{area}");
+        let bends = sheet["bends"].as_array().expect("bends");
+        assert_eq!(bends.len(), 1);
+        assert_eq!(bends[0]["direction"], direction);
+        assert_eq!(part["flipped"], 0);
+        assert_eq!(part["overlap"], false);
+        let said = warnings(&part);
+        for words in [
+            dimple,
+            "SURFACE_OF_REVOLUTION",
+            "is not developable: drawn as its projection onto its flange (ADVANCED_FACE #",
+        ] {
+            assert!(said.contains(words), "{said}");
+        }
+        // Not a hole: the outline only.
+        assert!(entities.iter().all(|e| e.layer != "CUT_INNER"));
     }
-    // Not a hole: the outline only.
-    assert!(entities.iter().all(|e| e.layer != "CUT_INNER"));
 }
 
 #[test]
