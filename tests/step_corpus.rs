@@ -75,6 +75,11 @@ const CORPUS: &[(&str, Expected)] = &[
         "samples/sheet_spline_flange_freecad.step",
         Expected::Surfaces(1),
     ),
+    // A dimple cut by the sheet's edge: its skin alone is flattened as a surface.
+    (
+        "samples/sheet_edge_dimple_freecad.step",
+        Expected::Surfaces(1),
+    ),
     ("samples/gusset_bracket_freecad.step", Expected::Surfaces(1)),
     ("samples/box_fillet_pocket_inch.step", Expected::Surfaces(1)),
     ("samples/cone_frustum_freecad.step", Expected::Surfaces(1)),

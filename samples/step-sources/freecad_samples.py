@@ -303,7 +303,7 @@ def sheet_box_plain():
     return relief_box(2.0, 2.0, 20.0).removeSplitter()
 
 
-def sheet_dimple():
+def sheet_dimple(centre_z=20.0):
     # The L of sheet_l_hole without its hole (legs 50 and 30, R 2, t 2, 40 wide) with a round
     # dimple pressed out of the 50 mm leg's outside (side A, y = 0), centred at x 25, z 20: in
     # every plane through its axis (the line x 25, z 20 along y) side A is a spherical cap of
@@ -317,7 +317,7 @@ def sheet_dimple():
     cap, fillet, beta = 20.0, 5.0, math.radians(30.0)
     rim = (cap + fillet) * math.sin(beta)
     depth = (cap + fillet) * (1.0 - math.cos(beta))
-    centre_x, centre_z, outer = 25.0, 20.0, 15.0
+    centre_x, outer = 25.0, 15.0
     solid = sheet_profile([50.0, ("bend", 90.0), 30.0], radius, thickness, width)
 
     def point(rho, y):
@@ -341,6 +341,9 @@ def sheet_dimple():
     edges.append(Part.LineSegment(cap_point(cap, 0.0), cap_point(cap - thickness, 0.0)).toShape())
     profile = Part.Face(Part.Wire(Part.__sortEdges__(edges)))
     disc = profile.revolve(vector(centre_x, 0, centre_z), vector(0, 1, 0), 360)
+    if centre_z - outer < 0.0:
+        # Cut by the sheet's edge (z = 0): only the part over the sheet stays.
+        disc = disc.common(Part.makeBox(60.0, 60.0, width, vector(0.0, -30.0, 0.0)))
     hole = Part.makeCylinder(outer, 10.0, vector(centre_x, -5.0, centre_z), vector(0, 1, 0))
     return solid.cut(hole).fuse(disc).removeSplitter()
 
@@ -457,6 +460,9 @@ def main():
     elif SAMPLE_SET == "dimple":
         export(sheet_dimple(), "sheet_dimple_freecad.step")
         export(sheet_spline_flange(), "sheet_spline_flange_freecad.step")
+    elif SAMPLE_SET == "edge_dimple":
+        # The dimple 8 mm from the 50 mm leg's edge: cut by it, so it reaches a wall.
+        export(sheet_dimple(8.0), "sheet_edge_dimple_freecad.step")
     elif SAMPLE_SET == "perforated":
         export(sheet_perforated(), "sheet_perforated_freecad.step")
     elif UNIT == "mm":

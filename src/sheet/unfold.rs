@@ -157,8 +157,9 @@ pub fn unfold_skin(
 }
 
 /// Maps each formed region of the skin onto the plane of the flange it lies in (orthogonal
-/// projection, [`FaceMap::Flange`]): every skin face it touches must be a face of that one
-/// flange (a region running into a bend or joining two flanges is refused).
+/// projection, [`FaceMap::Flange`]): every face it touches must be a face of that one flange,
+/// which surrounds it (a region running into a bend, joining two flanges or reaching a wall, as
+/// a curl at the edge or a louvre's lance does, is refused).
 fn project_formed(
     solid: &ThinSolid,
     maps: &mut [Option<FaceMap>],
@@ -198,6 +199,16 @@ fn project_formed(
         if flange_maps.iter().any(|other| *other != Some(map)) {
             return Err(refuse(
                 "it runs into a bend or joins flanges that do not lie in one plane",
+            ));
+        }
+        let meets_a_wall = faces.iter().any(|&face| {
+            solid.neighbours[face]
+                .iter()
+                .any(|n| !solid.skin.contains(n) && !solid.formed.contains(n))
+        });
+        if meets_a_wall {
+            return Err(refuse(
+                "it reaches an edge of the sheet (a wall: the outline, a hole, a lance), so its flat extent is not its projection's",
             ));
         }
         for &face in &faces {

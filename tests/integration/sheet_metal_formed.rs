@@ -120,3 +120,35 @@ fn a_formed_face_running_into_a_bend_sends_the_skin_alone_to_the_energy_flatteni
     let area = polygon_area(&outline.points);
     assert!((area - skin).abs() < 0.001 * skin, "{area} against {skin}");
 }
+
+#[test]
+fn a_dimple_cut_by_the_sheets_edge_is_not_projected_and_its_skin_is_flattened_as_a_surface() {
+    // The same dimple 8 mm from the 50 mm leg's edge, cut by it: the region reaches a wall, so
+    // its projection would not be its flat extent; the skin alone goes to the energy model.
+    let (part, entities) = run(&sample("sheet_edge_dimple_freecad.step"), &[]);
+    assert!(part.get("sheet_metal").is_none(), "{part}");
+    let said = warnings(&part);
+    for words in [
+        "SPHERICAL_SURFACE",
+        "is not developable and it reaches an edge of the sheet (a wall",
+        "flattened as a surface, its bends without bend allowance",
+    ] {
+        assert!(said.contains(words), "{said}");
+    }
+    assert_eq!(part["flipped"], 0);
+    assert_eq!(part["overlap"], false);
+    // One skin: about the L's area (the dimple's own material added), never two skins'.
+    let [outline] = entities
+        .iter()
+        .filter(|e| e.layer == "CUT_OUTER")
+        .collect::<Vec<_>>()[..]
+    else {
+        panic!("one outline");
+    };
+    let area = polygon_area(&outline.points);
+    let inner_skin = WIDTH * (LEGS + FRAC_PI_2 * RADIUS);
+    assert!(
+        area > inner_skin && area < 1.01 * WIDTH * (LEGS + FRAC_PI_2 * (RADIUS + THICKNESS)),
+        "{area}"
+    );
+}
