@@ -64,6 +64,22 @@ const CORPUS: &[(&str, Expected)] = &[
         "samples/sheet_conical_bend_freecad.step",
         Expected::Sheet { bends: 1 },
     ),
+    // A box with corner reliefs whose base meets its other skin only through its bends.
+    (
+        "samples/sheet_box_plain_freecad.step",
+        Expected::Sheet { bends: 4 },
+    ),
+    // An L whose second flange is written as B-spline surfaces: a formed region running into
+    // the bend, so its chosen skin alone is flattened as a surface.
+    (
+        "samples/sheet_spline_flange_freecad.step",
+        Expected::Surfaces(1),
+    ),
+    // A dimple cut by the sheet's edge: its skin alone is flattened as a surface.
+    (
+        "samples/sheet_edge_dimple_freecad.step",
+        Expected::Surfaces(1),
+    ),
     ("samples/gusset_bracket_freecad.step", Expected::Surfaces(1)),
     ("samples/box_fillet_pocket_inch.step", Expected::Surfaces(1)),
     ("samples/cone_frustum_freecad.step", Expected::Surfaces(1)),

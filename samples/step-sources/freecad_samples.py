@@ -266,12 +266,13 @@ def sheet_flange_holes():
     return solid.removeSplitter()
 
 
-def sheet_box():
-    # Box with four flanges and corner reliefs: base 60 x 40 mm (flat parts) with a 10 mm hole
-    # in its middle, flanges 20 mm up on all four sides, R 2, t 2. Two U profiles share the base: the one across the 60 mm side
+def relief_box(radius, thickness, flange):
+    # Box with four flanges and corner reliefs: base 60 x 40 mm (flat parts), flanges `flange`
+    # up on all four sides. Two U profiles share the base: the one across the 60 mm side
     # extruded over the other's 40 mm flat base only, and the other way round, so each corner
     # is open where the two bends would meet (a rectangular relief as wide as the bend zones).
-    radius, thickness, flange = 2.0, 2.0, 20.0
+    # Its base face meets its other side only through the bends (the reliefs leave its corners
+    # bare): no wall joins the two sides of the base.
     setback = radius + thickness
     across_60 = sheet_profile([flange, ("bend", 90.0), 60.0, ("bend", 90.0), flange], radius,
                               thickness, 40.0)
@@ -282,12 +283,84 @@ def sheet_box():
     # that line so its base runs along z, then move its extrusion onto y.
     across_40.rotate(FreeCAD.Vector(flange + setback, 0, 0), FreeCAD.Vector(1, 0, 0), 90.0)
     across_40.translate(FreeCAD.Vector(0, setback + 60.0, 0))
-    box = across_60.fuse(across_40)
-    # A 10 mm hole in the middle of the base: without one the base face meets its other side
-    # only through the bends (the reliefs leave its corners bare), and recognition needs a wall.
+    return across_60.fuse(across_40)
+
+
+def sheet_box():
+    # The relief box (R 2, t 2, flanges 20) with a 10 mm hole in the middle of its base.
+    radius, thickness, flange = 2.0, 2.0, 20.0
+    setback = radius + thickness
+    box = relief_box(radius, thickness, flange)
     hole = Part.makeCylinder(5.0, 10.0, FreeCAD.Vector(flange + setback - 5.0, setback + 30.0,
                                                       setback + 20.0), FreeCAD.Vector(1, 0, 0))
     return box.cut(hole).removeSplitter()
+
+
+def sheet_box_plain():
+    # The relief box (R 2, t 2, flanges 20) as it usually is: no hole anywhere, so its base
+    # meets its other skin only through the four bends. Flat at K: a cross of arms 20 + BA over
+    # a 60 x 40 base, 60 + 2 (20 + BA) by 40 + 2 (20 + BA).
+    return relief_box(2.0, 2.0, 20.0).removeSplitter()
+
+
+def sheet_dimple(centre_z=20.0):
+    # The L of sheet_l_hole without its hole (legs 50 and 30, R 2, t 2, 40 wide) with a round
+    # dimple pressed out of the 50 mm leg's outside (side A, y = 0), centred at x 25, z 20: in
+    # every plane through its axis (the line x 25, z 20 along y) side A is a spherical cap of
+    # radius 20 about (rho 0, y 20 - D) running, at 30 degrees from the axis, tangent into a
+    # fillet of radius 5 about (rho 12.5, y -5) that meets the flat tangent at rho 12.5; side B
+    # is the same arcs at 2 mm along their normals (radii 18 and 7), so the dimple is a sheet of
+    # thickness 2 too. Depth D = 25 (1 - cos 30) = 3.3494. Its faces are two spheres and two
+    # tori: not developable. A stretch-formed feature: the blank under it is flat.
+    vector = FreeCAD.Vector
+    radius, thickness, width = 2.0, 2.0, 40.0
+    cap, fillet, beta = 20.0, 5.0, math.radians(30.0)
+    rim = (cap + fillet) * math.sin(beta)
+    depth = (cap + fillet) * (1.0 - math.cos(beta))
+    centre_x, outer = 25.0, 15.0
+    solid = sheet_profile([50.0, ("bend", 90.0), 30.0], radius, thickness, width)
+
+    def point(rho, y):
+        return vector(centre_x + rho, y, centre_z)
+
+    def cap_point(r, phi):
+        return point(r * math.sin(phi), cap - depth - r * math.cos(phi))
+
+    def fillet_point(r, psi):
+        return point(rim - r * math.sin(psi), -fillet + r * math.cos(psi))
+
+    edges = []
+    for offset in (0.0, thickness):
+        r_cap, r_fillet = cap - offset, fillet + offset
+        edges.append(Part.Arc(cap_point(r_cap, 0.0), cap_point(r_cap, beta / 2),
+                              cap_point(r_cap, beta)).toShape())
+        edges.append(Part.Arc(fillet_point(r_fillet, beta), fillet_point(r_fillet, beta / 2),
+                              fillet_point(r_fillet, 0.0)).toShape())
+        edges.append(Part.LineSegment(point(rim, offset), point(outer, offset)).toShape())
+    edges.append(Part.LineSegment(point(outer, 0.0), point(outer, thickness)).toShape())
+    edges.append(Part.LineSegment(cap_point(cap, 0.0), cap_point(cap - thickness, 0.0)).toShape())
+    profile = Part.Face(Part.Wire(Part.__sortEdges__(edges)))
+    disc = profile.revolve(vector(centre_x, 0, centre_z), vector(0, 1, 0), 360)
+    if centre_z - outer < 0.0:
+        # Cut by the sheet's edge (z = 0): only the part over the sheet stays.
+        disc = disc.common(Part.makeBox(60.0, 60.0, width, vector(0.0, -30.0, 0.0)))
+    hole = Part.makeCylinder(outer, 10.0, vector(centre_x, -5.0, centre_z), vector(0, 1, 0))
+    return solid.cut(hole).fuse(disc).removeSplitter()
+
+
+def sheet_spline_flange():
+    # The L of sheet_l_hole without its hole (legs 50 and 30, R 2, t 2, 40 wide) whose 30 mm
+    # flange has both its sides written as B-spline surfaces (flat ones, as some exporters
+    # write planes): a formed region, to flatcut, that runs into the bend, so it cannot be drawn
+    # as its projection onto one flange.
+    solid = sheet_profile([50.0, ("bend", 90.0), 30.0], 2.0, 2.0, 40.0)
+    faces = []
+    for face in solid.Faces:
+        flat_x = face.Surface.__class__.__name__ == "Plane" and abs(face.Area - 1200.0) < 1e-6
+        faces.append(face.toNurbs().Faces[0] if flat_x else face)
+    shell = Part.Shell(faces)
+    shell.sewShape()
+    return Part.Solid(shell)
 
 
 def sheet_perforated():
@@ -382,6 +455,14 @@ def main():
         export(boxes_touching(), "boxes_touching_freecad.step")
     elif SAMPLE_SET == "conical_bend":
         export(sheet_conical_bend(), "sheet_conical_bend_freecad.step")
+    elif SAMPLE_SET == "box_plain":
+        export(sheet_box_plain(), "sheet_box_plain_freecad.step")
+    elif SAMPLE_SET == "dimple":
+        export(sheet_dimple(), "sheet_dimple_freecad.step")
+        export(sheet_spline_flange(), "sheet_spline_flange_freecad.step")
+    elif SAMPLE_SET == "edge_dimple":
+        # The dimple 8 mm from the 50 mm leg's edge: cut by it, so it reaches a wall.
+        export(sheet_dimple(8.0), "sheet_edge_dimple_freecad.step")
     elif SAMPLE_SET == "perforated":
         export(sheet_perforated(), "sheet_perforated_freecad.step")
     elif UNIT == "mm":

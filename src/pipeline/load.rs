@@ -9,7 +9,7 @@ use glam::DVec2;
 
 use crate::cad::{
     Brep, BrepShell, FoldBend, FoldLineGeometry, ParameterRegion, PartAttributes, PartModel,
-    RegionShape, SurfaceDomain, SurfaceGeometry, TriangleSoup,
+    RegionShape, SurfaceDomain, TriangleSoup,
 };
 use crate::cut::{CutConstraints, NoCutRegion};
 use crate::error::Error;
@@ -20,8 +20,9 @@ use crate::mesh::{
     weld_duplicates,
 };
 use crate::sheet::{
-    BendLine, BendRule, FoldedPart, NotASheet, SHEET_CHORD_MM, SheetOptions, SheetSurface,
-    SheetUnfold, ThinSolid, base_face_index, recognise_shell, unfold_folds, unfold_skin,
+    BendLine, BendRule, FoldedPart, NotASheet, SHEET_CHORD_MM, SheetOptions, SheetUnfold,
+    ThinSolid, UnfoldRefusal, base_face_index, may_be_sheet, recognise_shell, skin_triangles,
+    unfold_folds, unfold_skin,
 };
 pub use crate::tessellate::TessellationFigures;
 use crate::tessellate::{
@@ -118,7 +119,7 @@ fn read_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> 
         }),
         Input::Step(brep) => {
             let not_a_sheet = match sheet_metal_part(path, &brep, options)? {
-                Ok(job) => return Ok(vec![job]),
+                Ok(jobs) => return Ok(jobs),
                 Err(reason) => reason,
             };
             let tessellation = tessellate_step(path, &brep, &options.tessellate)?;
@@ -210,18 +211,20 @@ pub fn tessellate_step(
     })
 }
 
-/// The part of a STEP file of one solid of planes and cylinders recognised as sheet metal, its
-/// skin unfolded exactly from the options' base face or its largest planar face; otherwise why
-/// not (`None` for anything else: several shells, other surfaces). The solid is tessellated
-/// once, for the unfold: its chord at most [`SHEET_CHORD_MM`], its faces triangulated from their
-/// boundaries ([`tessellate_brep_for_unfold`]); it is recognised on that tessellation's face
-/// areas. A base face that cannot be used (no such face, not a flange, the part not a sheet)
-/// is an error.
+/// The part of a STEP file of one solid recognised as sheet metal, its skin unfolded exactly
+/// from the options' base face or its largest planar face (its formed regions projected onto
+/// their flanges, with a warning each); otherwise why not (`None` for anything else: several
+/// shells, a solid that is no sheet). The solid is tessellated once, for the unfold: its chord
+/// at most [`SHEET_CHORD_MM`], its faces triangulated from their boundaries
+/// ([`tessellate_brep_for_unfold`]); it is recognised on that tessellation's face areas. A
+/// skin whose formed region cannot be projected is flattened as a surface, that skin only
+/// ([`skin_surface_parts`]). A base face that cannot be used (no such face, not a flange, the
+/// part not a sheet) is an error.
 fn sheet_metal_part(
     path: &Path,
     brep: &Brep,
     options: &RunOptions,
-) -> Result<Result<PartJob, Option<String>>, Error> {
+) -> Result<Result<Vec<PartJob>, Option<String>>, Error> {
     let refuse = |reason: String| Error::SheetMetal {
         path: path.to_path_buf(),
         reason,
@@ -236,12 +239,11 @@ fn sheet_metal_part(
             brep.shells.len()
         ));
     };
-    let sheet_like = (0..shell.shell.faces.len()).all(|face| {
-        let geometry = shell.surface_geometry(face);
-        SheetSurface::of(geometry).is_some() || matches!(geometry, SurfaceGeometry::Cone { .. })
-    });
-    if !sheet_like {
-        return base_face_refused("the part is not a solid of planes and cylinders".to_owned());
+    if !may_be_sheet(shell) {
+        return base_face_refused(
+            "the part is not a solid of planes and cylinders, nor a sheet with formed regions"
+                .to_owned(),
+        );
     }
     // A solid this tessellation fails on is left to the surface path, which reports its own
     // error if it fails too.
@@ -253,12 +255,75 @@ fn sheet_metal_part(
         Err(reason) => return Ok(Err(reason)),
     };
     let material = options.overrides.material.as_deref();
-    let unfold = unfold_skin(&solid, fine.soup(), &options.sheet, material).map_err(refuse)?;
+    let unfold = match unfold_skin(&solid, fine.soup(), &options.sheet, material) {
+        Ok(unfold) => unfold,
+        Err(UnfoldRefusal::Rule(reason)) => return Err(refuse(reason)),
+        Err(UnfoldRefusal::FormedRegion { faces, reason }) => {
+            let warning = format!(
+                "formed region {} is not developable and {reason}: the skin of {} flattened as a surface, its bends without bend allowance",
+                describe_faces(shell, &faces),
+                shell.describe_face(solid.base_face)
+            );
+            return skin_surface_parts(path, brep, &solid, options, warning).map(Ok);
+        }
+        Err(UnfoldRefusal::Disagreement { faces, gap }) => {
+            let warning = format!(
+                "the skin does not unfold as one piece ({} and {} put a common point {gap:.4} mm apart: a conical bend meeting a cylindrical one, or bends closing a loop, is not unfolded exactly): the skin of {} flattened as a surface, its bends without bend allowance",
+                shell.describe_face(faces[0]),
+                shell.describe_face(faces[1]),
+                shell.describe_face(solid.base_face)
+            );
+            return skin_surface_parts(path, brep, &solid, options, warning).map(Ok);
+        }
+    };
+    let warnings: Vec<String> = unfold
+        .formed
+        .iter()
+        .map(|region| {
+            format!(
+                "formed region {} is not developable: drawn as its projection onto its flange ({}), the flat blank it is pressed from",
+                describe_faces(shell, &region.faces),
+                shell.describe_face(region.flange)
+            )
+        })
+        .collect();
     let base_face = shell.describe_face(solid.base_face);
     let mut header = template(brep.name.clone(), Units::Millimetres);
     header.tessellation = Some(fine.figures);
-    Ok(sheet_job(path, unfold, base_face, header)?
-        .ok_or_else(|| Some("its skin is not one piece".to_owned())))
+    let Some(mut job) = sheet_job(path, unfold, base_face, header)? else {
+        return Ok(Err(Some("its skin is not one piece".to_owned())));
+    };
+    job.warnings.extend(warnings);
+    Ok(Ok(vec![job]))
+}
+
+/// Faces described one after the other (`ADVANCED_FACE #12 on SPHERICAL_SURFACE (#40), ...`).
+fn describe_faces(shell: &BrepShell, faces: &[usize]) -> String {
+    let described: Vec<String> = faces.iter().map(|&f| shell.describe_face(f)).collect();
+    described.join(", ")
+}
+
+/// The parts of a thin solid's chosen skin (with its formed faces) flattened as a surface (it
+/// does not unfold exactly, `warning` says why): the
+/// solid tessellated the usual way and only the skin's triangles kept, so that one skin is
+/// flattened, never the closed solid's two; each part carries `warning`.
+fn skin_surface_parts(
+    path: &Path,
+    brep: &Brep,
+    solid: &ThinSolid,
+    options: &RunOptions,
+    warning: String,
+) -> Result<Vec<PartJob>, Error> {
+    let tessellation = tessellate_step(path, brep, &options.tessellate)?;
+    let skin = skin_triangles(solid, tessellation.soup());
+    let mut template = template(brep.name.clone(), Units::Millimetres);
+    template.tessellation = Some(tessellation.figures);
+    let mut jobs = split_parts(path, &skin, template, |_, _, _| {})
+        .map_err(|error| with_step_faces(error, brep, &skin))?;
+    for job in &mut jobs {
+        job.warnings.push(warning.clone());
+    }
+    Ok(jobs)
 }
 
 /// The thin solid of `shell`, recognised from the options' base face or its largest planar

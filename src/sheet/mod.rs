@@ -2,7 +2,8 @@
 //! thickness, unfolded exactly on its B-rep instead of by the energy model.
 //!
 //! [`recognise_shell`] recognises the solid ([`recognise`]: two skins at one thickness, parallel
-//! planes and coaxial cylinders, joined by walls) and picks the skin of the largest planar face;
+//! planes and coaxial cylinders and cones, joined by walls, with formed regions on either skin)
+//! and picks the skin of the largest planar face;
 //! [`unfold_skin`] unfolds it: flanges placed rigidly, each bend unrolled at its neutral fibre, so that its flat
 //! width is the bend allowance `BA = θ · (R_inner + K · t)` ([`bend_allowance`]). The result, a
 //! [`SheetUnfold`], is the skin's triangles with one exact flat position per vertex and the
@@ -33,9 +34,11 @@ pub use bend_table::{
 };
 pub use fold_unfold::{FoldUnfold, FoldedPart, unfold_folds};
 pub use options::{DEFAULT_K_FACTOR, SheetOptions};
-pub use recognise::{MAXIMUM_THICKNESS_RATIO, NotASheet, ThinSolid, recognise};
+pub use recognise::{MAXIMUM_THICKNESS_RATIO, NotASheet, ThinSolid, may_be_sheet, recognise};
 pub use surfaces::{LENGTH_TOLERANCE_MM, SheetSurface};
-pub use unfold::{SheetUnfold, rest_position, unfold_skin};
+pub use unfold::{
+    FormedRegion, SheetUnfold, UnfoldRefusal, rest_position, skin_triangles, unfold_skin,
+};
 
 use crate::cad::{BrepShell, TriangleSoup};
 

@@ -1,4 +1,5 @@
-//! The surface kinds a sheet-metal solid is made of, planes, cylinders and cones, and the relations
+//! The surface kinds a sheet-metal solid is made of, planes, cylinders and cones (and formed
+//! faces of any other kind), and the relations
 //! between two faces that recognition and unfolding ask about: is one the continuation of the
 //! other across a shared edge (tangent), and are they the two sides of the sheet (opposite, at
 //! what thickness).
@@ -15,7 +16,7 @@ pub const LENGTH_TOLERANCE_MM: f64 = 1e-4;
 /// that are perpendicular.
 pub const DIRECTION_TOLERANCE: f64 = 1e-7;
 
-/// A face's surface, when it is a plane, a cylinder or a cone (world coordinates, mm).
+/// A face's surface: a plane, a cylinder or a cone (world coordinates, mm), or a formed face.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SheetSurface {
     /// A plane through `origin` with unit `normal` (either side).
@@ -44,6 +45,10 @@ pub enum SheetSurface {
         /// Half the apex angle, radians, in `(0, π/2)`.
         half_angle: f64,
     },
+    /// Any other surface (a sphere, a torus, a surface of revolution, a B-spline): a formed
+    /// region (a dimple, a louvre), not developable. It continues no face smoothly and is
+    /// opposite none.
+    Formed,
 }
 
 /// Whether two unit directions are parallel (same or opposite sense).
@@ -63,6 +68,11 @@ pub fn same_length(a: f64, b: f64) -> bool {
 }
 
 impl SheetSurface {
+    /// The surface of a face: a plane, a cylinder, a cone, or else [`SheetSurface::Formed`].
+    pub fn of_face(geometry: SurfaceGeometry) -> Self {
+        Self::of(geometry).unwrap_or(Self::Formed)
+    }
+
     /// The surface of a face, or `None` when it is neither a plane, a cylinder nor a cone.
     pub fn of(geometry: SurfaceGeometry) -> Option<Self> {
         match geometry {
@@ -127,6 +137,7 @@ impl SheetSurface {
             ) => {
                 coaxial(origin, axis, other_origin, other_axis) && same_length(radius, other_radius)
             }
+            (Self::Formed, _) | (_, Self::Formed) => false,
         }
     }
 

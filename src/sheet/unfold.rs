@@ -12,7 +12,7 @@ use super::bend_rule::{BendAllowance, BendGeometry, BendRule, allowance_by_rule}
 use super::cone_bend::{ConeFigures, enter_cone_bend};
 use super::face_map::{BendMap, BendSurfaceMap, FaceMap, PlaneMap};
 use super::options::SheetOptions;
-use super::recognise::ThinSolid;
+use super::recognise::{ThinSolid, formed_groups};
 use super::surfaces::SheetSurface;
 use crate::cad::TriangleSoup;
 use crate::geometry::long_side_of_smallest_rectangle;
@@ -36,7 +36,48 @@ pub struct SheetUnfold {
     pub flat: Vec<DVec2>,
     /// The bends, in the order the unfold met them, in the flat pattern's frame.
     pub bends: Vec<BendLine>,
+    /// The skin's formed regions, each drawn as its projection onto its flange.
+    pub formed: Vec<FormedRegion>,
 }
+
+/// A formed region of the skin (a dimple, a louvre: faces that are not developable) drawn as
+/// its projection onto the plane of the one flange it lies in: the flat blank a stretch-formed
+/// feature is pressed from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FormedRegion {
+    /// Its faces, ascending, in the shell's face order.
+    pub faces: Vec<usize>,
+    /// A face of the flange it lies in.
+    pub flange: usize,
+}
+
+/// Why a thin solid's skin is not unfolded exactly.
+#[derive(Debug, Clone, PartialEq)]
+pub enum UnfoldRefusal {
+    /// The bend rule does not cover a bend (the reason): the part is refused.
+    Rule(String),
+    /// A formed region cannot be drawn as its projection onto one flange (`reason`): the skin
+    /// is flattened by the energy model instead.
+    FormedRegion {
+        /// The region's faces, in the shell's face order.
+        faces: Vec<usize>,
+        /// Why its projection does not do.
+        reason: String,
+    },
+    /// Two faces of the skin put a vertex they share `gap` mm apart on the flat: the skin does
+    /// not develop as one piece (a conical bend meeting a cylindrical one, bends closing a
+    /// loop); it is flattened by the energy model instead.
+    Disagreement {
+        /// The two faces, in the shell's face order.
+        faces: [usize; 2],
+        /// How far apart they put their common vertex, mm.
+        gap: f64,
+    },
+}
+
+/// Largest distance, in mm, between the flat positions two faces of the skin give a vertex
+/// they share (an exact unfold puts it at one point, to round-off).
+const FLAT_AGREEMENT_MM: f64 = 1e-3;
 
 /// A bend met by the unfold: its map and whether the skin is on its inside.
 #[derive(Debug, Clone, Copy)]
@@ -48,15 +89,16 @@ struct BendZone {
 
 /// Unfolds the chosen skin of `solid`, whose triangles are those of `soup` tagged with the
 /// skin's faces (a soup's face source is the shell's face index), each bend's allowance by the
-/// options' rule (a table's rows picked by `material`); an error when the rule does not cover a
-/// bend.
+/// options' rule (a table's rows picked by `material`), each formed region projected onto its
+/// flange ([`FormedRegion`]); refused when the rule does not cover a bend or a formed region
+/// cannot be projected.
 pub fn unfold_skin(
     solid: &ThinSolid,
     soup: &TriangleSoup,
     options: &SheetOptions,
     material: Option<&str>,
-) -> Result<SheetUnfold, String> {
-    let mut skin = skin_soup(solid, soup);
+) -> Result<SheetUnfold, UnfoldRefusal> {
+    let mut skin = skin_triangles(solid, soup);
     let face_vertices = vertices_by_face(&skin, solid.surfaces.len());
     let k_neutral = |_: usize, inner: f64| inner + options.k_factor * solid.thickness;
     let (maps, zones) = face_maps(solid, &skin, &face_vertices, &k_neutral);
@@ -71,19 +113,22 @@ pub fn unfold_skin(
             allowance_by_rule(&options.rule, options.k_factor, bend, material)
                 .map(|allowance| (bend.angle, allowance))
         })
-        .collect::<Result<Vec<_>, _>>()?;
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(UnfoldRefusal::Rule)?;
     let rule_neutral = |index: usize, inner: f64| match (zones.get(index), allowances.get(index)) {
         (Some(zone), _) if matches!(zone.map, BendSurfaceMap::Cone(_)) => k_neutral(index, inner),
         (_, Some(&(angle, ref allowance))) if angle > 0.0 => allowance.allowance / angle,
         _ => k_neutral(index, inner),
     };
-    let (maps, zones) = face_maps(solid, &skin, &face_vertices, &rule_neutral);
-    let flat = flat_positions(&skin, &maps);
+    let (mut maps, zones) = face_maps(solid, &skin, &face_vertices, &rule_neutral);
+    let formed = project_formed(solid, &mut maps)?;
+    let flat = flat_positions(&skin, &maps)?;
     if wound_clockwise(&skin, &flat) {
         for triangle in &mut skin.triangles {
             triangle.swap(1, 2);
         }
     }
+    check_formed_projections(&skin, &flat, &formed)?;
     let mut bends: Vec<BendLine> = zones
         .iter()
         .zip(allowances)
@@ -107,13 +152,110 @@ pub fn unfold_skin(
         skin,
         flat,
         bends,
+        formed,
     })
 }
 
-/// The triangles of `soup` on the skin's faces, with only the vertices they use.
-fn skin_soup(solid: &ThinSolid, soup: &TriangleSoup) -> TriangleSoup {
+/// Maps each formed region of the skin onto the plane of the flange it lies in (orthogonal
+/// projection, [`FaceMap::Flange`]): every face it touches must be a face of that one flange,
+/// which surrounds it (a region running into a bend, joining two flanges or reaching a wall, as
+/// a curl at the edge or a louvre's lance does, is refused).
+fn project_formed(
+    solid: &ThinSolid,
+    maps: &mut [Option<FaceMap>],
+) -> Result<Vec<FormedRegion>, UnfoldRefusal> {
+    let groups = formed_groups(&solid.surfaces, &solid.neighbours);
+    let mut regions = Vec::new();
+    for mut faces in groups
+        .into_iter()
+        .filter(|group| solid.formed.contains(&group[0]))
+    {
+        faces.sort_unstable();
+        let mut touched: Vec<usize> = faces
+            .iter()
+            .flat_map(|&face| solid.neighbours[face].iter().copied())
+            .filter(|face| solid.skin.contains(face))
+            .collect();
+        touched.sort_unstable();
+        touched.dedup();
+        let refuse = |reason: &str| UnfoldRefusal::FormedRegion {
+            faces: faces.clone(),
+            reason: reason.to_owned(),
+        };
+        let flange_maps: Vec<Option<PlaneMap>> = touched
+            .iter()
+            .map(|&face| match maps[face] {
+                Some(FaceMap::Flange(map)) => Some(map),
+                _ => None,
+            })
+            .collect();
+        let Some(&Some(map)) = flange_maps.first() else {
+            return Err(refuse(if touched.is_empty() {
+                "it touches no flange"
+            } else {
+                "it runs into a bend"
+            }));
+        };
+        if flange_maps.iter().any(|other| *other != Some(map)) {
+            return Err(refuse(
+                "it runs into a bend or joins flanges that do not lie in one plane",
+            ));
+        }
+        let meets_a_wall = faces.iter().any(|&face| {
+            solid.neighbours[face]
+                .iter()
+                .any(|n| !solid.skin.contains(n) && !solid.formed.contains(n))
+        });
+        if meets_a_wall {
+            return Err(refuse(
+                "it reaches an edge of the sheet (a wall: the outline, a hole, a lance), so its flat extent is not its projection's",
+            ));
+        }
+        for &face in &faces {
+            maps[face] = Some(FaceMap::Flange(map));
+        }
+        regions.push(FormedRegion {
+            faces,
+            flange: touched[0],
+        });
+    }
+    Ok(regions)
+}
+
+/// Refuses a formed region whose projection folds over: one of its triangles turned over (or
+/// flat) on the pattern, whose triangles all turn counter-clockwise; the form is then not a
+/// height field over its flange.
+fn check_formed_projections(
+    skin: &TriangleSoup,
+    flat: &[DVec2],
+    formed: &[FormedRegion],
+) -> Result<(), UnfoldRefusal> {
+    for region in formed {
+        let folds_over = skin
+            .triangles
+            .iter()
+            .zip(&skin.face_sources)
+            .filter(|&(_, face)| region.faces.contains(&(*face as usize)))
+            .any(|(&[a, b, c], _)| {
+                let [a, b, c] = [a, b, c].map(|v| flat[v as usize]);
+                (b - a).perp_dot(c - a) <= 0.0
+            });
+        if folds_over {
+            return Err(UnfoldRefusal::FormedRegion {
+                faces: region.faces.clone(),
+                reason: "its projection onto its flange folds over".to_owned(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The triangles of `soup` (a tessellation of the solid, each triangle tagged with its face's
+/// index in the shell) on the chosen skin's faces and its formed faces, with only the vertices
+/// they use.
+pub fn skin_triangles(solid: &ThinSolid, soup: &TriangleSoup) -> TriangleSoup {
     let mut on_skin = vec![false; solid.surfaces.len()];
-    for &face in &solid.skin {
+    for &face in solid.skin.iter().chain(&solid.formed) {
         on_skin[face] = true;
     }
     let mut index = vec![u32::MAX; soup.positions.len()];
@@ -177,7 +319,10 @@ fn face_maps(
             }
             let surface = solid.surfaces[other];
             maps[other] = Some(match (map, surface) {
-                (FaceMap::Flange(plane), SheetSurface::Plane { .. }) => FaceMap::Flange(plane),
+                // A formed face continues no face, so it is never reached here.
+                (FaceMap::Flange(plane), SheetSurface::Plane { .. } | SheetSurface::Formed) => {
+                    FaceMap::Flange(plane)
+                }
                 (FaceMap::Flange(plane), SheetSurface::Cone { .. }) => {
                     let positions = face_vertices[other]
                         .iter()
@@ -324,21 +469,36 @@ fn tangent_point(bend: &BendMap, plane: &SheetSurface) -> DVec3 {
     bend.axis_origin - normal * distance
 }
 
-/// Every skin vertex's flat position, from the first face that uses it.
-fn flat_positions(skin: &TriangleSoup, maps: &[Option<FaceMap>]) -> Vec<DVec2> {
-    let mut flat = vec![None; skin.positions.len()];
+/// Every skin vertex's flat position, from the first face that uses it; refused when two faces
+/// put a vertex they share more than [`FLAT_AGREEMENT_MM`] apart: the skin does not develop as
+/// one piece (a conical bend meeting a cylindrical one, bends closing a loop).
+fn flat_positions(
+    skin: &TriangleSoup,
+    maps: &[Option<FaceMap>],
+) -> Result<Vec<DVec2>, UnfoldRefusal> {
+    let mut flat: Vec<Option<(DVec2, u32)>> = vec![None; skin.positions.len()];
     for (triangle, &face) in skin.triangles.iter().zip(&skin.face_sources) {
         let Some(map) = maps[face as usize] else {
             continue;
         };
         for &vertex in triangle {
-            let slot = &mut flat[vertex as usize];
-            if slot.is_none() {
-                *slot = Some(map.point(skin.positions[vertex as usize]));
+            let point = map.point(skin.positions[vertex as usize]);
+            match flat[vertex as usize] {
+                None => flat[vertex as usize] = Some((point, face)),
+                Some((first, first_face)) if first.distance(point) > FLAT_AGREEMENT_MM => {
+                    return Err(UnfoldRefusal::Disagreement {
+                        faces: [first_face as usize, face as usize],
+                        gap: first.distance(point),
+                    });
+                }
+                Some(_) => {}
             }
         }
     }
-    flat.into_iter().map(|p| p.unwrap_or(DVec2::ZERO)).collect()
+    Ok(flat
+        .into_iter()
+        .map(|p| p.map_or(DVec2::ZERO, |(point, _)| point))
+        .collect())
 }
 
 /// Whether the soup's triangles turn clockwise on the flat pattern (a shell lists its faces seen
@@ -477,5 +637,51 @@ pub fn rest_position(flat: &mut [DVec2], bends: &mut [BendLine]) {
     }
     for bend in bends.iter_mut() {
         bend.move_points(place);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The map of the plane z = 0 moved by `shift` on the flat.
+    fn shifted(shift: DVec2) -> Option<FaceMap> {
+        Some(FaceMap::Flange(PlaneMap {
+            origin: DVec3::ZERO,
+            axes: [DVec3::X, DVec3::Y],
+            flat_origin: shift,
+            flat_axes: [DVec2::X, DVec2::Y],
+        }))
+    }
+
+    /// A unit square of two triangles, one on face 0 and one on face 1, sharing a diagonal.
+    fn square() -> TriangleSoup {
+        TriangleSoup {
+            positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 0.0)],
+            triangles: vec![[0, 1, 2], [1, 3, 2]],
+            face_sources: vec![0, 1],
+            ..TriangleSoup::default()
+        }
+    }
+
+    #[test]
+    fn faces_agreeing_on_their_common_vertices_give_each_vertex_one_flat_position() {
+        let flat = flat_positions(&square(), &[shifted(DVec2::ZERO), shifted(DVec2::ZERO)])
+            .expect("one piece");
+        assert_eq!(flat[3], DVec2::ONE);
+    }
+
+    #[test]
+    fn faces_putting_a_common_vertex_apart_are_refused_naming_them_and_the_gap() {
+        let maps = [shifted(DVec2::ZERO), shifted(DVec2::new(0.0, 0.01))];
+        match flat_positions(&square(), &maps) {
+            Err(UnfoldRefusal::Disagreement { faces, gap }) => {
+                assert_eq!(faces, [0, 1]);
+                assert!((gap - 0.01).abs() < 1e-12, "{gap}");
+            }
+            other => panic!("not refused: {other:?}"),
+        }
+        let within = [shifted(DVec2::ZERO), shifted(DVec2::new(0.0, 1e-4))];
+        assert!(flat_positions(&square(), &within).is_ok());
     }
 }

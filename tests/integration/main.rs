@@ -13,4 +13,5 @@ mod outputs;
 mod sheet_metal;
 mod sheet_metal_bends;
 mod sheet_metal_cone;
+mod sheet_metal_formed;
 mod util;

@@ -145,6 +145,39 @@ fn a_box_with_four_flanges_and_corner_reliefs_unfolds_to_a_cross() {
     assert!((circle_radius(hole).expect("a circle") - 5.0).abs() < FLAT_TOLERANCE_MM);
 }
 
+#[test]
+fn a_box_whose_base_meets_its_other_skin_only_through_its_bends_unfolds_from_either_skin() {
+    // No hole and open corner reliefs: no wall joins the base's two sides, so the thickness is
+    // found across the bends and the base's opposite face through the bends' outer skins.
+    let allowance = quarter(2.0, 2.0, K);
+    let arm = 20.0 + allowance;
+    let area = 60.0 * 40.0 + 2.0 * arm * (40.0 + 60.0);
+    // #485 is the base's outer side (x = 24, the largest planar face, the first of two equal),
+    // #1085 its inner side (x = 22).
+    for (base_face, direction) in [(None, "down"), (Some("1085"), "up")] {
+        let extra: Vec<&str> = base_face.map_or(vec![], |id| vec!["--base-face", id]);
+        let (part, entities) = run(&sample("sheet_box_plain_freecad.step"), &extra);
+        let sheet = &part["sheet_metal"];
+        assert_eq!(number(&sheet["thickness"]), 2.0);
+        assert_size(&part, [60.0 + 2.0 * arm, 40.0 + 2.0 * arm]);
+        let found = number(&sheet["flat_area"]);
+        assert!((found - area).abs() < 1e-6, "{found} against {area}");
+        assert_eq!(directions(&part), [direction; 4]);
+        let mut lengths: Vec<f64> = sheet["bends"]
+            .as_array()
+            .expect("bends")
+            .iter()
+            .map(|bend| number(&bend["length"]))
+            .collect();
+        lengths.sort_by(f64::total_cmp);
+        for (found, wanted) in lengths.iter().zip([40.0, 40.0, 60.0, 60.0]) {
+            assert!((found - wanted).abs() < FLAT_TOLERANCE_MM, "{lengths:?}");
+        }
+        assert!(entities.iter().all(|e| e.layer != "CUT_INNER"));
+        assert!(part["warnings"].as_array().expect("warnings").is_empty());
+    }
+}
+
 /// The L of `sheet_l_hole_freecad.step` (legs 50 and 30, R 2, t 2, 40 wide) with a bend of
 /// allowance `allowance`: its flat size.
 fn l_size(allowance: f64) -> [f64; 2] {
