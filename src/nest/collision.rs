@@ -352,11 +352,35 @@ fn measured_poles(shape: &SPolygon) -> &[Circle] {
     &poles[..poles.len().min(OVERLAP_POLES)]
 }
 
-/// Overlap of two placed shapes that jagua-rs finds colliding: [`pole_overlap`] plus
+/// The measure of a collision from its raw area-like quantity `raw` (mm², [`raw_part_overlap`]
+/// or [`raw_edge_overlap`]) and the size `size` (mm²) of what collides, the geometric mean of
+/// the two parts' convex-hull areas (a part and the edge: the part's own): their geometric
+/// mean `√(raw × size)`. Still an area, 0 only when `raw` is; the same penetration costs more
+/// between large parts than between small ones (the small part is the one to move), and a
+/// shallow collision costs relatively more than under `raw` alone. (`raw^α × size^(1−α)` with
+/// α = 0.35 or 0.65 instead of 1/2 did worse on shirts.)
+fn sized(raw: f64, size: f64) -> f64 {
+    (raw * size).sqrt()
+}
+
+fn hull_area(shape: &SPolygon) -> f64 {
+    f64::from(shape.surrogate().convex_hull_area)
+}
+
+/// Overlap of two placed shapes that jagua-rs finds colliding: [`raw_part_overlap`], [`sized`]
+/// by their convex-hull areas.
+fn part_overlap(a: &SPolygon, b: &SPolygon) -> f64 {
+    sized(
+        raw_part_overlap(a, b),
+        (hull_area(a) * hull_area(b)).sqrt(),
+    )
+}
+
+/// Raw overlap of two placed shapes that jagua-rs finds colliding: [`pole_overlap`] plus
 /// [`BOX_OVERLAP_FRACTION`] × the area common to their bounding boxes (which still shrinks as
 /// two shapes that only graze each other, outside their poles, move apart), never below the
 /// [`UNSEEN_OVERLAP_FRACTION`] floor.
-fn part_overlap(a: &SPolygon, b: &SPolygon) -> f64 {
+fn raw_part_overlap(a: &SPolygon, b: &SPolygon) -> f64 {
     let (poles_a, poles_b) = (measured_poles(a), measured_poles(b));
     let floor = unseen_floor(poles_a, poles_b);
     let (box_a, box_b) = (a.bbox(), b.bbox());
@@ -371,10 +395,16 @@ fn unseen_floor(a: &[Circle], b: &[Circle]) -> f64 {
     UNSEEN_OVERLAP_FRACTION * radius(a).min(radius(b)).powi(2)
 }
 
-/// Overlap of a placed shape with the container's edge, which jagua-rs finds crossed: how far its
-/// bounding box sticks out of the container's inside on each side, times the box's extent along
-/// that side (mm²), never below the [`UNSEEN_OVERLAP_FRACTION`] floor.
+/// Overlap of a placed shape with the container's edge, which jagua-rs finds crossed:
+/// [`raw_edge_overlap`], [`sized`] by the shape's convex-hull area.
 fn edge_overlap(shape: &SPolygon, inside: (DVec2, DVec2)) -> f64 {
+    sized(raw_edge_overlap(shape, inside), hull_area(shape))
+}
+
+/// Raw overlap of a placed shape with the container's edge: how far its bounding box sticks out
+/// of the container's inside on each side, times the box's extent along that side (mm²), never
+/// below the [`UNSEEN_OVERLAP_FRACTION`] floor.
+fn raw_edge_overlap(shape: &SPolygon, inside: (DVec2, DVec2)) -> f64 {
     let bbox = shape.bbox();
     let (min, max) = (
         DVec2::new(f64::from(bbox.x_min), f64::from(bbox.y_min)),
@@ -538,10 +568,12 @@ mod tests {
             let overlaps = engine.overlaps(0, at, None);
             assert_eq!(overlaps.len(), 1);
             assert_eq!(overlaps[0].0, Obstacle::Part(7));
-            // Poles: at least the inscribed circles' penetration times their radius; boxes: the
-            // common area, width × height, weighted.
+            // Raw: the poles at least the inscribed circles' penetration times their radius, the
+            // boxes their common area (width × height) weighted; then sized by the hull areas,
+            // each at least the square's 100 mm².
             let boxes = BOX_OVERLAP_FRACTION * width * (10.0 + 2.0 * inflation);
-            assert!(overlaps[0].1 >= width * (5.0 + inflation) + boxes - 1e-3);
+            let raw = width * (5.0 + inflation) + boxes;
+            assert!(overlaps[0].1 >= sized(raw, 100.0) - 1e-6);
             assert!(!engine.fits(0, at));
         }
         // Deeper overlap, larger measure; clear, zero.
@@ -566,8 +598,10 @@ mod tests {
         let overlaps = engine.overlaps(0, DVec2::new(93.0, 40.0), None);
         assert_eq!(overlaps.len(), 1);
         assert_eq!(overlaps[0].0, Obstacle::Edge);
-        // 3 mm out (plus twice the inflation), over the square's 10 mm height.
-        assert!((overlaps[0].1 - 30.0).abs() < 0.1, "{}", overlaps[0].1);
+        // 3 mm out (plus twice the inflation), over the square's 10 mm height, sized by the
+        // square's area (100 mm², plus its inflation).
+        let expected = sized(30.0, 100.0);
+        assert!((overlaps[0].1 - expected).abs() < 0.2, "{}", overlaps[0].1);
         assert_eq!(
             engine.overlap(0, DVec2::new(40.0, 40.0), f64::INFINITY, |_| 1.0),
             0.0

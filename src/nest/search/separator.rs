@@ -62,32 +62,49 @@ pub(super) struct Limits {
 type Collision = (usize, Obstacle, f64);
 
 /// The separator's state on one strip length.
-#[derive(Clone)]
 pub(super) struct Separator<'p, 'a> {
     problem: &'p Problem<'a>,
     pub(super) parts: Vec<Part>,
-    engine: JaguaEngine,
+    /// One collision engine per worker ([`WORKERS`]), each holding `parts` between rounds: a
+    /// round moves parts in every engine, then the engines of the workers not kept take the kept
+    /// worker's moves (instead of cloning the kept engine, quadtree and all, every round). The
+    /// first engine answers the queries outside rounds.
+    engines: Vec<JaguaEngine>,
     /// Pair weights, `n × n`, symmetric; the edge weight of part `i` is at `n × n + i`.
     weights: Vec<f64>,
     pub(super) length: f64,
-    /// Overlap queries counted before the current engine (rebuilt on every reset), and the work
-    /// of the parallel rounds beyond the kept worker's own.
+    /// Overlap queries counted before the current first engine (rebuilt when the length
+    /// changes), and the work of the parallel rounds beyond the first engine's own.
     retired: u64,
+}
+
+/// What every worker of a round reads: the problem, the weights, the strip's length.
+#[derive(Clone, Copy)]
+struct Shared<'s, 'p, 'a> {
+    problem: &'p Problem<'a>,
+    weights: &'s [f64],
+    length: f64,
 }
 
 impl<'p, 'a> Separator<'p, 'a> {
     /// A separator holding `parts` on a strip `length` long, every weight 1.
     pub(super) fn new(problem: &'p Problem<'a>, parts: Vec<Part>, length: f64) -> Self {
-        let engine = Self::engine_of(problem, &parts, length);
+        let engines = Self::engines_of(problem, &parts, length);
         let n = parts.len();
         Self {
             problem,
             parts,
-            engine,
+            engines,
             weights: vec![1.0; n * (n + 1)],
             length,
             retired: 0,
         }
+    }
+
+    /// [`WORKERS`] engines holding `parts` on a strip `length` long: one built, the others its
+    /// copies.
+    fn engines_of(problem: &Problem, parts: &[Part], length: f64) -> Vec<JaguaEngine> {
+        vec![Self::engine_of(problem, parts, length); WORKERS]
     }
 
     fn engine_of(problem: &Problem, parts: &[Part], length: f64) -> JaguaEngine {
@@ -106,16 +123,29 @@ impl<'p, 'a> Separator<'p, 'a> {
 
     /// Work spent so far, in collision queries.
     pub(super) fn work(&self) -> u64 {
-        (self.retired + self.engine.queries()) * OVERLAP_QUERY_WORK
+        (self.retired + self.engines[0].queries()) * OVERLAP_QUERY_WORK
     }
 
-    /// Puts `parts` on a strip `length` long; with `reset_weights`, every weight back to 1.
+    /// Puts `parts` on a strip `length` long; with `reset_weights`, every weight back to 1. On
+    /// the same strip, only the parts that moved are moved in the engines; a new length builds
+    /// them anew.
     pub(super) fn reset(&mut self, parts: &[Part], length: f64, reset_weights: bool) {
-        self.retired += self.engine.queries();
+        if length.to_bits() == self.length.to_bits() && parts.len() == self.parts.len() {
+            for (index, (part, current)) in parts.iter().zip(&self.parts).enumerate() {
+                if !same_place(part, current) {
+                    for engine in &mut self.engines {
+                        engine.remove(index as u32);
+                        engine.insert(index as u32, part.shape, part.translation);
+                    }
+                }
+            }
+        } else {
+            self.retired += self.engines[0].queries();
+            self.engines = Self::engines_of(self.problem, parts, length);
+        }
         self.parts.clear();
         self.parts.extend_from_slice(parts);
         self.length = length;
-        self.engine = Self::engine_of(self.problem, parts, length);
         if reset_weights {
             self.weights.fill(1.0);
         }
@@ -199,61 +229,7 @@ impl<'p, 'a> Separator<'p, 'a> {
 
     /// Every collision of the layout: (part, obstacle, overlap), each pair once.
     fn collisions(&mut self) -> Vec<Collision> {
-        let mut found = Vec::new();
-        for index in 0..self.parts.len() {
-            let part = self.parts[index];
-            let overlaps = (self.engine).overlaps(part.shape, part.translation, Some(index as u32));
-            for (obstacle, overlap) in overlaps {
-                if matches!(obstacle, Obstacle::Part(other) if (other as usize) < index) {
-                    continue;
-                }
-                found.push((index, obstacle, overlap));
-            }
-        }
-        found
-    }
-
-    /// The collisions of the layout after the parts `moved` (sorted) moved, from those before
-    /// (`previous`, as [`Separator::collisions`] lists them): the pairs without a moved part are
-    /// kept, the moved parts queried again. Same pairs in the same order as `collisions()` would
-    /// give, at the cost of one query per moved part instead of one per part.
-    fn collisions_after(&mut self, previous: &[Collision], moved: &[usize]) -> Vec<Collision> {
-        let mut is_moved = vec![false; self.parts.len()];
-        for &index in moved {
-            is_moved[index] = true;
-        }
-        let mut found: Vec<Collision> = (previous.iter().copied())
-            .filter(|&(index, obstacle, _)| {
-                !is_moved[index]
-                    && !matches!(obstacle, Obstacle::Part(other) if is_moved[other as usize])
-            })
-            .collect();
-        for &index in moved {
-            let part = self.parts[index];
-            let overlaps = (self.engine).overlaps(part.shape, part.translation, Some(index as u32));
-            for (obstacle, overlap) in overlaps {
-                match obstacle {
-                    Obstacle::Edge => found.push((index, obstacle, overlap)),
-                    // Between two moved parts, the pair is listed from the smaller index.
-                    Obstacle::Part(other)
-                        if is_moved[other as usize] && (other as usize) < index => {}
-                    Obstacle::Part(other) if (other as usize) < index => {
-                        found.push((other as usize, Obstacle::Part(index as u32), overlap));
-                    }
-                    Obstacle::Part(_) => found.push((index, obstacle, overlap)),
-                }
-            }
-        }
-        found.sort_by_key(|&(index, obstacle, _)| {
-            (
-                index,
-                match obstacle {
-                    Obstacle::Edge => None,
-                    Obstacle::Part(other) => Some(other),
-                },
-            )
-        });
-        found
+        collisions_of(&mut self.engines[0], &self.parts)
     }
 
     /// Index of a collision's weight (the pair's, or the part's edge weight), and of its mirror.
@@ -350,8 +326,9 @@ impl<'p, 'a> Separator<'p, 'a> {
         least
     }
 
-    /// One round: [`WORKERS`] copies each move every part of `collisions`, in their own random
-    /// order; the copy of least weighted overlap is kept. Returns its collisions.
+    /// One round: [`WORKERS`] workers, each on its own engine, move every part of `collisions`
+    /// in their own random order; the worker of least weighted overlap is kept and the others'
+    /// engines take its moves. Returns its collisions.
     fn round(&mut self, collisions: &[Collision], random: &mut SplitMix64) -> Vec<Collision> {
         let mut colliding: Vec<usize> = collisions
             .iter()
@@ -364,113 +341,204 @@ impl<'p, 'a> Separator<'p, 'a> {
         colliding.sort_unstable();
         colliding.dedup();
         let seeds: Vec<u64> = (0..WORKERS).map(|_| random.next()).collect();
-        let base = self.engine.queries();
-        let this = &*self;
-        let workers: Vec<(Separator<'p, 'a>, Vec<Collision>)> = seeds
-            .into_par_iter()
-            .map(|seed| {
-                let mut worker = this.clone();
+        let bases: Vec<u64> = self.engines.iter().map(JaguaEngine::queries).collect();
+        let shared = Shared {
+            problem: self.problem,
+            weights: &self.weights,
+            length: self.length,
+        };
+        let start = &self.parts;
+        let outcomes: Vec<(Vec<Part>, Vec<Collision>)> = (self.engines.par_iter_mut())
+            .zip(seeds)
+            .map(|(engine, seed)| {
+                let mut parts = start.clone();
                 let mut random = SplitMix64(seed);
                 let mut order = colliding.clone();
                 for position in (1..order.len()).rev() {
                     order.swap(position, random.below(position + 1));
                 }
                 for index in order {
-                    worker.move_part(index, &mut random);
+                    move_part(shared, engine, &mut parts, index, &mut random);
                 }
-                let collisions = worker.collisions_after(collisions, &colliding);
-                (worker, collisions)
+                let collisions = collisions_after(engine, &parts, collisions, &colliding);
+                (parts, collisions)
             })
             .collect();
-        let busiest = (workers.iter())
-            .map(|(worker, _)| worker.engine.queries() - base)
-            .max()
-            .unwrap_or(0);
+        let spent: Vec<u64> = (self.engines.iter().zip(&bases))
+            .map(|(engine, base)| engine.queries() - base)
+            .collect();
+        let busiest = spent.iter().copied().max().unwrap_or(0);
+        self.retired += busiest - spent[0];
         let mut kept = 0;
-        for (position, (worker, collisions)) in workers.iter().enumerate() {
-            let (kept_worker, kept_collisions) = &workers[kept];
-            if worker.weighted_total(collisions) < kept_worker.weighted_total(kept_collisions) {
+        for (position, (_, collisions)) in outcomes.iter().enumerate() {
+            if self.weighted_total(collisions) < self.weighted_total(&outcomes[kept].1) {
                 kept = position;
             }
         }
-        let (worker, collisions) = workers.into_iter().nth(kept).expect("one worker or more");
-        self.retired += busiest - (worker.engine.queries() - base);
-        self.parts = worker.parts;
-        self.engine = worker.engine;
-        collisions
+        let (kept_parts, kept_collisions) = &outcomes[kept];
+        (self.engines.par_iter_mut().zip(&outcomes))
+            .enumerate()
+            .filter(|&(position, _)| position != kept)
+            .for_each(|(_, (engine, (parts, _)))| {
+                for &index in &colliding {
+                    let part = kept_parts[index];
+                    if !same_place(&parts[index], &part) {
+                        engine.remove(index as u32);
+                        engine.insert(index as u32, part.shape, part.translation);
+                    }
+                }
+            });
+        self.parts.clone_from(kept_parts);
+        kept_collisions.clone()
     }
+}
 
-    /// Moves part `index` to the position of least weighted overlap found: its own, random
-    /// positions anywhere and nearby, the best refined by coordinate descent.
-    fn move_part(&mut self, index: usize, random: &mut SplitMix64) {
-        let problem = self.problem;
-        let part = self.parts[index];
-        let item = problem.copies[part.copy].item;
-        let shapes = &problem.item_shapes[item];
-        self.engine.remove(index as u32);
-        let weights = &self.weights;
-        let n = self.parts.len();
-        let weight = move |obstacle: Obstacle| match obstacle {
-            Obstacle::Edge => weights[n * n + index],
-            Obstacle::Part(other) => weights[index * n + other as usize],
+/// Moves part `index` to the position of least weighted overlap found: its own, random
+/// positions anywhere and nearby, the best refined by coordinate descent.
+fn move_part(
+    shared: Shared,
+    engine: &mut JaguaEngine,
+    parts: &mut [Part],
+    index: usize,
+    random: &mut SplitMix64,
+) {
+    let Shared {
+        problem,
+        weights,
+        length,
+    } = shared;
+    let part = parts[index];
+    let item = problem.copies[part.copy].item;
+    let shapes = &problem.item_shapes[item];
+    engine.remove(index as u32);
+    let n = parts.len();
+    let weight = move |obstacle: Obstacle| match obstacle {
+        Obstacle::Edge => weights[n * n + index],
+        Obstacle::Part(other) => weights[index * n + other as usize],
+    };
+    let this_range = |shape: ShapeId| strip_range(problem, length, shape);
+    let mut evaluate = |shape: ShapeId, translation: DVec2, bound: f64| {
+        engine.overlap(shape, translation, bound, weight)
+    };
+    let mut best = (
+        part.shape,
+        part.translation,
+        evaluate(part.shape, part.translation, f64::INFINITY),
+    );
+    let current_size = problem.orientations[part.shape].max - problem.orientations[part.shape].min;
+    for sample in 0..GLOBAL_SAMPLES + LOCAL_SAMPLES {
+        if best.2 <= 0.0 {
+            break;
+        }
+        let shape = if sample < GLOBAL_SAMPLES || random.below(4) == 0 {
+            shapes[random.below(shapes.len())]
+        } else {
+            part.shape
         };
-        let length = self.length;
-        let this_range = |shape: ShapeId| strip_range(problem, length, shape);
-        let engine = &mut self.engine;
-        let mut evaluate = |shape: ShapeId, translation: DVec2, bound: f64| {
-            engine.overlap(shape, translation, bound, weight)
+        let (low, high) = this_range(shape);
+        let translation = if sample < GLOBAL_SAMPLES {
+            low + DVec2::new(random.unit(), random.unit()) * (high - low)
+        } else {
+            let jitter = DVec2::new(random.unit() - 0.5, random.unit() - 0.5) * current_size;
+            (part.translation + jitter).clamp(low, high)
         };
-        let mut best = (
-            part.shape,
-            part.translation,
-            evaluate(part.shape, part.translation, f64::INFINITY),
-        );
-        let current_size =
-            problem.orientations[part.shape].max - problem.orientations[part.shape].min;
-        for sample in 0..GLOBAL_SAMPLES + LOCAL_SAMPLES {
-            if best.2 <= 0.0 {
+        let overlap = evaluate(shape, translation, best.2);
+        if overlap < best.2 {
+            best = (shape, translation, overlap);
+        }
+    }
+    // Coordinate descent from the best: steps along x and y, halved when nothing improves.
+    let (low, high) = this_range(best.0);
+    let size = problem.orientations[best.0].max - problem.orientations[best.0].min;
+    let mut step = size * 0.1;
+    while best.2 > 0.0 && step.max_element() > size.max_element() * 1e-3 {
+        let mut moved = false;
+        for direction in [DVec2::X, DVec2::NEG_X, DVec2::Y, DVec2::NEG_Y] {
+            let translation = (best.1 + direction * step).clamp(low, high);
+            let overlap = evaluate(best.0, translation, best.2);
+            if overlap < best.2 {
+                best = (best.0, translation, overlap);
+                moved = true;
                 break;
             }
-            let shape = if sample < GLOBAL_SAMPLES || random.below(4) == 0 {
-                shapes[random.below(shapes.len())]
-            } else {
-                part.shape
-            };
-            let (low, high) = this_range(shape);
-            let translation = if sample < GLOBAL_SAMPLES {
-                low + DVec2::new(random.unit(), random.unit()) * (high - low)
-            } else {
-                let jitter = DVec2::new(random.unit() - 0.5, random.unit() - 0.5) * current_size;
-                (part.translation + jitter).clamp(low, high)
-            };
-            let overlap = evaluate(shape, translation, best.2);
-            if overlap < best.2 {
-                best = (shape, translation, overlap);
-            }
         }
-        // Coordinate descent from the best: steps along x and y, halved when nothing improves.
-        let (low, high) = this_range(best.0);
-        let size = problem.orientations[best.0].max - problem.orientations[best.0].min;
-        let mut step = size * 0.1;
-        while best.2 > 0.0 && step.max_element() > size.max_element() * 1e-3 {
-            let mut moved = false;
-            for direction in [DVec2::X, DVec2::NEG_X, DVec2::Y, DVec2::NEG_Y] {
-                let translation = (best.1 + direction * step).clamp(low, high);
-                let overlap = evaluate(best.0, translation, best.2);
-                if overlap < best.2 {
-                    best = (best.0, translation, overlap);
-                    moved = true;
-                    break;
-                }
-            }
-            if !moved {
-                step *= 0.5;
-            }
+        if !moved {
+            step *= 0.5;
         }
-        self.parts[index].shape = best.0;
-        self.parts[index].translation = best.1;
-        self.engine.insert(index as u32, best.0, best.1);
     }
+    parts[index].shape = best.0;
+    parts[index].translation = best.1;
+    engine.insert(index as u32, best.0, best.1);
+}
+
+/// Whether two parts lie at the same place in the same orientation (bit for bit).
+fn same_place(a: &Part, b: &Part) -> bool {
+    a.shape == b.shape
+        && a.translation.x.to_bits() == b.translation.x.to_bits()
+        && a.translation.y.to_bits() == b.translation.y.to_bits()
+}
+
+/// Every collision of `parts` as registered in `engine`: (part, obstacle, overlap), each pair
+/// once.
+fn collisions_of(engine: &mut JaguaEngine, parts: &[Part]) -> Vec<Collision> {
+    let mut found = Vec::new();
+    for (index, part) in parts.iter().enumerate() {
+        let overlaps = engine.overlaps(part.shape, part.translation, Some(index as u32));
+        for (obstacle, overlap) in overlaps {
+            if matches!(obstacle, Obstacle::Part(other) if (other as usize) < index) {
+                continue;
+            }
+            found.push((index, obstacle, overlap));
+        }
+    }
+    found
+}
+
+/// The collisions of the layout after the parts `moved` (sorted) moved, from those before
+/// (`previous`, as [`collisions_of`] lists them): the pairs without a moved part are
+/// kept, the moved parts queried again. Same pairs in the same order as `collisions()` would
+/// give, at the cost of one query per moved part instead of one per part.
+fn collisions_after(
+    engine: &mut JaguaEngine,
+    parts: &[Part],
+    previous: &[Collision],
+    moved: &[usize],
+) -> Vec<Collision> {
+    let mut is_moved = vec![false; parts.len()];
+    for &index in moved {
+        is_moved[index] = true;
+    }
+    let mut found: Vec<Collision> = (previous.iter().copied())
+        .filter(|&(index, obstacle, _)| {
+            !is_moved[index]
+                && !matches!(obstacle, Obstacle::Part(other) if is_moved[other as usize])
+        })
+        .collect();
+    for &index in moved {
+        let part = parts[index];
+        let overlaps = engine.overlaps(part.shape, part.translation, Some(index as u32));
+        for (obstacle, overlap) in overlaps {
+            match obstacle {
+                Obstacle::Edge => found.push((index, obstacle, overlap)),
+                // Between two moved parts, the pair is listed from the smaller index.
+                Obstacle::Part(other) if is_moved[other as usize] && (other as usize) < index => {}
+                Obstacle::Part(other) if (other as usize) < index => {
+                    found.push((other as usize, Obstacle::Part(index as u32), overlap));
+                }
+                Obstacle::Part(_) => found.push((index, obstacle, overlap)),
+            }
+        }
+    }
+    found.sort_by_key(|&(index, obstacle, _)| {
+        (
+            index,
+            match obstacle {
+                Obstacle::Edge => None,
+                Obstacle::Part(other) => Some(other),
+            },
+        )
+    });
+    found
 }
 
 /// Range of translations that keep `shape` inside a strip `length` long.
