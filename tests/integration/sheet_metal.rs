@@ -89,14 +89,18 @@ pub(crate) fn circle_radius(entity: &Entity) -> Option<f64> {
 
 /// Flattens a sample at `k_factor` and returns its report part and its DXF's entities.
 fn unfold(name: &str, k_factor: f64) -> (serde_json::Value, Vec<Entity>) {
+    flatten_sheet(&sample(name), &["--k-factor", &k_factor.to_string()])
+}
+
+/// Flattens `input` with `extra` arguments, expecting success: its report part and its DXF's
+/// entities (the DXF checked by [`check_with_ezdxf`]).
+pub(crate) fn flatten_sheet(input: &Path, extra: &[&str]) -> (serde_json::Value, Vec<Entity>) {
     let directory = tempfile::tempdir().expect("a temporary directory");
-    let k = k_factor.to_string();
-    let output = flatten_into(&sample(name), directory.path(), &["--k-factor", &k]);
-    assert!(output.status.success(), "{name}: {}", stderr(&output));
-    let report = read_report(directory.path());
-    let part = report["parts"][0].clone();
-    let stem = name.trim_end_matches(".step");
-    let dxf = directory.path().join(format!("{stem}.dxf"));
+    let output = flatten_into(input, directory.path(), extra);
+    assert!(output.status.success(), "{input:?}: {}", stderr(&output));
+    let part = read_report(directory.path())["parts"][0].clone();
+    let name = part["name"].as_str().expect("a name").to_owned();
+    let dxf = directory.path().join(format!("{name}.dxf"));
     check_with_ezdxf(&dxf);
     (part, dxf_entities(&dxf))
 }

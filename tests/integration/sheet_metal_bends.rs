@@ -8,25 +8,13 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::Path;
 
 use crate::sheet_metal::{
-    Entity, FLAT_TOLERANCE_MM, bend_line_positions, check_with_ezdxf, circle_centre, circle_radius,
-    dxf_entities, number,
+    Entity, FLAT_TOLERANCE_MM, bend_line_positions, circle_centre, circle_radius, flatten_sheet,
+    number,
 };
 use crate::util::{flatten_into, read_report, sample, stderr};
 
 /// The default K-factor.
 const K: f64 = 0.44;
-
-/// Flattens `input` with `extra` arguments: its report part and its DXF's entities.
-fn run(input: &Path, extra: &[&str]) -> (serde_json::Value, Vec<Entity>) {
-    let directory = tempfile::tempdir().expect("a temporary directory");
-    let output = flatten_into(input, directory.path(), extra);
-    assert!(output.status.success(), "{input:?}: {}", stderr(&output));
-    let part = read_report(directory.path())["parts"][0].clone();
-    let name = part["name"].as_str().expect("a name").to_owned();
-    let dxf = directory.path().join(format!("{name}.dxf"));
-    check_with_ezdxf(&dxf);
-    (part, dxf_entities(&dxf))
-}
 
 /// Flattens `input` with `extra` arguments, expecting a refusal: its stderr.
 fn refused(input: &Path, extra: &[&str]) -> String {
@@ -77,7 +65,7 @@ fn quarter(r: f64, t: f64, k: f64) -> f64 {
 #[test]
 fn a_hat_section_takes_four_allowances_two_up_two_down() {
     let allowance = quarter(2.0, 2.0, K);
-    let (part, entities) = run(&sample("sheet_hat_freecad.step"), &[]);
+    let (part, entities) = flatten_sheet(&sample("sheet_hat_freecad.step"), &[]);
     assert_size(&part, [140.0 + 4.0 * allowance, 30.0]);
     assert_eq!(directions(&part), ["down", "down", "up", "up"]);
     let lines = bend_line_positions(&entities);
@@ -95,7 +83,7 @@ fn a_hat_section_takes_four_allowances_two_up_two_down() {
 #[test]
 fn a_hem_folded_back_by_180_degrees_takes_half_a_turn_of_neutral_fibre() {
     let (r, t) = (1.0, 1.0);
-    let (part, _) = run(&sample("sheet_hem_freecad.step"), &[]);
+    let (part, _) = flatten_sheet(&sample("sheet_hem_freecad.step"), &[]);
     assert_size(&part, [60.0 + PI * (r + K * t), 30.0]);
     let bend = &part["sheet_metal"]["bends"][0];
     assert!((number(&bend["angle"]) - 180.0).abs() < 1e-9, "{bend}");
@@ -105,7 +93,7 @@ fn a_hem_folded_back_by_180_degrees_takes_half_a_turn_of_neutral_fibre() {
 fn holes_across_a_flange_stay_circles_where_the_flange_unrolls() {
     let allowance = quarter(2.0, 2.0, K);
     let width = 100.0 + allowance;
-    let (part, entities) = run(&sample("sheet_flange_holes_freecad.step"), &[]);
+    let (part, entities) = flatten_sheet(&sample("sheet_flange_holes_freecad.step"), &[]);
     assert_size(&part, [width, 50.0]);
     let holes: Vec<&Entity> = entities.iter().filter(|e| e.layer == "CUT_INNER").collect();
     assert_eq!(holes.len(), 3);
@@ -127,7 +115,7 @@ fn holes_across_a_flange_stay_circles_where_the_flange_unrolls() {
 #[test]
 fn a_box_with_four_flanges_and_corner_reliefs_unfolds_to_a_cross() {
     let allowance = quarter(2.0, 2.0, K);
-    let (part, entities) = run(&sample("sheet_box_freecad.step"), &[]);
+    let (part, entities) = flatten_sheet(&sample("sheet_box_freecad.step"), &[]);
     assert_size(&part, [100.0 + 2.0 * allowance, 80.0 + 2.0 * allowance]);
     assert_eq!(directions(&part).len(), 4);
     // The cross: the base, four flanges with their bend zones, the base's hole.
@@ -156,7 +144,7 @@ fn a_box_whose_base_meets_its_other_skin_only_through_its_bends_unfolds_from_eit
     // #1085 its inner side (x = 22).
     for (base_face, direction) in [(None, "down"), (Some("1085"), "up")] {
         let extra: Vec<&str> = base_face.map_or(vec![], |id| vec!["--base-face", id]);
-        let (part, entities) = run(&sample("sheet_box_plain_freecad.step"), &extra);
+        let (part, entities) = flatten_sheet(&sample("sheet_box_plain_freecad.step"), &extra);
         let sheet = &part["sheet_metal"];
         assert_eq!(number(&sheet["thickness"]), 2.0);
         assert_size(&part, [60.0 + 2.0 * arm, 40.0 + 2.0 * arm]);
@@ -203,7 +191,7 @@ fn a_k_table_is_interpolated_between_radii_and_angles_for_the_parts_material() {
     );
     let file = path.to_str().expect("utf-8");
     let arguments = ["--bend-table", file, "--material", "Steel"];
-    let (part, _) = run(&sample("sheet_l_hole_freecad.step"), &arguments);
+    let (part, _) = flatten_sheet(&sample("sheet_l_hole_freecad.step"), &arguments);
     let k = (0.30 + 0.34 + 0.40 + 0.46) / 4.0;
     assert_size(&part, l_size(quarter(2.0, 2.0, k)));
     let rule = &part["sheet_metal"]["bends"][0]["rule"];
@@ -223,12 +211,12 @@ fn a_k_table_is_interpolated_between_radii_and_angles_for_the_parts_material() {
 fn allowance_and_deduction_tables_give_the_allowance_at_a_grid_point() {
     let (_keep, path) = table("thickness,inner_radius,angle,ba\n2,2,90,4.2\n");
     let arguments = ["--bend-table", path.to_str().expect("utf-8")];
-    let (part, _) = run(&sample("sheet_l_hole_freecad.step"), &arguments);
+    let (part, _) = flatten_sheet(&sample("sheet_l_hole_freecad.step"), &arguments);
     assert_size(&part, l_size(4.2));
     // BD 3.9 at R 2, t 2, 90°: BA = 2 · OSSB − BD = 2 · (2 + 2) · tan 45° − 3.9 = 4.1.
     let (_keep, path) = table("thickness,inner_radius,angle,bd\n2,2,90,3.9\n");
     let arguments = ["--bend-table", path.to_str().expect("utf-8")];
-    let (part, _) = run(&sample("sheet_l_hole_freecad.step"), &arguments);
+    let (part, _) = flatten_sheet(&sample("sheet_l_hole_freecad.step"), &arguments);
     assert_size(&part, l_size(4.1));
 }
 
@@ -261,7 +249,7 @@ fn a_bend_outside_the_table_or_a_malformed_table_is_refused_naming_file_and_line
 fn din_6935_gives_its_correction_factor_and_compensation() {
     // R/t = 1: k = 0.65 + 0.5 · log10(1) = 0.65; BA = π/2 · (2 + 0.65 · 2 / 2) = 4.1626;
     // β = 90°: v = BA − 2 · (R + t) = BA − 8.
-    let (part, _) = run(
+    let (part, _) = flatten_sheet(
         &sample("sheet_l_hole_freecad.step"),
         &["--bend-rule", "din6935"],
     );
@@ -343,7 +331,7 @@ fn any_flange_face_can_be_the_base_face_and_the_others_are_refused() {
 #[test]
 fn bend_zones_are_drawn_half_the_allowance_either_side_of_the_bend_line() {
     let allowance = quarter(2.0, 2.0, K);
-    let (_, entities) = run(&sample("sheet_l_hole_freecad.step"), &["--bend-zones"]);
+    let (_, entities) = flatten_sheet(&sample("sheet_l_hole_freecad.step"), &["--bend-zones"]);
     let [line] = bend_line_positions(&entities)[..] else {
         panic!("one bend line");
     };
@@ -365,7 +353,7 @@ fn bend_zones_are_drawn_half_the_allowance_either_side_of_the_bend_line() {
         (zones[1] - (line + allowance / 2.0)).abs() < 1e-9,
         "{zones:?}"
     );
-    let (_, plain) = run(&sample("sheet_l_hole_freecad.step"), &[]);
+    let (_, plain) = flatten_sheet(&sample("sheet_l_hole_freecad.step"), &[]);
     assert!(plain.iter().all(|e| e.layer != "BEND_ZONE"));
 }
 
@@ -394,7 +382,7 @@ fn the_label_sits_inside_a_flange_never_across_a_bend_line() {
         "sheet_hat_freecad",
         "sheet_u_freecad",
     ] {
-        let (_, entities) = run(&sample(&format!("{name}.step")), &[]);
+        let (_, entities) = flatten_sheet(&sample(&format!("{name}.step")), &[]);
         assert_label_clear_of_bends(&entities, name);
     }
 }
@@ -421,7 +409,7 @@ fn a_part_files_bent_fold_takes_the_allowance_against_the_setback_of_its_side() 
     let allowance = quarter(2.0, 2.0, K);
     let directory = tempfile::tempdir().expect("a temporary directory");
     for (side, depth) in [(None, 1.0), (Some("inside"), 0.0), (Some("outside"), 2.0)] {
-        let (part, entities) = run(&bracket(side, directory.path()), &[]);
+        let (part, entities) = flatten_sheet(&bracket(side, directory.path()), &[]);
         let setback = 2.0 + depth;
         let width = 140.0 - 2.0 * setback + allowance;
         assert_size(&part, [width, 100.0]);
@@ -438,7 +426,7 @@ fn a_part_files_bent_fold_takes_the_allowance_against_the_setback_of_its_side() 
         assert!(entities.iter().all(|e| e.layer != "FOLD"));
         assert_label_clear_of_bends(&entities, "bracket_fold");
     }
-    let (part, _) = run(
+    let (part, _) = flatten_sheet(
         &bracket(None, directory.path()),
         &["--bend-rule", "din6935"],
     );
@@ -496,10 +484,10 @@ fn part_file_z_and_u_bend_both_ways_and_the_same_way() {
     // Flanges 40, 30, 40 to the sharps, SB = (2 + 1) tan 45° = 3: 110 − 4 · 3 + 2 BA.
     let allowance = quarter(2.0, 2.0, K);
     let directory = tempfile::tempdir().expect("a temporary directory");
-    let (z, _) = run(&three_flanges(directory.path(), "zpart", true), &[]);
+    let (z, _) = flatten_sheet(&three_flanges(directory.path(), "zpart", true), &[]);
     assert_size(&z, [110.0 - 12.0 + 2.0 * allowance, 30.0]);
     assert_eq!(directions(&z), ["down", "up"]);
-    let (u, _) = run(&three_flanges(directory.path(), "upart", false), &[]);
+    let (u, _) = flatten_sheet(&three_flanges(directory.path(), "upart", false), &[]);
     assert_size(&u, [110.0 - 12.0 + 2.0 * allowance, 30.0]);
     let mut both = directions(&u);
     both.dedup();

@@ -5,10 +5,9 @@
 //! Either way the warning names the faces.
 
 use std::f64::consts::FRAC_PI_2;
-use std::path::Path;
 
-use crate::sheet_metal::{Entity, FLAT_TOLERANCE_MM, check_with_ezdxf, dxf_entities, number};
-use crate::util::{flatten_into, read_report, sample, stderr};
+use crate::sheet_metal::{Entity, FLAT_TOLERANCE_MM, flatten_sheet, number};
+use crate::util::sample;
 
 /// The L both samples are made from: legs 50 and 30, R 2, t 2, 40 wide.
 const LEGS: f64 = 80.0;
@@ -16,16 +15,16 @@ const WIDTH: f64 = 40.0;
 const RADIUS: f64 = 2.0;
 const THICKNESS: f64 = 2.0;
 
-/// Flattens `input` with `extra` arguments: its report part and its DXF's entities.
-fn run(input: &Path, extra: &[&str]) -> (serde_json::Value, Vec<Entity>) {
-    let directory = tempfile::tempdir().expect("a temporary directory");
-    let output = flatten_into(input, directory.path(), extra);
-    assert!(output.status.success(), "{input:?}: {}", stderr(&output));
-    let part = read_report(directory.path())["parts"][0].clone();
-    let name = part["name"].as_str().expect("a name").to_owned();
-    let dxf = directory.path().join(format!("{name}.dxf"));
-    check_with_ezdxf(&dxf);
-    (part, dxf_entities(&dxf))
+/// The DXF's one outer contour.
+fn only_outline(entities: &[Entity]) -> &Entity {
+    let [outline] = entities
+        .iter()
+        .filter(|e| e.layer == "CUT_OUTER")
+        .collect::<Vec<_>>()[..]
+    else {
+        panic!("one outline");
+    };
+    outline
 }
 
 /// The part's warnings, joined.
@@ -64,7 +63,7 @@ fn a_dimple_in_a_flange_is_drawn_as_its_projection_and_the_rest_unfolds_exactly(
         ),
     ] {
         let extra: Vec<&str> = base_face.map_or(vec![], |id| vec!["--base-face", id]);
-        let (part, entities) = run(&sample("sheet_dimple_freecad.step"), &extra);
+        let (part, entities) = flatten_sheet(&sample("sheet_dimple_freecad.step"), &extra);
         let sheet = &part["sheet_metal"];
         let size = [number(&sheet["flat_width"]), number(&sheet["flat_height"])];
         let expected = [LEGS + allowance, WIDTH];
@@ -97,7 +96,7 @@ fn a_formed_face_running_into_a_bend_sends_the_skin_alone_to_the_energy_flatteni
     // The 30 mm flange's two sides are B-spline surfaces: the region runs into the bend, so it
     // has no one flange to be projected onto; the chosen skin (the L's outer side, radius 4 in
     // the bend) is flattened as a surface: its own developed area, not twice a sheet's.
-    let (part, entities) = run(&sample("sheet_spline_flange_freecad.step"), &[]);
+    let (part, entities) = flatten_sheet(&sample("sheet_spline_flange_freecad.step"), &[]);
     assert!(part.get("sheet_metal").is_none(), "{part}");
     let said = warnings(&part);
     for words in [
@@ -109,13 +108,7 @@ fn a_formed_face_running_into_a_bend_sends_the_skin_alone_to_the_energy_flatteni
     }
     assert_eq!(part["flipped"], 0);
     assert_eq!(part["overlap"], false);
-    let [outline] = entities
-        .iter()
-        .filter(|e| e.layer == "CUT_OUTER")
-        .collect::<Vec<_>>()[..]
-    else {
-        panic!("one outline");
-    };
+    let outline = only_outline(&entities);
     let skin = WIDTH * (LEGS + FRAC_PI_2 * (RADIUS + THICKNESS));
     let area = polygon_area(&outline.points);
     assert!((area - skin).abs() < 0.001 * skin, "{area} against {skin}");
@@ -125,7 +118,7 @@ fn a_formed_face_running_into_a_bend_sends_the_skin_alone_to_the_energy_flatteni
 fn a_dimple_cut_by_the_sheets_edge_is_not_projected_and_its_skin_is_flattened_as_a_surface() {
     // The same dimple 8 mm from the 50 mm leg's edge, cut by it: the region reaches a wall, so
     // its projection would not be its flat extent; the skin alone goes to the energy model.
-    let (part, entities) = run(&sample("sheet_edge_dimple_freecad.step"), &[]);
+    let (part, entities) = flatten_sheet(&sample("sheet_edge_dimple_freecad.step"), &[]);
     assert!(part.get("sheet_metal").is_none(), "{part}");
     let said = warnings(&part);
     for words in [
@@ -138,13 +131,7 @@ fn a_dimple_cut_by_the_sheets_edge_is_not_projected_and_its_skin_is_flattened_as
     assert_eq!(part["flipped"], 0);
     assert_eq!(part["overlap"], false);
     // One skin: about the L's area (the dimple's own material added), never two skins'.
-    let [outline] = entities
-        .iter()
-        .filter(|e| e.layer == "CUT_OUTER")
-        .collect::<Vec<_>>()[..]
-    else {
-        panic!("one outline");
-    };
+    let outline = only_outline(&entities);
     let area = polygon_area(&outline.points);
     let inner_skin = WIDTH * (LEGS + FRAC_PI_2 * RADIUS);
     assert!(
