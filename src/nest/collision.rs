@@ -363,6 +363,7 @@ fn sized(raw: f64, size: f64) -> f64 {
     (raw * size).sqrt()
 }
 
+/// The convex-hull area of a placed shape, mm² (jagua-rs's surrogate keeps it).
 fn hull_area(shape: &SPolygon) -> f64 {
     f64::from(shape.surrogate().convex_hull_area)
 }
