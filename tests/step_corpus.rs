@@ -340,8 +340,8 @@ fn edges_far_off_their_cylinder_are_refused_naming_the_face_and_the_distance() {
 
 #[test]
 fn parameters_below_the_triangulators_range_are_read_as_zero() {
-    // A 10 mm box whose vertices' zero coordinates are written 1.E-50: its planes parameters reach 1e-50,
-    // which spade refuses to insert.
+    // A 10 mm box whose vertices' zero coordinates are written 1.E-50: its planes' parameters
+    // reach 1e-50, which spade refuses to insert.
     let path = repository_path("tests/fixtures/step-reader/box_tiny_coordinates_freecad.step");
     let jobs = load_and_check(&path).unwrap_or_else(|e| panic!("{e}"));
     let [job] = jobs.as_slice() else {
@@ -349,4 +349,23 @@ fn parameters_below_the_triangulators_range_are_read_as_zero() {
     };
     let area = job.model.area();
     assert!((area - 600.0).abs() < 1e-9, "area {area}, expected 600");
+}
+
+#[test]
+fn a_box_with_sphere_corners_meshes_to_its_area() {
+    // A 10 mm box with every edge filleted at radius 2: six 6 × 6 faces, twelve quarter
+    // cylinders 6 long and eight sphere octants; each octant reaches its pole, whose polar map put
+    // two of its meridians off their axis by round-off (1e-16) and the mesh was not closed.
+    let path = repository_path("tests/fixtures/step-reader/box_fillet_freecad.step");
+    let jobs = load_and_check(&path).unwrap_or_else(|e| panic!("{e}"));
+    let [job] = jobs.as_slice() else {
+        panic!("{} parts, expected one", jobs.len());
+    };
+    let pi = std::f64::consts::PI;
+    let expected = 6.0 * 36.0 + 12.0 * (pi * 2.0 / 2.0) * 6.0 + 4.0 * pi * 4.0;
+    let area = job.model.area();
+    assert!(
+        area < expected && area > expected * (1.0 - 1e-3),
+        "area {area}, expected {expected} less the chords"
+    );
 }

@@ -21,6 +21,11 @@ pub const WELD_TOLERANCE_RATIO: f64 = 1e-7;
 /// sample are that sample.
 pub const SNAP_RATIO: f64 = 1e-9;
 
+/// STEP faces mapped in polar coordinates about a pole: a domain coordinate of a boundary point
+/// whose magnitude is below this fraction of its loop's extent is round-off of zero (a meridian
+/// on an axis) and is zero.
+pub const ROUND_OFF_RATIO: f64 = 1e-13;
+
 /// A mesh vertex within this fraction of the mesh size (in the meshing domain) of a fold polyline
 /// is on it.
 pub const ON_POLYLINE_RATIO: f64 = 1e-7;

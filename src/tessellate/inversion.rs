@@ -66,7 +66,9 @@ pub fn invert_loop(
             .map(|p| refine_inversion(surface, point, p, ranges))
             .filter(|&p| off(p) <= tolerance)
             .or_else(|| global_inversion(surface, point, periods, ranges))
-            .filter(|&p| off(p) <= tolerance || is_foot_within(surface, point, p, ranges, deviation))
+            .filter(|&p| {
+                off(p) <= tolerance || is_foot_within(surface, point, p, ranges, deviation)
+            })
             .ok_or_else(|| off_surface_error(surface, point, periods, ranges, deviation))?;
         native.push(match previous {
             Some(previous) => unwrap_near(guess, previous, periods),
