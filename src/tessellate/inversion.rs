@@ -91,7 +91,7 @@ fn is_foot_within(
 ) -> bool {
     let residual = point - native_point(surface, parameters);
     let distance = residual.length();
-    if !(distance <= deviation) {
+    if distance.is_nan() || distance > deviation {
         return false;
     }
     let (su, sv) = native_derivatives(surface, parameters);
