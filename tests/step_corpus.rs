@@ -283,3 +283,89 @@ fn a_sheet_with_a_conical_transition_is_refused_as_sheet_metal_with_its_reason()
         "{warning}"
     );
 }
+
+/// The FreeCAD cylinder (radius 5, height 10) with its cylindrical surface's radius written as
+/// `radius`: its edges (circles and seam of radius 5) lie `radius − 5` off the surface.
+fn cylinder_with_surface_radius(radius: &str) -> tempfile::TempPath {
+    let text = std::fs::read_to_string(repository_path(
+        "tests/fixtures/step-reader/cylinder_freecad.step",
+    ))
+    .expect("fixture");
+    let original = "CYLINDRICAL_SURFACE('',#32,5.)";
+    assert!(text.contains(original));
+    let changed = text.replace(original, &format!("CYLINDRICAL_SURFACE('',#32,{radius})"));
+    let file = tempfile::Builder::new()
+        .suffix(".step")
+        .tempfile()
+        .expect("temporary file");
+    std::fs::write(file.path(), changed).expect("write");
+    file.into_temp_path()
+}
+
+#[test]
+fn edges_slightly_off_their_cylinder_are_read_and_meshed_on_it() {
+    // The edges 0.003 mm off the surface: beyond the inversion tolerance (1e-5 of the part's
+    // 17.3 mm diagonal) as Open CASCADE's IDF models write them, within 1e-3 of it.
+    let path = cylinder_with_surface_radius("5.003");
+    let jobs = load_and_check(&path).unwrap_or_else(|e| panic!("{e}"));
+    let [job] = jobs.as_slice() else {
+        panic!("{} parts, expected one", jobs.len());
+    };
+    // Side 2π·r·h and two discs π·r², r between the edges' 5 and the surface's 5.003; the
+    // chords of the default tolerance take off less than 1e-3 of it.
+    let area = |r: f64| 2.0 * std::f64::consts::PI * r * 10.0 + 2.0 * std::f64::consts::PI * 25.0;
+    let mesh_area = job.model.area();
+    assert!(
+        mesh_area > area(5.0) * (1.0 - 1e-3) && mesh_area < area(5.003),
+        "area {mesh_area}, expected about {}",
+        area(5.0)
+    );
+}
+
+#[test]
+fn edges_far_off_their_cylinder_are_refused_naming_the_face_and_the_distance() {
+    // 0.5 mm off (3 % of the part): the file is wrong, not its tolerance.
+    let path = cylinder_with_surface_radius("5.5");
+    let message = match load_and_check(&path) {
+        Ok(jobs) => panic!("loaded {} part(s)", jobs.len()),
+        Err(message) => message,
+    };
+    assert!(
+        message.contains("ADVANCED_FACE #")
+            && message.contains("on CYLINDRICAL_SURFACE (#31)")
+            && message.contains("is not on the face's surface (5.000e-1 mm from the nearest"),
+        "{message}"
+    );
+}
+
+#[test]
+fn parameters_below_the_triangulators_range_are_read_as_zero() {
+    // A 10 mm box whose vertices' zero coordinates are written 1.E-50: its planes' parameters
+    // reach 1e-50, which spade refuses to insert.
+    let path = repository_path("tests/fixtures/step-reader/box_tiny_coordinates_freecad.step");
+    let jobs = load_and_check(&path).unwrap_or_else(|e| panic!("{e}"));
+    let [job] = jobs.as_slice() else {
+        panic!("{} parts, expected one", jobs.len());
+    };
+    let area = job.model.area();
+    assert!((area - 600.0).abs() < 1e-9, "area {area}, expected 600");
+}
+
+#[test]
+fn a_box_with_sphere_corners_meshes_to_its_area() {
+    // A 10 mm box with every edge filleted at radius 2: six 6 × 6 faces, twelve quarter
+    // cylinders 6 long and eight sphere octants; each octant reaches its pole, whose polar map put
+    // two of its meridians off their axis by round-off (1e-16) and the mesh was not closed.
+    let path = repository_path("tests/fixtures/step-reader/box_fillet_freecad.step");
+    let jobs = load_and_check(&path).unwrap_or_else(|e| panic!("{e}"));
+    let [job] = jobs.as_slice() else {
+        panic!("{} parts, expected one", jobs.len());
+    };
+    let pi = std::f64::consts::PI;
+    let expected = 6.0 * 36.0 + 12.0 * (pi * 2.0 / 2.0) * 6.0 + 4.0 * pi * 4.0;
+    let area = job.model.area();
+    assert!(
+        area < expected && area > expected * (1.0 - 1e-3),
+        "area {area}, expected {expected} less the chords"
+    );
+}

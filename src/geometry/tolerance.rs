@@ -21,6 +21,11 @@ pub const WELD_TOLERANCE_RATIO: f64 = 1e-7;
 /// sample are that sample.
 pub const SNAP_RATIO: f64 = 1e-9;
 
+/// STEP faces mapped in polar coordinates about a pole: a domain coordinate of a boundary point
+/// whose magnitude is below this fraction of its loop's extent is round-off of zero (a meridian
+/// on an axis) and is zero.
+pub const ROUND_OFF_RATIO: f64 = 1e-13;
+
 /// A mesh vertex within this fraction of the mesh size (in the meshing domain) of a fold polyline
 /// is on it.
 pub const ON_POLYLINE_RATIO: f64 = 1e-7;
@@ -85,6 +90,18 @@ pub const SAME_POINT_RATIO: f64 = 1e-7;
 /// STEP faces: a boundary point farther than this fraction of the face's size from its inverted
 /// surface point means the inversion failed.
 pub const INVERSION_TOLERANCE_RATIO: f64 = 1e-5;
+
+/// STEP faces: a boundary point whose inversion lands farther than the inversion tolerance but is
+/// a foot point (the point lies along the surface's normal) at most this fraction of the part's
+/// size away is on the surface: exporters write edges off their faces within their own modelling
+/// tolerance (Open CASCADE's IDF models: cylinder edges up to 3.6e-4 of the part's size off,
+/// ten times the file's declared uncertainty). The mesh's boundary vertices stay on the edges, so
+/// its triangles there lean by at most this much.
+pub const BOUNDARY_DEVIATION_RATIO: f64 = 1e-3;
+
+/// STEP faces: a boundary point's inversion is a foot point when the residual's cosine with each
+/// surface tangent is at most this.
+pub const FOOT_POINT_COSINE: f64 = 1e-3;
 
 /// STEP faces: relative spread of a parameter along an edge below which the edge lies on an
 /// iso-parameter line (a seam, a circle of a cone, a B-spline patch's side); its points then get

@@ -33,8 +33,8 @@ use super::domain_map::{Axis, DomainMap, domain_map, polar_map};
 use super::inversion::{DomainError, invert_loop, parameter_ranges};
 use super::native::{native_derivatives, native_point};
 use crate::cad::MappedSurface;
-use crate::geometry::tolerance::ISO_LINE_RATIO;
 use crate::geometry::tolerance::STEP_POLE_RATIO;
+use crate::geometry::tolerance::{ISO_LINE_RATIO, ROUND_OFF_RATIO};
 
 /// A face's surface evaluated at domain coordinates.
 #[derive(Debug, Clone)]
@@ -112,9 +112,16 @@ pub fn face_domain(
         .and_then(|(angular, t_pole)| polar_map(surface, &native_loops, angular, t_pole))
         .unwrap_or_else(|| domain_map(surface, &native_loops, periods));
     let curvature = largest_curvature(surface, &native_loops, pole);
+    let polar = matches!(map, DomainMap::Polar(_));
     let loops = native_loops
         .iter()
-        .map(|native| native.iter().map(|&p| map.domain_of(p)).collect())
+        .map(|native| {
+            let mut domain: Vec<DVec2> = native.iter().map(|&p| map.domain_of(p)).collect();
+            if polar {
+                flush_round_off(&mut domain);
+            }
+            domain
+        })
         .collect();
     Ok(FaceDomain {
         surface: FaceSurface {
@@ -124,6 +131,21 @@ pub fn face_domain(
         loops,
         curvature,
     })
+}
+
+/// Makes zero each coordinate of a polar-mapped loop whose magnitude is below
+/// [`ROUND_OFF_RATIO`] of the loop's extent: the polar map puts a meridian on an axis only up to
+/// round-off (`r · cos 90°` is 6e-17 r), and spade's point location can fail on a boundary
+/// running along a line at such distances from it (a sphere octant through its pole).
+fn flush_round_off(domain: &mut [DVec2]) {
+    let extent = domain
+        .iter()
+        .fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
+    let round_off = ROUND_OFF_RATIO * extent;
+    let flush = |value: f64| if value.abs() <= round_off { 0.0 } else { value };
+    for point in domain {
+        *point = DVec2::new(flush(point.x), flush(point.y));
+    }
 }
 
 /// A loop that does not come back to its start in the parameters wraps around a periodic

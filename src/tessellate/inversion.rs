@@ -9,7 +9,9 @@ use truck_meshalgo::prelude::*;
 use truck_stepio::r#in::alias::Surface as StepSurface;
 
 use super::native::{native_derivatives, native_point};
-use crate::geometry::tolerance::INVERSION_TOLERANCE_RATIO;
+use crate::geometry::tolerance::{
+    BOUNDARY_DEVIATION_RATIO, FOOT_POINT_COSINE, INVERSION_TOLERANCE_RATIO,
+};
 
 /// Gauss-Newton steps of a point inversion.
 const INVERSION_STEPS: usize = 12;
@@ -55,26 +57,79 @@ pub fn invert_loop(
     size: f64,
 ) -> Result<Vec<DVec2>, DomainError> {
     let tolerance = INVERSION_TOLERANCE_RATIO * size.max(f64::MIN_POSITIVE);
+    let deviation = BOUNDARY_DEVIATION_RATIO * size.max(f64::MIN_POSITIVE);
     let mut native: Vec<DVec2> = Vec::with_capacity(points.len());
     for &point in points {
         let previous = native.last().copied();
+        let off = |p: DVec2| native_point(surface, p).distance(point);
         let guess = previous
             .map(|p| refine_inversion(surface, point, p, ranges))
-            .filter(|&p| native_point(surface, p).distance(point) <= tolerance)
+            .filter(|&p| off(p) <= tolerance)
             .or_else(|| global_inversion(surface, point, periods, ranges))
-            .filter(|&p| native_point(surface, p).distance(point) <= tolerance)
-            .ok_or_else(|| {
-                DomainError(format!(
-                    "the boundary point ({:.6}, {:.6}, {:.6}) is not on the face's surface",
-                    point.x, point.y, point.z
-                ))
-            })?;
+            .filter(|&p| {
+                off(p) <= tolerance || is_foot_within(surface, point, p, ranges, deviation)
+            })
+            .ok_or_else(|| off_surface_error(surface, point, periods, ranges, deviation))?;
         native.push(match previous {
             Some(previous) => unwrap_near(guess, previous, periods),
             None => guess,
         });
     }
     Ok(native)
+}
+
+/// Whether `parameters` are a foot point of `point` on the surface (the residual along the
+/// surface's normal: its cosine with each tangent at most [`FOOT_POINT_COSINE`]; along a bounded
+/// parameter at its bound, the patch's side, only the other tangent counts) at most `deviation`
+/// away: an edge an exporter wrote slightly off its face's surface.
+fn is_foot_within(
+    surface: &StepSurface,
+    point: DVec3,
+    parameters: DVec2,
+    ranges: [Option<(f64, f64)>; 2],
+    deviation: f64,
+) -> bool {
+    let residual = point - native_point(surface, parameters);
+    let distance = residual.length();
+    if distance.is_nan() || distance > deviation {
+        return false;
+    }
+    let (su, sv) = native_derivatives(surface, parameters);
+    let at_bound = |value: f64, range: Option<(f64, f64)>| {
+        range.is_some_and(|(low, high)| value <= low || value >= high)
+    };
+    [
+        (su, at_bound(parameters.x, ranges[0])),
+        (sv, at_bound(parameters.y, ranges[1])),
+    ]
+    .iter()
+    .all(|&(tangent, bounded)| {
+        let length = tangent.length() * distance;
+        bounded || (length > 0.0 && residual.dot(tangent).abs() <= FOOT_POINT_COSINE * length)
+    })
+}
+
+/// The error for a boundary point off its face's surface, with the distance to the nearest
+/// surface point found and the largest deviation accepted.
+fn off_surface_error(
+    surface: &StepSurface,
+    point: DVec3,
+    periods: [Option<f64>; 2],
+    ranges: [Option<(f64, f64)>; 2],
+    deviation: f64,
+) -> DomainError {
+    let distance = global_inversion(surface, point, periods, ranges)
+        .map(|p| native_point(surface, p).distance(point))
+        .filter(|d| d.is_finite());
+    let how_far = distance.map_or_else(
+        || "no nearest surface point found".to_string(),
+        |d| format!("{d:.3e} mm from the nearest surface point found"),
+    );
+    DomainError(format!(
+        "the boundary point ({:.6}, {:.6}, {:.6}) is not on the face's surface ({how_far}; at \
+         most {deviation:.3e} mm accepted)",
+        point.x, point.y, point.z
+    ))
 }
 
 /// `parameters` shifted by whole periods to lie nearest `previous`.

@@ -270,11 +270,14 @@ fn bounding_box(points: &[DVec2]) -> (DVec2, DVec2) {
     )
 }
 
+/// Inserts a domain point. A coordinate whose magnitude is below spade's smallest
+/// ([`spade::MIN_ALLOWED_VALUE`], 2⁻¹⁴²: exporters write parameters such as 1e-50 for 0) is
+/// taken as zero, which spade accepts, instead of refusing the point.
 pub(super) fn insert_point(
     cdt: &mut Cdt,
     point: DVec2,
 ) -> Result<FixedVertexHandle, TessellateError> {
-    cdt.insert(Point2::new(point.x, point.y))
+    cdt.insert(spade::mitigate_underflow(Point2::new(point.x, point.y)))
         .map_err(|_| TessellateError::BadParameterPoint {
             u: point.x,
             v: point.y,
