@@ -371,10 +371,7 @@ fn hull_area(shape: &SPolygon) -> f64 {
 /// Overlap of two placed shapes that jagua-rs finds colliding: [`raw_part_overlap`], [`sized`]
 /// by their convex-hull areas.
 fn part_overlap(a: &SPolygon, b: &SPolygon) -> f64 {
-    sized(
-        raw_part_overlap(a, b),
-        (hull_area(a) * hull_area(b)).sqrt(),
-    )
+    sized(raw_part_overlap(a, b), (hull_area(a) * hull_area(b)).sqrt())
 }
 
 /// Raw overlap of two placed shapes that jagua-rs finds colliding: [`pole_overlap`] plus
