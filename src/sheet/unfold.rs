@@ -642,7 +642,7 @@ pub fn rest_position(flat: &mut [DVec2], bends: &mut [BendLine]) {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::sheet::unfold::*;
 
     /// The map of the plane z = 0 moved by `shift` on the flat.
     fn shifted(shift: DVec2) -> Option<FaceMap> {

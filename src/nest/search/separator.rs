@@ -132,11 +132,8 @@ impl<'p, 'a> Separator<'p, 'a> {
     pub(super) fn reset(&mut self, parts: &[Part], length: f64, reset_weights: bool) {
         if length.to_bits() == self.length.to_bits() && parts.len() == self.parts.len() {
             for (index, (part, current)) in parts.iter().zip(&self.parts).enumerate() {
-                if !same_place(part, current) {
-                    for engine in &mut self.engines {
-                        engine.remove(index as u32);
-                        engine.insert(index as u32, part.shape, part.translation);
-                    }
+                for engine in &mut self.engines {
+                    move_to(engine, index, current, part);
                 }
             }
         } else {
@@ -381,11 +378,7 @@ impl<'p, 'a> Separator<'p, 'a> {
             .filter(|&(position, _)| position != kept)
             .for_each(|(_, (engine, (parts, _)))| {
                 for &index in &colliding {
-                    let part = kept_parts[index];
-                    if !same_place(&parts[index], &part) {
-                        engine.remove(index as u32);
-                        engine.insert(index as u32, part.shape, part.translation);
-                    }
+                    move_to(engine, index, &parts[index], &kept_parts[index]);
                 }
             });
         self.parts.clone_from(kept_parts);
@@ -469,6 +462,14 @@ fn move_part(
     parts[index].shape = best.0;
     parts[index].translation = best.1;
     engine.insert(index as u32, best.0, best.1);
+}
+
+/// Moves part `index` in `engine` from `current` to `target`, when they differ.
+fn move_to(engine: &mut JaguaEngine, index: usize, current: &Part, target: &Part) {
+    if !same_place(current, target) {
+        engine.remove(index as u32);
+        engine.insert(index as u32, target.shape, target.translation);
+    }
 }
 
 /// Whether two parts lie at the same place in the same orientation (bit for bit).
