@@ -321,26 +321,45 @@ fn pole_depth(a: &[Circle], b: &[Circle]) -> f64 {
 /// smaller radius (mm², an area-like quantity that grows smoothly as the shapes move deeper into
 /// each other and weighs contacts between large poles more than between small ones).
 fn pole_overlap(a: &[Circle], b: &[Circle], b_box: Rect) -> f64 {
+    let near_b = |pole: &Circle| {
+        let (x, y, radius) = (pole.center.0, pole.center.1, pole.radius);
+        x + radius > b_box.x_min
+            && x - radius < b_box.x_max
+            && y + radius > b_box.y_min
+            && y - radius < b_box.y_max
+    };
+    // A pole clear of the other shape's bounding box overlaps none of its poles; the poles of
+    // `b` are tested only against the box of the poles of `a` that are near it.
+    let mut near: [Option<&Circle>; OVERLAP_POLES] = [None; OVERLAP_POLES];
+    let mut count = 0;
+    let (mut x_min, mut y_min, mut x_max, mut y_max) = (f32::MAX, f32::MAX, f32::MIN, f32::MIN);
+    for pole in a.iter().filter(|pole| near_b(pole)).take(OVERLAP_POLES) {
+        x_min = x_min.min(pole.center.0 - pole.radius);
+        x_max = x_max.max(pole.center.0 + pole.radius);
+        y_min = y_min.min(pole.center.1 - pole.radius);
+        y_max = y_max.max(pole.center.1 + pole.radius);
+        near[count] = Some(pole);
+        count += 1;
+    }
+    if count == 0 {
+        return 0.0;
+    }
     let mut total = 0.0;
-    for pole_a in a {
-        let (x, y, radius) = (pole_a.center.0, pole_a.center.1, pole_a.radius);
-        // A pole clear of the other shape's bounding box overlaps none of its poles.
-        if x + radius <= b_box.x_min
-            || x - radius >= b_box.x_max
-            || y + radius <= b_box.y_min
-            || y - radius >= b_box.y_max
+    for pole_b in b {
+        let (x, y, radius) = (pole_b.center.0, pole_b.center.1, pole_b.radius);
+        if x + radius <= x_min || x - radius >= x_max || y + radius <= y_min || y - radius >= y_max
         {
             continue;
         }
-        for pole_b in b {
-            let reach = f64::from(radius + pole_b.radius);
-            let dx = f64::from(x - pole_b.center.0);
-            let dy = f64::from(y - pole_b.center.1);
+        for pole_a in near[..count].iter().flatten() {
+            let reach = f64::from(pole_a.radius + radius);
+            let dx = f64::from(pole_a.center.0 - x);
+            let dy = f64::from(pole_a.center.1 - y);
             let squared = dx * dx + dy * dy;
             if squared >= reach * reach {
                 continue;
             }
-            total += (reach - squared.sqrt()) * f64::from(radius.min(pole_b.radius));
+            total += (reach - squared.sqrt()) * f64::from(pole_a.radius.min(radius));
         }
     }
     total
