@@ -16,8 +16,12 @@ fn run_on_sheets(directory: &Path) {
         "1200x800",
         "--gap",
         "3",
+        // The deterministic budget of `--time 1`, with a clock cap no loaded machine reaches:
+        // with `--time 1` alone the clock could end the search first, and the reruns differ.
+        "--work",
+        "1000000",
         "--time",
-        "1",
+        "600",
         "--no-timings",
     ]);
     assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
