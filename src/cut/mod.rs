@@ -31,8 +31,10 @@ mod options;
 pub mod paths;
 mod result;
 pub mod seam;
+mod smooth_cut;
 pub mod split;
 mod state;
+pub mod straighten;
 mod trials;
 
 pub use crest::{DEFAULT_CANDIDATES, DEFAULT_DART_FLOOR};
