@@ -526,7 +526,10 @@ fn a_hemisphere_is_cut_until_its_error_falls() {
         .fold(0.0, f64::max);
     let mut inserted = 0;
     for (v, &original) in result.original_vertex.iter().enumerate() {
-        let (at, input) = (result.model.positions()[v], model.positions()[original as usize]);
+        let (at, input) = (
+            result.model.positions()[v],
+            model.positions()[original as usize],
+        );
         if at != input {
             inserted += 1;
             assert!(at.distance(input) < longest_edge, "{at} far from {input}");

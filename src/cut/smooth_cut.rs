@@ -28,7 +28,9 @@ use std::collections::BTreeMap;
 use glam::{DVec2, DVec3};
 
 use super::state::CutState;
-use super::straighten::{SurfacePoint, position, straight_on, straighten, turn_at_tip};
+use super::straighten::{
+    SurfacePoint, largest_turn, position, straight_on, straighten, turn_at_tip,
+};
 use crate::flatten::Stiffness;
 use crate::mesh::{FacetModel, FoldEdge, NONE, SourceLines, TriangleSoup, validate};
 
@@ -36,6 +38,10 @@ use crate::mesh::{FacetModel, FoldEdge, NONE, SourceLines, TriangleSoup, validat
 /// crest line may make (12°): the cut's sides then turn by less than the 20° a cutter follows
 /// as one smooth line.
 pub const MAX_EXTENSION_TURN: f64 = 12.0 * std::f64::consts::PI / 180.0;
+
+/// The largest geodesic turn (radians) at a vertex of an edge path cut as it is when its
+/// straightening cannot be cut (10°).
+pub const MAX_EDGE_PATH_TURN: f64 = 10.0 * std::f64::consts::PI / 180.0;
 
 /// An inserted vertex: the edge of the state it splits, `[a, b]`, and where (`0` at `a`).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -84,7 +90,7 @@ pub(super) enum Straightened {
 pub(super) fn smooth_cut(state: &CutState, path: &[u32], blocked: &[bool]) -> Straightened {
     let model = &state.model;
     let Some(points) = straighten(model, path) else {
-        return Straightened::Refused;
+        return along_edges_if_straight(model, path);
     };
     let unchanged = points.len() == path.len()
         && points
@@ -95,11 +101,23 @@ pub(super) fn smooth_cut(state: &CutState, path: &[u32], blocked: &[bool]) -> St
         return Straightened::AlongEdges;
     }
     if !allowed(model, &points[1..points.len() - 1], blocked) {
-        return Straightened::Refused;
+        return along_edges_if_straight(model, path);
     }
-    refine(state, &points).map_or(Straightened::Refused, |smooth| {
-        Straightened::Smooth(Box::new(smooth))
-    })
+    refine(state, &points).map_or_else(
+        || along_edges_if_straight(model, path),
+        |smooth| Straightened::Smooth(Box::new(smooth)),
+    )
+}
+
+/// When a path's straightening cannot be cut, the path along its edges if they turn by at most
+/// [`MAX_EDGE_PATH_TURN`] at every vertex (on a coarse regular mesh a grid line is already
+/// straight; the straightening near it may touch the boundary), else refused.
+fn along_edges_if_straight(model: &FacetModel, path: &[u32]) -> Straightened {
+    if largest_turn(model, path).is_some_and(|turn| turn <= MAX_EDGE_PATH_TURN) {
+        Straightened::AlongEdges
+    } else {
+        Straightened::Refused
+    }
 }
 
 /// The extension of the cut that ends at `path[0]` along the crest line `path`: its

@@ -24,7 +24,7 @@ use crate::mesh::{FacetModel, NONE};
 
 /// A crossing closer to an end of its edge than this fraction of the edge's length is moved to
 /// that end: splitting the edge there would make triangles with angles of a few degrees.
-pub const SNAP_FRACTION: f64 = 0.12;
+pub const SNAP_FRACTION: f64 = 0.2;
 
 /// At most this many fan swaps per path vertex are tried before the straightening stops.
 pub const MAX_FAN_SWAPS: usize = 8;
@@ -85,20 +85,56 @@ pub fn straighten(model: &FacetModel, path: &[u32]) -> Option<Vec<SurfacePoint>>
 fn left_strip(model: &FacetModel, path: &[u32]) -> Option<Vec<u32>> {
     let mut strip = vec![left_face(model, path[0], path[1])?];
     for window in path.windows(3) {
-        let (centre, next) = (window[1], window[2]);
-        let target = left_face(model, centre, next)?;
-        let mut face = *strip.last()?;
-        while face != target {
-            let corners = model.triangles()[face as usize];
-            let after = corners[(corner_of(corners, centre)? + 1) % 3];
-            face = across(model, face, centre, after)?;
-            if strip.len() > model.triangle_count() {
-                return None;
-            }
-            strip.push(face);
-        }
+        let fan = left_fan(model, window[0], window[1], window[2])?;
+        strip.extend_from_slice(&fan[1..]);
     }
     Some(strip)
+}
+
+/// The faces around `centre` on the left of a walk `previous → centre → next`, from the face on
+/// the left of the edge in to the face on the left of the edge out.
+fn left_fan(model: &FacetModel, previous: u32, centre: u32, next: u32) -> Option<Vec<u32>> {
+    let target = left_face(model, centre, next)?;
+    let mut fan = vec![left_face(model, previous, centre)?];
+    let mut face = fan[0];
+    while face != target {
+        let corners = model.triangles()[face as usize];
+        let after = corners[(corner_of(corners, centre)? + 1) % 3];
+        face = across(model, face, centre, after)?;
+        if fan.len() > model.vertex_faces(centre).len() {
+            return None;
+        }
+        fan.push(face);
+    }
+    Some(fan)
+}
+
+/// The largest geodesic turn (radians) of an edge path at its inner vertices: at each, how far
+/// the angle on its left is from half the angle around the vertex (a straight line on a
+/// developable surface has π on each side). `None` if a vertex's left fan meets the boundary.
+pub fn largest_turn(model: &FacetModel, path: &[u32]) -> Option<f64> {
+    let positions = model.positions();
+    let corner = |face: u32, at: u32| {
+        let corners = model.triangles()[face as usize];
+        let k = corner_of(corners, at).unwrap_or(0);
+        let p = positions[at as usize];
+        let (u, w) = (corners[(k + 1) % 3], corners[(k + 2) % 3]);
+        (positions[u as usize] - p).angle_between(positions[w as usize] - p)
+    };
+    let mut largest: f64 = 0.0;
+    for window in path.windows(3) {
+        let (previous, centre, next) = (window[0], window[1], window[2]);
+        let fan = left_fan(model, previous, centre, next)?;
+        let around: f64 = model
+            .vertex_faces(centre)
+            .iter()
+            .map(|&f| corner(f, centre))
+            .sum();
+        // Every face of the fan lies on the left with its whole corner at `centre`.
+        let left: f64 = fan.iter().map(|&f| corner(f, centre)).sum();
+        largest = largest.max((left - 0.5 * around).abs());
+    }
+    Some(largest)
 }
 
 /// The face holding the directed edge `a → b` in its counter-clockwise order (the face on the

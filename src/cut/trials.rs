@@ -36,6 +36,16 @@ pub(super) struct Starts<'a> {
     pub(super) blocked: &'a [bool],
 }
 
+/// Which cuts a search may make.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Shapes {
+    /// Only smooth ones: straightened lines, straight extensions, edge paths already straight.
+    Smooth,
+    /// Also a line along its edges where its straightening cannot be cut (a zig-zag or a hooked
+    /// extension): the last resort when no smooth cut lowers the error.
+    AlongEdges,
+}
+
 /// A candidate cut, made and flattened.
 struct Trial {
     improvement: Improvement,
@@ -43,8 +53,9 @@ struct Trial {
     gain: f64,
 }
 
-/// [`best_cut`], and when it finds no cut, [`best_cut`] again with lines from
-/// [`WIDER_SEARCH`] times as many maxima.
+/// [`best_cut`] among smooth cuts, and when it finds none, again with lines from
+/// [`WIDER_SEARCH`] times as many maxima, and when it still finds none, once more allowing cuts
+/// along edges whose straightening cannot be cut ([`Shapes::AlongEdges`]).
 pub(super) fn best_cut_widening(
     state: &CutState,
     flattened: &Flattened,
@@ -52,14 +63,20 @@ pub(super) fn best_cut_widening(
     options: &CutOptions,
     starts: &Starts<'_>,
 ) -> Result<Option<Improvement>, CutError> {
-    if let Some(improvement) = best_cut(state, flattened, flatten_options, options, starts)? {
+    let search = |options: &CutOptions, shapes: Shapes| {
+        best_cut(state, flattened, flatten_options, options, starts, shapes)
+    };
+    if let Some(improvement) = search(options, Shapes::Smooth)? {
         return Ok(Some(improvement));
     }
     let wider = CutOptions {
         candidates: options.candidates * WIDER_SEARCH,
         ..options.clone()
     };
-    best_cut(state, flattened, flatten_options, &wider, starts)
+    if let Some(improvement) = search(&wider, Shapes::Smooth)? {
+        return Ok(Some(improvement));
+    }
+    search(&wider, Shapes::AlongEdges)
 }
 
 /// Picks the next cut in two rounds. Screening: every crest line of the current pattern is cut and
@@ -76,6 +93,7 @@ fn best_cut(
     flatten_options: &FlattenOptions,
     options: &CutOptions,
     starts: &Starts<'_>,
+    shapes: Shapes,
 ) -> Result<Option<Improvement>, CutError> {
     let lines = candidate_lines(state, flattened, flatten_options, options, starts);
     let screen_options = with_fast(flatten_options, |fast| FastOptions {
@@ -85,7 +103,7 @@ fn best_cut(
     });
     let screened: Vec<Option<Trial>> = lines
         .into_par_iter()
-        .map(|line| screen(state, flattened, line, &screen_options, starts))
+        .map(|line| screen(state, flattened, line, &screen_options, starts, shapes))
         .collect::<Result<_, _>>()?;
     let mut screened: Vec<Trial> = screened.into_iter().flatten().collect();
     let overlaps = |trial: &Trial| trial.improvement.flattened.stats.accuracy.overlap;
@@ -198,8 +216,10 @@ fn screen(
     line: CrestLine,
     screen_options: &FlattenOptions,
     starts: &Starts<'_>,
+    shapes: Shapes,
 ) -> Result<Option<Trial>, CutError> {
-    let Some((next, start, line)) = cut_candidate(state, &flattened.positions, line, starts)?
+    let Some((next, start, line)) =
+        cut_candidate(state, &flattened.positions, line, starts, shapes)?
     else {
         return Ok(None);
     };
@@ -222,14 +242,15 @@ fn screen(
 /// those of the cut state. The line is cut along its geodesic straightening ([`smooth_cut`]:
 /// crossing faces, the mesh refined along it), or when it extends a cut, straight on from that
 /// cut for its length ([`straight_extension`]), or along its edges when they are already
-/// straight. `None` if that cannot be cut (it would cut a piece off, open nothing, or run along
-/// the boundary or a fold line): a line whose straightening is refused is not cut along its
-/// edges either, since those zig-zag or leave a hooked dart.
+/// straight. A line whose straightening is refused is cut along its edges only when `shapes`
+/// allows it (those zig-zag or leave a hooked dart). `None` if it cannot be cut (it would cut a
+/// piece off, open nothing, or run along the boundary or a fold line).
 fn cut_candidate(
     state: &CutState,
     positions: &[DVec2],
     line: CrestLine,
     starts: &Starts<'_>,
+    shapes: Shapes,
 ) -> Result<Option<(CutState, Vec<DVec2>, CrestLine)>, CutError> {
     let start = line.vertices[0];
     let straightened = if starts.tips.contains(&start) {
@@ -238,8 +259,10 @@ fn cut_candidate(
         smooth_cut(state, &line.vertices, starts.blocked)
     };
     let (cut, line, start_of) = match straightened {
-        Straightened::Refused => return Ok(None),
-        Straightened::AlongEdges => (state.cut_along(&line.vertices), line, positions.to_vec()),
+        Straightened::Refused if shapes == Shapes::Smooth => return Ok(None),
+        Straightened::AlongEdges | Straightened::Refused => {
+            (state.cut_along(&line.vertices), line, positions.to_vec())
+        }
         Straightened::Smooth(smooth) => {
             let line = CrestLine {
                 length: path_length(&smooth.state.model, &smooth.path),
