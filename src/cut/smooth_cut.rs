@@ -379,3 +379,95 @@ fn carried_edges(
         })
         .unzip()
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::cut::paths::path_edges;
+    use crate::cut::smooth_cut::*;
+    use crate::cut::straighten::tests::{at, flat_grid, l_path};
+
+    fn state(model: FacetModel) -> CutState {
+        let edges = model.edges().len();
+        CutState {
+            original_vertex: (0..model.vertex_count() as u32).collect(),
+            stiffness: Stiffness::from_factors(vec![2.0; edges]),
+            model,
+        }
+    }
+
+    fn smoothed(state: &CutState, path: &[u32]) -> SmoothCut {
+        let blocked = vec![false; state.model.vertex_count()];
+        match smooth_cut(state, path, &blocked) {
+            Straightened::Smooth(smooth) => *smooth,
+            other => panic!("not smoothed: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn the_refined_mesh_is_the_same_surface_with_the_path_along_its_edges() {
+        let n = 8;
+        let before = state(flat_grid(n));
+        let smooth = smoothed(&before, &l_path(n));
+        let model = &smooth.state.model;
+        assert!((model.area() - before.model.area()).abs() < 1e-9);
+        assert!(
+            path_edges(model, &smooth.path).is_some(),
+            "{:?}",
+            smooth.path
+        );
+        assert_eq!(smooth.path[0], at(n, 0, 1));
+        assert_eq!(smooth.path[smooth.path.len() - 1], at(n, 6, 4));
+        let count = before.model.vertex_count();
+        assert_eq!(model.vertex_count(), count + smooth.inserted.len());
+        for (k, inserted) in smooth.inserted.iter().enumerate() {
+            let [a, b] = inserted.ends.map(|v| before.model.positions()[v as usize]);
+            let p = model.positions()[count + k];
+            assert!((p.distance(a) + p.distance(b) - a.distance(b)).abs() < 1e-9);
+            let original = smooth.state.original_vertex[count + k];
+            let given = before.model.positions()[original as usize];
+            assert!(inserted.ends.contains(&original));
+            assert!(p.distance(given) <= 0.5 * a.distance(b) + 1e-9);
+        }
+        // Flat: every rest length is the 3D length, and the stiffness is carried over.
+        for (e, &[a, b]) in model.edges().iter().enumerate() {
+            let length = model.positions()[a as usize].distance(model.positions()[b as usize]);
+            assert!((model.rest_lengths()[e] - length).abs() < 1e-9);
+            assert!((smooth.state.stiffness.factors()[e] - 2.0).abs() < 1e-12);
+        }
+        assert!(smooth.state.cut_along(&smooth.path).is_ok());
+    }
+
+    #[test]
+    fn a_path_through_a_blocked_vertex_is_not_straightened_across_it() {
+        let n = 8;
+        let before = state(flat_grid(n));
+        let mut blocked = vec![false; before.model.vertex_count()];
+        // Every vertex strictly inside the L's corner region: the straight line must cross it.
+        for y in 2..=4 {
+            for x in 1..=5 {
+                blocked[at(n, x, y) as usize] = true;
+            }
+        }
+        assert!(matches!(
+            smooth_cut(&before, &l_path(n), &blocked),
+            Straightened::Refused
+        ));
+    }
+
+    #[test]
+    fn warm_start_positions_put_inserted_vertices_on_their_edges() {
+        let n = 8;
+        let before = state(flat_grid(n));
+        let smooth = smoothed(&before, &l_path(n));
+        let flat: Vec<DVec2> = before
+            .model
+            .positions()
+            .iter()
+            .map(|p| DVec2::new(2.0 * p.x, 2.0 * p.y))
+            .collect();
+        let start = smooth.start_from(&flat);
+        for (v, p) in smooth.state.model.positions().iter().enumerate() {
+            assert!(start[v].distance(DVec2::new(2.0 * p.x, 2.0 * p.y)) < 1e-9);
+        }
+    }
+}

@@ -18,6 +18,8 @@
 //! [`MAX_FAN_SWAPS`] were tried. Crossings closer to an edge's end than [`SNAP_FRACTION`] of the
 //! edge snap to that end, so the mesh split along the path has no sliver triangles.
 
+use std::collections::BTreeMap;
+
 use glam::{DVec2, DVec3};
 
 use crate::mesh::{FacetModel, NONE};
@@ -163,18 +165,34 @@ fn across(model: &FacetModel, face: u32, a: u32, b: u32) -> Option<u32> {
     (other != NONE).then_some(other)
 }
 
-/// The strip cut down to start at its last face holding `start` and to end at its first face
-/// (after that) holding `end`, so that no portal holds either end; `None` if a face repeats
-/// (the path would cross a face twice) or the strip misses an end.
+/// The strip with its loops erased (where it comes back to a face, the faces in between are
+/// dropped: a strip along a sharp turn of the path passes a face by the turn twice), cut down to
+/// start at its last face holding `start` and to end at its first face (after that) holding
+/// `end`, so that no portal holds either end; `None` if the strip misses an end.
 fn trimmed(model: &FacetModel, strip: Vec<u32>, start: u32, end: u32) -> Option<Vec<u32>> {
+    let strip = loop_erased(strip);
     let holds = |f: u32, v: u32| model.triangles()[f as usize].contains(&v);
     let first = strip.iter().rposition(|&f| holds(f, start))?;
     let last = first + strip[first..].iter().position(|&f| holds(f, end))?;
-    let strip = strip[first..=last].to_vec();
-    let mut sorted = strip.clone();
-    sorted.sort_unstable();
-    sorted.dedup();
-    (sorted.len() == strip.len()).then_some(strip)
+    Some(strip[first..=last].to_vec())
+}
+
+/// The faces in order with every loop (a stretch from a face back to itself) cut out; the faces
+/// kept still follow each other across shared edges.
+fn loop_erased(strip: Vec<u32>) -> Vec<u32> {
+    let mut kept: Vec<u32> = Vec::with_capacity(strip.len());
+    let mut index: BTreeMap<u32, usize> = BTreeMap::new();
+    for face in strip {
+        if let Some(&at) = index.get(&face) {
+            for dropped in kept.drain(at + 1..) {
+                index.remove(&dropped);
+            }
+        } else {
+            index.insert(face, kept.len());
+            kept.push(face);
+        }
+    }
+    kept
 }
 
 /// An end of a portal: a vertex and where the unfolding put it.
@@ -651,4 +669,131 @@ fn unfolded_across(
         right
     };
     Some([a, b, (third, at)])
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use glam::DVec3;
+
+    use crate::cut::split::split_along_edges;
+    use crate::cut::straighten::*;
+    use crate::mesh::{TriangleSoup, validate};
+
+    /// A flat grid of `n × n` unit squares in z = 0, each split along its diagonal from
+    /// `(x, y)` to `(x + 1, y + 1)`; vertex `(x, y)` is `y (n + 1) + x`.
+    pub(crate) fn flat_grid(n: u32) -> FacetModel {
+        let mut positions = Vec::new();
+        for y in 0..=n {
+            for x in 0..=n {
+                positions.push(DVec3::new(f64::from(x), f64::from(y), 0.0));
+            }
+        }
+        let mut triangles = Vec::new();
+        for y in 0..n {
+            for x in 0..n {
+                let v = y * (n + 1) + x;
+                triangles.push([v, v + 1, v + n + 2]);
+                triangles.push([v, v + n + 2, v + n + 1]);
+            }
+        }
+        let soup = TriangleSoup::new(positions, triangles);
+        validate(&soup).expect("valid grid").components.remove(0)
+    }
+
+    /// Vertex `(x, y)` of [`flat_grid`]`(n)`.
+    pub(crate) fn at(n: u32, x: u32, y: u32) -> u32 {
+        y * (n + 1) + x
+    }
+
+    /// The L-shaped edge path from `(0, 1)` along `y = 1` to `(6, 1)` and up to `(6, 4)`.
+    pub(crate) fn l_path(n: u32) -> Vec<u32> {
+        let mut path: Vec<u32> = (0..=6).map(|x| at(n, x, 1)).collect();
+        path.extend((2..=4).map(|y| at(n, 6, y)));
+        path
+    }
+
+    #[test]
+    fn an_l_shaped_edge_path_becomes_the_straight_line_between_its_ends() {
+        let n = 8;
+        let model = flat_grid(n);
+        let points = straighten(&model, &l_path(n)).expect("straightened");
+        assert_eq!(points[0], SurfacePoint::Vertex(at(n, 0, 1)));
+        assert_eq!(points[points.len() - 1], SurfacePoint::Vertex(at(n, 6, 4)));
+        // The line y = 1 + x / 2 runs through the vertices (2, 2) and (4, 3) and crosses the
+        // diagonals between them at their midpoints: every point lies on it.
+        for &point in &points {
+            let p = position(&model, point);
+            assert!((p.y - 1.0 - 0.5 * p.x).abs() < 1e-9, "{point:?}");
+        }
+        let crossings = points
+            .iter()
+            .filter(|p| matches!(p, SurfacePoint::Edge { .. }))
+            .count();
+        assert_eq!((points.len(), crossings), (7, 3), "{points:?}");
+        let length: f64 = points
+            .windows(2)
+            .map(|pair| position(&model, pair[0]).distance(position(&model, pair[1])))
+            .sum();
+        assert!((length - 45f64.sqrt()).abs() < 1e-9, "{length}");
+    }
+
+    #[test]
+    fn a_straight_edge_path_is_its_own_straightening() {
+        let n = 6;
+        let model = flat_grid(n);
+        let path: Vec<u32> = (1..=5).map(|x| at(n, x, 3)).collect();
+        let points = straighten(&model, &path).expect("straightened");
+        let expected: Vec<SurfacePoint> = path.iter().map(|&v| SurfacePoint::Vertex(v)).collect();
+        assert_eq!(points, expected);
+    }
+
+    /// The grid slit from `(4, 0)` on the boundary up to its tip `(4, 3)`.
+    fn slit_grid(n: u32) -> FacetModel {
+        let model = flat_grid(n);
+        let path: Vec<u32> = (0..=3).map(|y| at(n, 4, y)).collect();
+        let edges = crate::cut::paths::path_edges(&model, &path).expect("edge path");
+        split_along_edges(&model, &edges).expect("slit").model
+    }
+
+    #[test]
+    fn an_extension_carries_straight_on_from_the_slit() {
+        let n = 8;
+        let model = slit_grid(n);
+        let tip = at(n, 4, 3);
+        let points = straight_on(&model, tip, 3.0).expect("extension");
+        let end = position(&model, points[points.len() - 1]);
+        assert!(end.distance(DVec3::new(4.0, 6.0, 0.0)) < 1e-9, "{points:?}");
+        for &point in &points {
+            assert!((position(&model, point).x - 4.0).abs() < 1e-9, "{point:?}");
+        }
+    }
+
+    #[test]
+    fn the_turn_at_a_tip_is_measured_from_straight_on() {
+        let n = 8;
+        let model = slit_grid(n);
+        let tip = at(n, 4, 3);
+        let ahead = turn_at_tip(&model, tip, DVec3::new(4.0, 3.5, 0.0)).expect("ahead");
+        let aside = turn_at_tip(&model, tip, DVec3::new(4.5, 3.0, 0.0)).expect("aside");
+        let diagonal = turn_at_tip(&model, tip, DVec3::new(4.5, 3.5, 0.0)).expect("diagonal");
+        assert!(ahead.abs() < 1e-9, "{ahead}");
+        assert!(
+            (aside - std::f64::consts::FRAC_PI_2).abs() < 1e-9,
+            "{aside}"
+        );
+        assert!(
+            (diagonal - std::f64::consts::FRAC_PI_4).abs() < 1e-9,
+            "{diagonal}"
+        );
+    }
+
+    #[test]
+    fn the_largest_turn_of_an_edge_path_is_its_sharpest_corner() {
+        let n = 8;
+        let model = flat_grid(n);
+        let turn = largest_turn(&model, &l_path(n)).expect("turn");
+        assert!((turn - std::f64::consts::FRAC_PI_2).abs() < 1e-9, "{turn}");
+        let straight: Vec<u32> = (0..=6).map(|x| at(n, x, 1)).collect();
+        assert!(largest_turn(&model, &straight).expect("turn") < 1e-9);
+    }
 }
