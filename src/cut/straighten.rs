@@ -17,6 +17,10 @@
 //! no swap shortens it (a geodesic: every bend has at least π on both sides) or
 //! [`MAX_FAN_SWAPS`] were tried. Crossings closer to an edge's end than [`SNAP_FRACTION`] of the
 //! edge snap to that end, so the mesh split along the path has no sliver triangles.
+//!
+//! For a cut's extension, [`straight_on`] traces the straightest geodesic on from the cut's inner
+//! end, [`turn_at_tip`] measures how far a direction turns from it, and [`largest_turn`] how far
+//! an edge path bends (to keep an edge path that is already straight).
 
 use std::collections::BTreeMap;
 
@@ -25,7 +29,8 @@ use glam::{DVec2, DVec3};
 use crate::mesh::{FacetModel, NONE};
 
 /// A crossing closer to an end of its edge than this fraction of the edge's length is moved to
-/// that end: splitting the edge there would make triangles with angles of a few degrees.
+/// that end: splitting the edge there would make sliver triangles (with 12 %, their flat
+/// triangles blocked the warm re-flattening of the torus, which stalled at 5 %; docs/cutting.md).
 pub const SNAP_FRACTION: f64 = 0.2;
 
 /// At most this many fan swaps per path vertex are tried before the straightening stops.
