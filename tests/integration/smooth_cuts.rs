@@ -21,7 +21,11 @@ fn spherical_cap(rings: usize) -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
         for j in 0..6 * k {
             let azimuth = std::f64::consts::TAU * j as f64 / (6 * k) as f64;
             let (s, c) = (polar.sin(), polar.cos());
-            vertices.push([radius * s * azimuth.cos(), radius * s * azimuth.sin(), radius * c]);
+            vertices.push([
+                radius * s * azimuth.cos(),
+                radius * s * azimuth.sin(),
+                radius * c,
+            ]);
         }
     }
     let mut faces = Vec::new();
