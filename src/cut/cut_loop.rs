@@ -3,6 +3,8 @@
 
 use std::collections::BTreeSet;
 
+use glam::DVec3;
+
 use super::errors::CutError;
 use super::opening::{lay_user_seams, open_and_flatten};
 use super::options::{
@@ -105,11 +107,12 @@ pub fn cut_and_flatten(
         steps += 1;
         progress.advance(steps as u64);
         let line = &improvement.line;
-        let points = polyline(&state.model, &line.vertices);
+        // The line's vertices are those of the cut state (a straightened cut inserts vertices).
+        let points = polyline(&improvement.state.model, &line.vertices);
         let vertices: Vec<u32> = line
             .vertices
             .iter()
-            .map(|&v| state.original_vertex[v as usize])
+            .map(|&v| improvement.state.original_vertex[v as usize])
             .collect();
         let tip = line.vertices[line.vertices.len() - 1];
         let after = CutFigures::of(&improvement.flattened);
@@ -201,14 +204,16 @@ pub fn default_cut_budget(model: &FacetModel) -> usize {
     DEFAULT_MAX_CUTS.max(scaled as usize)
 }
 
-/// The edges of the cut model that are sides of a cut: boundary edges both of whose ends copy a
-/// vertex some cut runs through.
+/// The edges of the cut model that are sides of a cut: boundary edges both of whose ends lie at
+/// a point of some cut (copies keep their original's position exactly; a smoothed cut's points
+/// are inserted vertices that have no input vertex of their own).
 fn cut_sides(state: &CutState, cuts: &[Cut]) -> Vec<usize> {
-    let on_cut: BTreeSet<u32> = cuts
+    let key = |p: DVec3| p.to_array().map(f64::to_bits);
+    let on_cut: BTreeSet<[u64; 3]> = cuts
         .iter()
-        .flat_map(|cut| cut.vertices.iter().copied())
+        .flat_map(|cut| cut.points.iter().map(|&p| key(p)))
         .collect();
-    let at_cut = |v: u32| on_cut.contains(&state.original_vertex[v as usize]);
+    let at_cut = |v: u32| on_cut.contains(&key(state.model.positions()[v as usize]));
     let model = &state.model;
     model
         .edges()

@@ -11,7 +11,9 @@
 //!    curvature left ([`default_cut_budget`]);
 //! 3. the part is flattened; while it is over tolerance and cuts are left, every candidate line of
 //!    its energy map and of its tension map (stretched springs only: where a cut opens) (`crest`)
-//!    is cut and briefly flattened, warm-started from the current pattern, and the most promising
+//!    is straightened across faces, the mesh refined along it ([`straighten`], `smooth_cut`: smooth
+//!    cuts, not edge zig-zags; an extension carries straight on from its cut), cut and briefly
+//!    flattened, warm-started from the current pattern, and the most promising
 //!    are flattened on (`best_cut`, docs/cutting.md); among those that lower the error (`max(E_S, E_C)`, an
 //!    overlapping pattern counting as worse than any other) the shortest that meets the tolerance
 //!    is kept, or else the one of largest measured gain `ΔE / L^LENGTH_EXPONENT`; a line from the
@@ -31,8 +33,10 @@ mod options;
 pub mod paths;
 mod result;
 pub mod seam;
+mod smooth_cut;
 pub mod split;
 mod state;
+pub mod straighten;
 mod trials;
 
 pub use crest::{DEFAULT_CANDIDATES, DEFAULT_DART_FLOOR};

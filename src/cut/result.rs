@@ -35,7 +35,9 @@ impl CutFigures {
 pub struct Cut {
     /// The cut as a 3D polyline, model units.
     pub points: Vec<DVec3>,
-    /// The vertices of the input model the polyline runs through, one per point.
+    /// The vertices of the input model the polyline runs through, one per point. A cut crosses
+    /// faces (it is straightened, docs/cutting.md): a point where it crosses an edge is a vertex
+    /// the cut inserted, given here as in [`CutResult::original_vertex`].
     pub vertices: Vec<u32>,
     /// Its 3D length.
     pub length: f64,
@@ -78,7 +80,10 @@ pub struct CutResult {
     pub model: FacetModel,
     /// Its stiffness factors (carried over from the input's edges).
     pub stiffness: Stiffness,
-    /// For each vertex of `model`, the input vertex it copies.
+    /// For each vertex of `model`, the input vertex it copies. A vertex a smoothed cut inserted
+    /// where it crosses an edge (docs/cutting.md, "Smooth cuts") copies no input vertex: it gives
+    /// the input vertex of the nearer end of the edge it split (a nearby input vertex, not one at
+    /// its position).
     pub original_vertex: Vec<u32>,
     /// Edges of `model` (indices, ascending) that are sides of a crest-line cut: boundary edges
     /// both of whose ends copy a vertex of a cut.

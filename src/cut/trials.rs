@@ -12,7 +12,8 @@ use super::options::{
     CutOptions, FULL_TRIALS, LENGTH_EXPONENT, SCREEN_ITERATIONS, TRIAL_BUDGET,
     TRIAL_STEP_TOLERANCE, WIDER_SEARCH,
 };
-use super::paths::Adjacency;
+use super::paths::{Adjacency, path_length};
+use super::smooth_cut::{Straightened, extension, smooth_cut};
 use super::state::CutState;
 use crate::flatten::{
     Accuracy, FastOptions, FlattenOptions, Flattened, SpringSystem, StopReason, flatten_from,
@@ -35,6 +36,16 @@ pub(super) struct Starts<'a> {
     pub(super) blocked: &'a [bool],
 }
 
+/// Which cuts a search may make.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Shapes {
+    /// Only smooth ones: straightened lines, straight extensions, edge paths already straight.
+    Smooth,
+    /// Also a line along its edges where its straightening cannot be cut (a zig-zag or a hooked
+    /// extension): the last resort when no smooth cut lowers the error.
+    AlongEdges,
+}
+
 /// A candidate cut, made and flattened.
 struct Trial {
     improvement: Improvement,
@@ -42,8 +53,9 @@ struct Trial {
     gain: f64,
 }
 
-/// [`best_cut`], and when it finds no cut, [`best_cut`] again with lines from
-/// [`WIDER_SEARCH`] times as many maxima.
+/// [`best_cut`] among smooth cuts, and when it finds none, again with lines from
+/// [`WIDER_SEARCH`] times as many maxima, and when it still finds none, once more allowing cuts
+/// along edges whose straightening cannot be cut ([`Shapes::AlongEdges`]).
 pub(super) fn best_cut_widening(
     state: &CutState,
     flattened: &Flattened,
@@ -51,14 +63,20 @@ pub(super) fn best_cut_widening(
     options: &CutOptions,
     starts: &Starts<'_>,
 ) -> Result<Option<Improvement>, CutError> {
-    if let Some(improvement) = best_cut(state, flattened, flatten_options, options, starts)? {
+    let search = |options: &CutOptions, shapes: Shapes| {
+        best_cut(state, flattened, flatten_options, options, starts, shapes)
+    };
+    if let Some(improvement) = search(options, Shapes::Smooth)? {
         return Ok(Some(improvement));
     }
     let wider = CutOptions {
         candidates: options.candidates * WIDER_SEARCH,
         ..options.clone()
     };
-    best_cut(state, flattened, flatten_options, &wider, starts)
+    if let Some(improvement) = search(&wider, Shapes::Smooth)? {
+        return Ok(Some(improvement));
+    }
+    search(&wider, Shapes::AlongEdges)
 }
 
 /// Picks the next cut in two rounds. Screening: every crest line of the current pattern is cut and
@@ -75,6 +93,7 @@ fn best_cut(
     flatten_options: &FlattenOptions,
     options: &CutOptions,
     starts: &Starts<'_>,
+    shapes: Shapes,
 ) -> Result<Option<Improvement>, CutError> {
     let lines = candidate_lines(state, flattened, flatten_options, options, starts);
     let screen_options = with_fast(flatten_options, |fast| FastOptions {
@@ -84,7 +103,7 @@ fn best_cut(
     });
     let screened: Vec<Option<Trial>> = lines
         .into_par_iter()
-        .map(|line| screen(state, flattened, line, &screen_options))
+        .map(|line| screen(state, flattened, line, &screen_options, starts, shapes))
         .collect::<Result<_, _>>()?;
     let mut screened: Vec<Trial> = screened.into_iter().flatten().collect();
     let overlaps = |trial: &Trial| trial.improvement.flattened.stats.accuracy.overlap;
@@ -188,26 +207,23 @@ fn with_fast(
     }
 }
 
-/// Cuts along `line` and flattens with `screen_options`; `None` if the line cannot be cut (it
-/// would cut a piece off, open nothing, or run along the boundary or a fold line) or the cut
-/// does not lower the error.
+/// Cuts along `line` (straightened, [`cut_candidate`]) and flattens with `screen_options`;
+/// `None` if the line cannot be cut (it would cut a piece off, open nothing, or run along the
+/// boundary or a fold line) or the cut does not lower the error.
 fn screen(
     state: &CutState,
     flattened: &Flattened,
     line: CrestLine,
     screen_options: &FlattenOptions,
+    starts: &Starts<'_>,
+    shapes: Shapes,
 ) -> Result<Option<Trial>, CutError> {
-    let (next, copied_vertex) = match state.cut_along(&line.vertices) {
-        Ok(cut) => cut,
-        Err(
-            CutError::Disconnects
-            | CutError::OpensNothing
-            | CutError::BoundaryEdge { .. }
-            | CutError::FoldLine { .. },
-        ) => return Ok(None),
-        Err(other) => return Err(other),
+    let Some((next, start, line)) =
+        cut_candidate(state, &flattened.positions, line, starts, shapes)?
+    else {
+        return Ok(None);
     };
-    let candidate = reflatten(&next, &copied_vertex, flattened, screen_options)?;
+    let candidate = reflatten(&next, &start, screen_options)?;
     let improvement = Improvement {
         state: next,
         flattened: candidate,
@@ -219,6 +235,66 @@ fn screen(
         screen_options.tolerance,
         Overlap::Ignored,
     ))
+}
+
+/// The state cut along a candidate line, the start positions of its pattern (from the pattern
+/// `positions` of `state`: each copy where its original was) and the line as cut, its vertices
+/// those of the cut state. The line is cut along its geodesic straightening ([`smooth_cut`]:
+/// crossing faces, the mesh refined along it), or when it extends a cut, straight on from that
+/// cut for its length ([`straight_extension`]), or along its edges when they are already
+/// straight. A line whose straightening is refused is cut along its edges only when `shapes`
+/// allows it (those zig-zag or leave a hooked dart). `None` if it cannot be cut (it would cut a
+/// piece off, open nothing, or run along the boundary or a fold line).
+fn cut_candidate(
+    state: &CutState,
+    positions: &[DVec2],
+    line: CrestLine,
+    starts: &Starts<'_>,
+    shapes: Shapes,
+) -> Result<Option<(CutState, Vec<DVec2>, CrestLine)>, CutError> {
+    let start = line.vertices[0];
+    let straightened = if starts.tips.contains(&start) {
+        extension(state, &line.vertices, line.length, starts.blocked)
+    } else {
+        smooth_cut(state, &line.vertices, starts.blocked)
+    };
+    let (cut, line, start_of) = match straightened {
+        Straightened::Refused if shapes == Shapes::Smooth => return Ok(None),
+        Straightened::AlongEdges | Straightened::Refused => {
+            (state.cut_along(&line.vertices), line, positions.to_vec())
+        }
+        Straightened::Smooth(smooth) => {
+            let line = CrestLine {
+                length: path_length(&smooth.state.model, &smooth.path),
+                vertices: smooth.path.clone(),
+                estimated_release: line.estimated_release,
+            };
+            let start_of = smooth.start_from(positions);
+            (smooth.state.cut_along(&smooth.path), line, start_of)
+        }
+    };
+    match cut {
+        Ok((next, copied_vertex)) => {
+            let start = copied_vertex
+                .iter()
+                .map(|&v| start_of[v as usize])
+                .collect();
+            Ok(Some((next, start, line)))
+        }
+        Err(error) if uncuttable(&error) => Ok(None),
+        Err(error) => Err(error),
+    }
+}
+
+/// Whether a cut error only says that this line cannot be cut.
+fn uncuttable(error: &CutError) -> bool {
+    matches!(
+        error,
+        CutError::Disconnects
+            | CutError::OpensNothing
+            | CutError::BoundaryEdge { .. }
+            | CutError::FoldLine { .. }
+    )
 }
 
 /// Flattens a screened cut on from its screened pattern with `trial_options`; `None` if it no
@@ -298,21 +374,16 @@ fn judge(
     Some(Trial { improvement, gain })
 }
 
-/// The pattern of a cut model, warm-started from the pattern before the cut (each copy starts
+/// The pattern of a cut model, warm-started from `start` (the pattern before the cut, each copy
 /// where its original was). When the warm start cannot move (the solver's orientation guard
 /// blocks it), a cold flattening is tried too, without the flip-free repair, and kept when it is
 /// better and has no flipped triangle the warm one does not have.
 fn reflatten(
     next: &CutState,
-    copied_vertex: &[u32],
-    before: &Flattened,
+    start: &[DVec2],
     flatten_options: &FlattenOptions,
 ) -> Result<Flattened, CutError> {
-    let start: Vec<DVec2> = copied_vertex
-        .iter()
-        .map(|&v| before.positions[v as usize])
-        .collect();
-    let warm = flatten_from(&next.model, &next.stiffness, &start, flatten_options)?;
+    let warm = flatten_from(&next.model, &next.stiffness, start, flatten_options)?;
     if warm.stats.stop_reason != StopReason::OrientationBlocked {
         return Ok(warm);
     }

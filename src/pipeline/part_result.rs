@@ -24,7 +24,8 @@ pub struct PartResult {
     pub cut_stop: CutStop,
     /// The part before its first crest-line cut, when one was made.
     pub uncut: Option<UncutPattern>,
-    /// For each vertex of the cut model, the vertex of the loaded model it copies.
+    /// For each vertex of the cut model, the vertex of the loaded model it copies (for a vertex a
+    /// smoothed cut inserted, a nearby one: see [`crate::cut::CutResult::original_vertex`]).
     pub original_vertex: Vec<u32>,
     /// Edges of the cut model that are sides of a crest-line cut.
     pub cut_edges: Vec<usize>,

@@ -14,4 +14,5 @@ mod sheet_metal;
 mod sheet_metal_bends;
 mod sheet_metal_cone;
 mod sheet_metal_formed;
+mod smooth_cuts;
 mod util;

@@ -1,0 +1,149 @@
+#!/usr/bin/env python3
+"""Smoothness of flatcut's crest-line cuts (issue 13), measured on the written outputs.
+
+Usage: python3 bench/cut_smoothness.py OUT [OUT ...]
+
+For every part of OUT/report.json with cuts, and every cut (its 3D polyline `points`):
+- the turning angle at each inner point of the cut, on each side of the cut in the pattern
+  (OUT/<part>.pattern.obj): the angle between the two pattern boundary edges that join the
+  point's copy to the copies of its neighbours on the cut (mesh vertices are matched to cut points
+  by their 3D position in OUT/<part>.mesh.obj). The cut's first point (on the boundary or an
+  earlier cut) and its last (a dart's tip) are not inner points;
+- the length of each side of the cut in the pattern (what the DXF contour follows) against its
+  length after smoothing: 20 rounds of moving every inner point half-way to the mean of its two
+  neighbours (ends fixed). A zig-zag loses length, a smooth curve keeps it.
+Prints per part: cuts, inner points, share of inner points over 20 degrees, worst angle, the
+largest length change, and per cut the same.
+"""
+import json
+import math
+import sys
+from collections import defaultdict
+
+LIMIT_DEGREES = 20.0
+SMOOTHING_ROUNDS = 20
+
+
+def read_obj(path):
+    vertices, faces = [], []
+    with open(path) as f:
+        for line in f:
+            parts = line.split()
+            if not parts:
+                continue
+            if parts[0] == "v":
+                vertices.append(tuple(float(x) for x in parts[1:4]))
+            elif parts[0] == "f":
+                faces.append([int(x.split("/")[0]) - 1 for x in parts[1:]])
+    return vertices, faces
+
+
+def boundary_neighbours(faces):
+    count = defaultdict(int)
+    for face in faces:
+        for k in range(len(face)):
+            a, b = face[k], face[(k + 1) % len(face)]
+            count[(min(a, b), max(a, b))] += 1
+    neighbours = defaultdict(set)
+    for (a, b), n in count.items():
+        if n == 1:
+            neighbours[a].add(b)
+            neighbours[b].add(a)
+    return neighbours
+
+
+def key(p):
+    return tuple(round(x, 6) for x in p)
+
+
+def turning(a, b, c):
+    u = (b[0] - a[0], b[1] - a[1])
+    v = (c[0] - b[0], c[1] - b[1])
+    nu, nv = math.hypot(*u), math.hypot(*v)
+    if nu == 0 or nv == 0:
+        return 180.0
+    cosine = max(-1.0, min(1.0, (u[0] * v[0] + u[1] * v[1]) / (nu * nv)))
+    return math.degrees(math.acos(cosine))
+
+
+def length(points):
+    return sum(math.dist(points[i], points[i + 1]) for i in range(len(points) - 1))
+
+
+def smoothed(points):
+    points = [list(p) for p in points]
+    for _ in range(SMOOTHING_ROUNDS):
+        points = [points[0]] + [
+            [0.5 * points[i][k] + 0.25 * (points[i - 1][k] + points[i + 1][k])
+             for k in range(len(points[i]))]
+            for i in range(1, len(points) - 1)
+        ] + [points[-1]]
+    return points
+
+
+def cut_sides(cut, copies, flat, neighbours):
+    """The cut's sides in the pattern: chains of boundary edges through copies of its points."""
+    points = [key(p) for p in cut["points"]]
+    sides = []
+    for first in sorted(copies[points[0]]):
+        for second in sorted(neighbours[first] & copies[points[1]]):
+            chain = [first, second]
+            for i in range(2, len(points)):
+                following = sorted(neighbours[chain[-1]] & copies[points[i]])
+                if not following:
+                    break
+                chain.append(following[0])
+            sides.append([flat[v][:2] for v in chain])
+    return sides
+
+
+def cut_angles(cut, copies, flat, neighbours):
+    points = [key(p) for p in cut["points"]]
+    angles = []
+    for i in range(1, len(points) - 1):
+        for v in copies[points[i]]:
+            before = [w for w in neighbours[v] if w in copies[points[i - 1]]]
+            after = [w for w in neighbours[v] if w in copies[points[i + 1]]]
+            if before and after:
+                angles.append(turning(flat[before[0]], flat[v], flat[after[0]]))
+    return angles
+
+
+def measure(out):
+    report = json.load(open(f"{out}/report.json"))
+    for part in report["parts"]:
+        cuts = part.get("cuts") or []
+        if not cuts:
+            continue
+        name = part["name"]
+        mesh, faces = read_obj(f"{out}/{name}.mesh.obj")
+        flat, _ = read_obj(f"{out}/{name}.pattern.obj")
+        copies = defaultdict(set)
+        for v, p in enumerate(mesh):
+            copies[key(p)].add(v)
+        neighbours = boundary_neighbours(faces)
+        every, rows, worst_change = [], [], 0.0
+        for cut in cuts:
+            angles = cut_angles(cut, copies, flat, neighbours)
+            every += angles
+            change = max((1 - length(smoothed(side)) / length(side)
+                          for side in cut_sides(cut, copies, flat, neighbours)), default=0.0)
+            worst_change = max(worst_change, change)
+            over = sum(a > LIMIT_DEGREES for a in angles)
+            rows.append(f"  cut {cut['length']:.1f}: {len(angles)} angles, {over} over "
+                        f"{LIMIT_DEGREES:.0f} deg, worst {max(angles, default=0):.1f} deg, "
+                        f"length change after smoothing {100 * change:.2f} %")
+        over = sum(a > LIMIT_DEGREES for a in every)
+        share = 100.0 * over / max(len(every), 1)
+        print(f"{out} {name}: {len(cuts)} cuts, {part['total_cut_length']:.1f} long, "
+              f"E_S {100 * part['area_error']:.3f} % E_C {100 * part['shape_error']:.3f} %; "
+              f"{len(every)} inner-point angles, {share:.1f} % over {LIMIT_DEGREES:.0f} deg, "
+              f"worst {max(every, default=0):.1f} deg; largest length change "
+              f"{100 * worst_change:.2f} %")
+        for row in rows:
+            print(row)
+
+
+if __name__ == "__main__":
+    for out in sys.argv[1:]:
+        measure(out)
