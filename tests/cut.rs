@@ -515,10 +515,11 @@ fn a_hemisphere_is_cut_until_its_error_falls() {
         let polyline: f64 = cut.points.windows(2).map(|p| p[0].distance(p[1])).sum();
         assert!((polyline - cut.length).abs() < 1e-9 * cut.length);
     }
-    // The cut model is the same surface: same area, every copy where its original is, every
-    // point a smoothed cut inserted (it has no input vertex; it gives the nearer end of the edge
-    // it split) within an edge's length of that input vertex.
-    assert!((result.model.area() - model.area()).abs() < 1e-6 * model.area());
+    // The cut model is the same surface but for the vertices moved onto the cuts (each along one
+    // of its edges by at most a fifth of it; the full run's mesh loses 0.009 % of its area):
+    // every copy where its original is or within an edge's length of it, every point a smoothed
+    // cut inserted (it has no input vertex; it gives the nearer end of the edge it split) too.
+    assert!((result.model.area() - model.area()).abs() < 1e-3 * model.area());
     let longest_edge = model
         .edges()
         .iter()

@@ -19,6 +19,14 @@
 //! one). An inserted vertex has no input vertex: `original_vertex` gives it the nearer end of the
 //! input edge it lies on (documented on [`super::CutResult::original_vertex`]).
 //!
+//! Where the path passes a vertex instead of crossing an edge near it (a crossing within
+//! [`super::straighten::SNAP_FRACTION`] of the edge's end), the vertex moves onto the crossing so
+//! that the cut does not turn there: an inner vertex on no fold line, with no other crossing on
+//! its edges, whose faces keep at least half their smallest angle and turn by less than
+//! [`MAX_MOVED_FACE_TURN`]. It moves along one of its own edges by at most a fifth of it, so the
+//! surface changes by less than the chord error of that edge; the rest lengths of its edges scale
+//! with their 3D lengths. Otherwise it stays and the cut turns there.
+//!
 //! The straightened path is refused, and the edge path kept, when it passes a blocked vertex or a
 //! boundary vertex other than its ends (it would cut a piece off), crosses an edge with a
 //! blocked end, or when the refined mesh fails validation.
@@ -42,6 +50,9 @@ pub const MAX_EXTENSION_TURN: f64 = 12.0 * std::f64::consts::PI / 180.0;
 /// The largest geodesic turn (radians) at a vertex of an edge path cut as it is when its
 /// straightening cannot be cut (10°).
 pub const MAX_EDGE_PATH_TURN: f64 = 10.0 * std::f64::consts::PI / 180.0;
+
+/// The largest angle (radians) a face around a vertex moved onto a cut may turn by (30°).
+pub const MAX_MOVED_FACE_TURN: f64 = 10.0 * std::f64::consts::PI / 180.0;
 
 /// An inserted vertex: the edge of the state it splits, `[a, b]`, and where (`0` at `a`).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -172,7 +183,9 @@ fn allowed(model: &FacetModel, points: &[SurfacePoint], blocked: &[bool]) -> boo
         on_boundary[v as usize] = true;
     }
     points.iter().all(|&point| match point {
-        SurfacePoint::Vertex(v) => !blocked[v as usize] && !on_boundary[v as usize],
+        SurfacePoint::Vertex(v) | SurfacePoint::Near { vertex: v, .. } => {
+            !blocked[v as usize] && !on_boundary[v as usize]
+        }
         SurfacePoint::Edge { edge, .. } => {
             let [a, b] = model.edges()[edge];
             model.edge_fold_lines()[edge] == NONE && !blocked[a as usize] && !blocked[b as usize]
@@ -180,8 +193,9 @@ fn allowed(model: &FacetModel, points: &[SurfacePoint], blocked: &[bool]) -> boo
     })
 }
 
-/// The state with the path's edge crossings inserted and its crossed faces split; `None` if an
-/// edge is crossed twice, a face is crossed more than once or the result is not a valid mesh.
+/// The state with the path's edge crossings inserted, its crossed faces split and the vertices
+/// it passes near moved onto it where they may be; `None` if an edge is crossed twice, a face is
+/// crossed more than once or the result is not a valid mesh.
 fn refine(state: &CutState, points: &[SurfacePoint]) -> Option<SmoothCut> {
     let model = &state.model;
     let count = model.vertex_count() as u32;
@@ -190,7 +204,7 @@ fn refine(state: &CutState, points: &[SurfacePoint]) -> Option<SmoothCut> {
     let mut path = Vec::with_capacity(points.len());
     for &point in points {
         match point {
-            SurfacePoint::Vertex(v) => path.push(v),
+            SurfacePoint::Vertex(v) | SurfacePoint::Near { vertex: v, .. } => path.push(v),
             SurfacePoint::Edge { edge, t } => {
                 let vertex = count + inserted.len() as u32;
                 if on_edge.insert(edge, vertex).is_some() {
@@ -205,9 +219,12 @@ fn refine(state: &CutState, points: &[SurfacePoint]) -> Option<SmoothCut> {
         }
     }
     let mut positions = model.positions().to_vec();
+    for (vertex, to) in moves(model, points) {
+        positions[vertex as usize] = to;
+    }
     positions.extend(points.iter().filter_map(|&point| match point {
         SurfacePoint::Edge { .. } => Some(position(model, point)),
-        SurfacePoint::Vertex(_) => None,
+        SurfacePoint::Vertex(_) | SurfacePoint::Near { .. } => None,
     }));
     let (triangles, parents) = split_faces(model, &positions, &on_edge)?;
     let soup = TriangleSoup {
@@ -241,6 +258,54 @@ fn refine(state: &CutState, points: &[SurfacePoint]) -> Option<SmoothCut> {
         },
         path,
         inserted,
+    })
+}
+
+/// The vertices of `points` that move onto the crossing they stand for, and where to (see the
+/// module documentation; [`allowed`] has already kept the path off the boundary).
+fn moves(model: &FacetModel, points: &[SurfacePoint]) -> Vec<(u32, DVec3)> {
+    let crossed: Vec<[u32; 2]> = (points.iter())
+        .filter_map(|point| match *point {
+            SurfacePoint::Edge { edge, .. } => Some(model.edges()[edge]),
+            _ => None,
+        })
+        .collect();
+    let on_path = |v: u32| points.iter().filter(|p| p.vertex() == Some(v)).count();
+    (points.iter())
+        .filter_map(|&point| match point {
+            SurfacePoint::Near { vertex, .. } => Some((vertex, position(model, point))),
+            _ => None,
+        })
+        .filter(|&(vertex, to)| {
+            on_path(vertex) == 1
+                && !crossed.iter().any(|ends| ends.contains(&vertex))
+                && movable(model, vertex, to)
+        })
+        .collect()
+}
+
+/// Whether `vertex` may move to `to`: none of its edges is on a fold line, and each of its faces
+/// keeps at least half its smallest angle and turns by less than [`MAX_MOVED_FACE_TURN`].
+fn movable(model: &FacetModel, vertex: u32, to: DVec3) -> bool {
+    let positions = model.positions();
+    let on_fold = model.vertex_faces(vertex).iter().any(|&face| {
+        model.face_edges()[face as usize]
+            .iter()
+            .any(|&e| model.edge_fold_lines()[e as usize] != NONE)
+    });
+    if on_fold {
+        return false;
+    }
+    let mut moved = positions.to_vec();
+    moved[vertex as usize] = to;
+    model.vertex_faces(vertex).iter().all(|&face| {
+        let corners = model.triangles()[face as usize];
+        let normal = |p: &[DVec3]| {
+            let [a, b, c] = corners.map(|v| p[v as usize]);
+            (b - a).cross(c - a).normalize_or_zero()
+        };
+        smallest_angle(&moved, corners) >= 0.5 * smallest_angle(positions, corners)
+            && normal(positions).angle_between(normal(&moved)) < MAX_MOVED_FACE_TURN
     })
 }
 
@@ -347,12 +412,14 @@ fn carried_edges(
     let count = model.vertex_count() as u32;
     let positions = refined.positions();
     let length = |a: u32, b: u32| positions[a as usize].distance(positions[b as usize]);
+    let before = model.positions();
+    let length_before = |a: u32, b: u32| before[a as usize].distance(before[b as usize]);
     let face_means = |face: u32| {
         let edges = model.face_edges()[face as usize];
         let (mut ratio, mut factor) = (0.0, 0.0);
         for &e in &edges {
             let [a, b] = model.edges()[e as usize];
-            ratio += model.rest_lengths()[e as usize] / length(a, b) / 3.0;
+            ratio += model.rest_lengths()[e as usize] / length_before(a, b) / 3.0;
             factor += factors[e as usize] / 3.0;
         }
         (ratio, factor)
@@ -364,7 +431,9 @@ fn carried_edges(
         .map(|(&[a, b], &[face, _])| {
             if b < count {
                 if let Some(e) = model.find_edge(a, b) {
-                    return (model.rest_lengths()[e], factors[e]);
+                    // An edge of a moved vertex: its rest length scales with its 3D length.
+                    let scale = length(a, b) / length_before(a, b);
+                    return (model.rest_lengths()[e] * scale, factors[e]);
                 }
             } else {
                 // `a < b`, so `b` is inserted: a piece of the edge it splits keeps its figures.
@@ -433,6 +502,36 @@ mod tests {
             let length = model.positions()[a as usize].distance(model.positions()[b as usize]);
             assert!((model.rest_lengths()[e] - length).abs() < 1e-9);
             assert!((smooth.state.stiffness.factors()[e] - 2.0).abs() < 1e-12);
+        }
+        assert!(smooth.state.cut_along(&smooth.path).is_ok());
+    }
+
+    /// The straight line from (0, 1) to (7, 4) crosses the edge below the vertex (2, 2) at
+    /// y = 1.857, within a fifth of the edge: the vertex moves there (the grid stays flat) and
+    /// the cut runs straight instead of turning through the vertex.
+    #[test]
+    fn a_vertex_next_to_the_straight_line_moves_onto_it() {
+        let n = 8;
+        let before = state(flat_grid(n));
+        let mut path: Vec<u32> = (0..=7).map(|x| at(n, x, 1)).collect();
+        path.extend((2..=4).map(|y| at(n, 7, y)));
+        let smooth = smoothed(&before, &path);
+        let model = &smooth.state.model;
+        let positions = model.positions();
+        let (start, end) = (DVec3::new(0.0, 1.0, 0.0), DVec3::new(7.0, 4.0, 0.0));
+        let along = (end - start).normalize();
+        for &v in &smooth.path {
+            let offset = positions[v as usize] - start;
+            let off_line = (offset - along * offset.dot(along)).length();
+            assert!(off_line < 1e-9, "vertex {v} lies {off_line} off the line");
+        }
+        let corner = at(n, 2, 2) as usize;
+        let moved_to = start + along * (2.0 / along.x);
+        assert!(positions[corner].distance(moved_to) < 1e-9);
+        assert!((model.area() - before.model.area()).abs() < 1e-9);
+        for (e, &[a, b]) in model.edges().iter().enumerate() {
+            let length = positions[a as usize].distance(positions[b as usize]);
+            assert!((model.rest_lengths()[e] - length).abs() < 1e-9);
         }
         assert!(smooth.state.cut_along(&smooth.path).is_ok());
     }

@@ -15,8 +15,9 @@
 //! a vertex of the strip, the fan of faces the strip takes around the vertex is swapped for the
 //! fan on its other side, and the swap is kept when the path gets shorter; this is repeated until
 //! no swap shortens it (a geodesic: every bend has at least π on both sides) or
-//! [`MAX_FAN_SWAPS`] were tried. Crossings closer to an edge's end than [`SNAP_FRACTION`] of the
-//! edge snap to that end, so the mesh split along the path has no sliver triangles.
+//! [`MAX_FAN_SWAPS`] were tried. A crossing closer to an edge's end than [`SNAP_FRACTION`] of the
+//! edge becomes that end ([`SurfacePoint::Near`], remembering the crossing), so the mesh split
+//! along the path has no sliver triangles; the cut may then move the vertex onto the crossing.
 //!
 //! For a cut's extension, [`straight_on`] traces the straightest geodesic on from the cut's inner
 //! end, [`turn_at_tip`] measures how far a direction turns from it, and [`largest_turn`] how far
@@ -32,6 +33,10 @@ use crate::mesh::{FacetModel, NONE};
 /// that end: splitting the edge there would make sliver triangles (with 12 %, their flat
 /// triangles blocked the warm re-flattening of the torus, which stalled at 5 %; docs/cutting.md).
 pub const SNAP_FRACTION: f64 = 0.2;
+
+/// A crossing closer to an end of its edge than this fraction of the edge passes through that
+/// end (round-off of a path through the vertex itself).
+pub const ON_VERTEX: f64 = 1e-9;
 
 /// At most this many fan swaps per path vertex are tried before the straightening stops.
 pub const MAX_FAN_SWAPS: usize = 8;
@@ -49,6 +54,27 @@ pub enum SurfacePoint {
         /// Where on it, from its first vertex (0) to its second (1).
         t: f64,
     },
+    /// A mesh vertex standing for a crossing of one of its edges within [`SNAP_FRACTION`] of it:
+    /// the path runs through `vertex`, and runs straight if the vertex moves onto the crossing,
+    /// at `t` along `edge` as for [`SurfacePoint::Edge`].
+    Near {
+        /// The vertex the crossing snapped to.
+        vertex: u32,
+        /// The crossed edge, one of the vertex's.
+        edge: usize,
+        /// Where the crossing is on it, from its first vertex (0) to its second (1).
+        t: f64,
+    },
+}
+
+impl SurfacePoint {
+    /// The mesh vertex the path runs through at this point, if any.
+    pub fn vertex(self) -> Option<u32> {
+        match self {
+            SurfacePoint::Vertex(v) | SurfacePoint::Near { vertex: v, .. } => Some(v),
+            SurfacePoint::Edge { .. } => None,
+        }
+    }
 }
 
 /// The geodesic straightening of the edge path `path` between its two ends; see the module
@@ -400,7 +426,7 @@ fn surface_points(model: &FacetModel, corners: &Corners) -> Option<Vec<SurfacePo
 }
 
 /// Where the segment `from → to` crosses the portal from `right` to `left`, snapped to an end
-/// within [`SNAP_FRACTION`].
+/// within [`SNAP_FRACTION`] ([`SurfacePoint::Near`]).
 fn crossing(
     model: &FacetModel,
     right: Placed,
@@ -416,35 +442,29 @@ fn crossing(
     } else {
         0.5
     };
-    if t < SNAP_FRACTION {
-        return Some(SurfacePoint::Vertex(right.vertex));
-    }
-    if t > 1.0 - SNAP_FRACTION {
-        return Some(SurfacePoint::Vertex(left.vertex));
-    }
     let edge = model.find_edge(right.vertex, left.vertex)?;
-    let t = if model.edges()[edge][0] == right.vertex {
-        t
-    } else {
-        1.0 - t
-    };
-    Some(SurfacePoint::Edge { edge, t })
+    Some(edge_point(model, edge, right.vertex, t))
 }
 
 /// The points with consecutive repeats of a vertex merged and every edge crossing next to a
-/// vertex point of that edge dropped (the path passes through the vertex instead).
+/// vertex point of that edge dropped (the path passes through the vertex instead). Of repeated
+/// [`SurfacePoint::Near`] points of one vertex the one whose crossing lies nearest the vertex
+/// stays; a plain vertex point wins over them.
 fn simplified(model: &FacetModel, points: Vec<SurfacePoint>) -> Vec<SurfacePoint> {
     let on = |point: &SurfacePoint, vertex: u32| match *point {
-        SurfacePoint::Vertex(v) => v == vertex,
+        SurfacePoint::Vertex(v) | SurfacePoint::Near { vertex: v, .. } => v == vertex,
         SurfacePoint::Edge { edge, .. } => model.edges()[edge].contains(&vertex),
     };
     let mut kept: Vec<SurfacePoint> = Vec::with_capacity(points.len());
-    for point in points {
-        if let SurfacePoint::Vertex(v) = point {
-            while kept.last().is_some_and(|last| on(last, v)) {
+    for mut point in points {
+        if let Some(v) = point.vertex() {
+            while let Some(&last) = kept.last().filter(|last| on(last, v)) {
                 kept.pop();
+                if last.vertex() == Some(v) {
+                    point = nearer(model, point, last);
+                }
             }
-        } else if let Some(&SurfacePoint::Vertex(v)) = kept.last()
+        } else if let Some(v) = kept.last().and_then(|last| last.vertex())
             && on(&point, v)
         {
             continue;
@@ -454,12 +474,28 @@ fn simplified(model: &FacetModel, points: Vec<SurfacePoint>) -> Vec<SurfacePoint
     kept
 }
 
-/// 3D position of a surface point.
+/// Of two points at the same vertex, a plain vertex point, else the `Near` point whose crossing
+/// is nearer the vertex (as a fraction of its edge).
+fn nearer(model: &FacetModel, a: SurfacePoint, b: SurfacePoint) -> SurfacePoint {
+    let offset = |point: SurfacePoint| match point {
+        SurfacePoint::Near { vertex, edge, t } => {
+            if model.edges()[edge][0] == vertex {
+                t
+            } else {
+                1.0 - t
+            }
+        }
+        _ => 0.0,
+    };
+    if offset(b) < offset(a) { b } else { a }
+}
+
+/// 3D position of a surface point (of a [`SurfacePoint::Near`] point, its crossing).
 pub fn position(model: &FacetModel, point: SurfacePoint) -> DVec3 {
     let positions = model.positions();
     match point {
         SurfacePoint::Vertex(v) => positions[v as usize],
-        SurfacePoint::Edge { edge, t } => {
+        SurfacePoint::Edge { edge, t } | SurfacePoint::Near { edge, t, .. } => {
             let [a, b] = model.edges()[edge];
             positions[a as usize].lerp(positions[b as usize], t)
         }
@@ -499,19 +535,33 @@ pub fn straight_on(model: &FacetModel, tip: u32, length: f64) -> Option<Vec<Surf
     Some(simplified(model, points))
 }
 
-/// An edge crossing at `t` from `a` to the edge's other end, snapped to an end within
-/// [`SNAP_FRACTION`].
+/// An edge crossing at `t` from `a` to the edge's other end: that end within [`ON_VERTEX`],
+/// snapped to it within [`SNAP_FRACTION`] ([`SurfacePoint::Near`]).
 fn edge_point(model: &FacetModel, edge: usize, a: u32, t: f64) -> SurfacePoint {
     let [first, second] = model.edges()[edge];
     let other = if first == a { second } else { first };
-    if t < SNAP_FRACTION {
+    let t_first = if first == a { t } else { 1.0 - t };
+    if t < ON_VERTEX {
         return SurfacePoint::Vertex(a);
     }
-    if t > 1.0 - SNAP_FRACTION {
+    if t > 1.0 - ON_VERTEX {
         return SurfacePoint::Vertex(other);
     }
-    let t = if first == a { t } else { 1.0 - t };
-    SurfacePoint::Edge { edge, t }
+    if t < SNAP_FRACTION {
+        return SurfacePoint::Near {
+            vertex: a,
+            edge,
+            t: t_first,
+        };
+    }
+    if t > 1.0 - SNAP_FRACTION {
+        return SurfacePoint::Near {
+            vertex: other,
+            edge,
+            t: t_first,
+        };
+    }
+    SurfacePoint::Edge { edge, t: t_first }
 }
 
 /// Faces around a vertex in order, each as `(face, corner entered by, corner left by)`.
