@@ -12,8 +12,12 @@ For every part of OUT/report.json with cuts, and every cut (its 3D polyline `poi
 - the length of each side of the cut in the pattern (what the DXF contour follows) against its
   length after smoothing: 20 rounds of moving every inner point half-way to the mean of its two
   neighbours (ends fixed). A zig-zag loses length, a smooth curve keeps it.
+- the same turning angles on the cut file itself (OUT/<part>.dxf, or .REJECTED.dxf; read with
+  ezdxf): at every vertex of the DXF contour that is a copy of an inner cut point, the angle
+  between the contour's segments before and after it (a cut point the contour fitting dropped
+  lies inside a straight segment and does not turn).
 Prints per part: cuts, inner points, share of inner points over 20 degrees, worst angle, the
-largest length change, and per cut the same.
+largest length change, the DXF's angles, and per cut the same.
 """
 import json
 import math
@@ -97,16 +101,50 @@ def cut_sides(cut, copies, flat, neighbours):
     return sides
 
 
-def cut_angles(cut, copies, flat, neighbours):
+def inner_copies(cut, copies, neighbours):
+    """Each inner point's copies on the outline, with their outline neighbours on the cut."""
     points = [key(p) for p in cut["points"]]
-    angles = []
+    found = []
     for i in range(1, len(points) - 1):
         for v in copies[points[i]]:
             before = [w for w in neighbours[v] if w in copies[points[i - 1]]]
             after = [w for w in neighbours[v] if w in copies[points[i + 1]]]
             if before and after:
-                angles.append(turning(flat[before[0]], flat[v], flat[after[0]]))
-    return angles
+                found.append((before[0], v, after[0]))
+    return found
+
+
+def cut_angles(cut, copies, flat, neighbours):
+    return [turning(flat[b], flat[v], flat[a]) for b, v, a in inner_copies(cut, copies, neighbours)]
+
+
+def dxf_contour_turns(path):
+    """Turning angle at every vertex of every closed contour of the DXF, by 2D position."""
+    import ezdxf
+
+    turns = {}
+    for entity in ezdxf.readfile(path).modelspace():
+        if entity.dxftype() != "LWPOLYLINE" or not entity.closed:
+            continue
+        ring = [tuple(p) for p in entity.get_points("xy")]
+        for i, p in enumerate(ring):
+            turns[key(p)] = turning(ring[i - 1], p, ring[(i + 1) % len(ring)])
+    return turns
+
+
+def dxf_angles(out, name, cuts, copies, flat, neighbours):
+    """The DXF contour's turning angles at the copies of the cuts' inner points; None without
+    a DXF."""
+    for path in (f"{out}/{name}.dxf", f"{out}/{name}.REJECTED.dxf"):
+        try:
+            turns = dxf_contour_turns(path)
+        except OSError:
+            continue
+        return [turns[key(flat[v][:2])]
+                for cut in cuts
+                for _, v, _ in inner_copies(cut, copies, neighbours)
+                if key(flat[v][:2]) in turns]
+    return None
 
 
 def measure(out):
@@ -140,6 +178,11 @@ def measure(out):
               f"{len(every)} inner-point angles, {share:.1f} % over {LIMIT_DEGREES:.0f} deg, "
               f"worst {max(every, default=0):.1f} deg; largest length change "
               f"{100 * worst_change:.2f} %")
+        dxf = dxf_angles(out, name, cuts, copies, flat, neighbours)
+        if dxf is not None:
+            over = sum(a > LIMIT_DEGREES for a in dxf)
+            print(f"  DXF contour: {len(dxf)} vertices at inner cut points, {over} over "
+                  f"{LIMIT_DEGREES:.0f} deg, worst {max(dxf, default=0):.1f} deg")
         for row in rows:
             print(row)
 
