@@ -23,9 +23,10 @@
 //! [`super::straighten::SNAP_FRACTION`] of the edge's end), the vertex moves onto the crossing so
 //! that the cut does not turn there: an inner vertex on no fold line, with no other crossing on
 //! its edges, whose faces keep at least half their smallest angle and turn by less than
-//! [`MAX_MOVED_FACE_TURN`]. It moves along one of its own edges by at most a fifth of it, so the
-//! surface changes by less than the chord error of that edge; the rest lengths of its edges scale
-//! with their 3D lengths. Otherwise it stays and the cut turns there.
+//! [`MAX_MOVED_FACE_TURN`]. It moves along one of its own edges by at most a fifth of it, and the
+//! surface changes by about the mesh's own chord error (at most about twice an edge's sagitta on
+//! the samples, docs/cutting.md); the rest lengths of its edges scale with their 3D lengths.
+//! Otherwise it stays and the cut turns there.
 //!
 //! The straightened path is refused, and the edge path kept, when it passes a blocked vertex or a
 //! boundary vertex other than its ends (it would cut a piece off), crosses an edge with a
@@ -51,7 +52,7 @@ pub const MAX_EXTENSION_TURN: f64 = 12.0 * std::f64::consts::PI / 180.0;
 /// straightening cannot be cut (10°).
 pub const MAX_EDGE_PATH_TURN: f64 = 10.0 * std::f64::consts::PI / 180.0;
 
-/// The largest angle (radians) a face around a vertex moved onto a cut may turn by (30°).
+/// The largest angle (radians) a face around a vertex moved onto a cut may turn by (10°).
 pub const MAX_MOVED_FACE_TURN: f64 = 10.0 * std::f64::consts::PI / 180.0;
 
 /// An inserted vertex: the edge of the state it splits, `[a, b]`, and where (`0` at `a`).
@@ -296,16 +297,19 @@ fn movable(model: &FacetModel, vertex: u32, to: DVec3) -> bool {
     if on_fold {
         return false;
     }
-    let mut moved = positions.to_vec();
-    moved[vertex as usize] = to;
     model.vertex_faces(vertex).iter().all(|&face| {
         let corners = model.triangles()[face as usize];
-        let normal = |p: &[DVec3]| {
-            let [a, b, c] = corners.map(|v| p[v as usize]);
-            (b - a).cross(c - a).normalize_or_zero()
-        };
-        smallest_angle(&moved, corners) >= 0.5 * smallest_angle(positions, corners)
-            && normal(positions).angle_between(normal(&moved)) < MAX_MOVED_FACE_TURN
+        let before = corners.map(|v| positions[v as usize]);
+        let after = corners.map(|v| {
+            if v == vertex {
+                to
+            } else {
+                positions[v as usize]
+            }
+        });
+        let normal = |[a, b, c]: [DVec3; 3]| (b - a).cross(c - a).normalize_or_zero();
+        smallest_angle(after) >= 0.5 * smallest_angle(before)
+            && normal(before).angle_between(normal(after)) < MAX_MOVED_FACE_TURN
     })
 }
 
@@ -363,7 +367,7 @@ fn quadrilateral(positions: &[DVec3], [a, b, c, d]: [u32; 4]) -> [[u32; 3]; 2] {
     let along_bd = [[a, b, d], [b, c, d]];
     let smallest = |pair: &[[u32; 3]; 2]| {
         pair.iter()
-            .map(|t| smallest_angle(positions, *t))
+            .map(|t| smallest_angle(t.map(|v| positions[v as usize])))
             .fold(f64::INFINITY, f64::min)
     };
     if smallest(&along_ac) >= smallest(&along_bd) {
@@ -373,14 +377,12 @@ fn quadrilateral(positions: &[DVec3], [a, b, c, d]: [u32; 4]) -> [[u32; 3]; 2] {
     }
 }
 
-/// The smallest angle of a triangle, radians.
-fn smallest_angle(positions: &[DVec3], corners: [u32; 3]) -> f64 {
+/// The smallest angle of the triangle with these corners, radians.
+fn smallest_angle(corners: [DVec3; 3]) -> f64 {
     (0..3)
         .map(|k| {
-            let at = positions[corners[k] as usize];
-            let u = positions[corners[(k + 1) % 3] as usize] - at;
-            let v = positions[corners[(k + 2) % 3] as usize] - at;
-            u.angle_between(v)
+            let at = corners[k];
+            (corners[(k + 1) % 3] - at).angle_between(corners[(k + 2) % 3] - at)
         })
         .fold(f64::INFINITY, f64::min)
 }
