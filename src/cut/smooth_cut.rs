@@ -21,9 +21,9 @@
 //!
 //! Where the path passes a vertex instead of crossing an edge near it (a crossing within
 //! [`super::straighten::SNAP_FRACTION`] of the edge's end), the vertex moves onto the crossing so
-//! that the cut does not turn there: an inner vertex on no fold line, with no other crossing on
-//! its edges, whose faces keep at least half their smallest angle and turn by less than
-//! [`MAX_MOVED_FACE_TURN`]. It moves along one of its own edges by at most a fifth of it, and the
+//! that the cut does not turn there: an inner vertex with no fold line on its faces and no
+//! other crossing on its edges, whose faces keep at least half their smallest angle and turn by
+//! less than [`MAX_MOVED_FACE_TURN`]. It moves along one of its own edges by at most a fifth of it, and the
 //! surface changes by about the mesh's own chord error (at most about twice an edge's sagitta on
 //! the samples, docs/cutting.md); the rest lengths of its edges scale with their 3D lengths.
 //! Otherwise it stays and the cut turns there.
@@ -285,7 +285,7 @@ fn moves(model: &FacetModel, points: &[SurfacePoint]) -> Vec<(u32, DVec3)> {
         .collect()
 }
 
-/// Whether `vertex` may move to `to`: none of its edges is on a fold line, and each of its faces
+/// Whether `vertex` may move to `to`: none of its faces has an edge on a fold line, and each
 /// keeps at least half its smallest angle and turns by less than [`MAX_MOVED_FACE_TURN`].
 fn movable(model: &FacetModel, vertex: u32, to: DVec3) -> bool {
     let positions = model.positions();

@@ -539,29 +539,23 @@ pub fn straight_on(model: &FacetModel, tip: u32, length: f64) -> Option<Vec<Surf
 /// snapped to it within [`SNAP_FRACTION`] ([`SurfacePoint::Near`]).
 fn edge_point(model: &FacetModel, edge: usize, a: u32, t: f64) -> SurfacePoint {
     let [first, second] = model.edges()[edge];
-    let other = if first == a { second } else { first };
     let t_first = if first == a { t } else { 1.0 - t };
-    if t < ON_VERTEX {
-        return SurfacePoint::Vertex(a);
-    }
-    if t > 1.0 - ON_VERTEX {
-        return SurfacePoint::Vertex(other);
-    }
-    if t < SNAP_FRACTION {
-        return SurfacePoint::Near {
-            vertex: a,
+    let (end, from_end) = if t_first <= 0.5 {
+        (first, t_first)
+    } else {
+        (second, 1.0 - t_first)
+    };
+    if from_end < ON_VERTEX {
+        SurfacePoint::Vertex(end)
+    } else if from_end < SNAP_FRACTION {
+        SurfacePoint::Near {
+            vertex: end,
             edge,
             t: t_first,
-        };
+        }
+    } else {
+        SurfacePoint::Edge { edge, t: t_first }
     }
-    if t > 1.0 - SNAP_FRACTION {
-        return SurfacePoint::Near {
-            vertex: other,
-            edge,
-            t: t_first,
-        };
-    }
-    SurfacePoint::Edge { edge, t: t_first }
 }
 
 /// Faces around a vertex in order, each as `(face, corner entered by, corner left by)`.
