@@ -41,7 +41,7 @@ use super::straighten::{
     SurfacePoint, largest_turn, position, straight_on, straighten, turn_at_tip,
 };
 use crate::flatten::Stiffness;
-use crate::mesh::{FacetModel, FoldEdge, NONE, SourceLines, TriangleSoup, validate};
+use crate::mesh::{FacetModel, FoldEdge, NONE, SourceLines, TriangleSoup, rebuild};
 
 /// The largest turn (radians) at a cut's inner end that an extension along its straightened
 /// crest line may make (12°): the cut's sides then turn by less than the 20° a cutter follows
@@ -239,11 +239,7 @@ fn refine(state: &CutState, points: &[SurfacePoint]) -> Option<SmoothCut> {
         source_lines: SourceLines::default(),
         texture: None,
     };
-    let mut components = validate(&soup).ok()?.components;
-    if components.len() != 1 || components[0].vertex_count() != soup.positions.len() {
-        return None;
-    }
-    let mut refined = components.remove(0);
+    let mut refined = rebuild(&soup).ok()?;
     let (rest_lengths, factors) = carried_edges(state, &refined, &parents, &inserted);
     refined.set_rest_lengths(rest_lengths);
     let mut original_vertex = state.original_vertex.clone();
@@ -324,14 +320,13 @@ fn split_faces(
     let mut parents = Vec::with_capacity(triangles.capacity());
     for (face, &corners) in model.triangles().iter().enumerate() {
         // The inserted vertex on the side from corner k to corner k + 1, if any.
-        let sides: Vec<Option<u32>> = (0..3)
-            .map(|k| {
-                let edge = model.find_edge(corners[k], corners[(k + 1) % 3])?;
-                on_edge.get(&edge).copied()
-            })
-            .collect();
+        let sides = model.face_edges()[face].map(|edge| on_edge.get(&(edge as usize)).copied());
         let pieces: Vec<[u32; 3]> = match sides.iter().filter(|s| s.is_some()).count() {
-            0 => vec![corners],
+            0 => {
+                parents.push(face as u32);
+                triangles.push(corners);
+                continue;
+            }
             1 => {
                 let k = sides.iter().position(Option::is_some)?;
                 let [x, y, z] = rotated(corners, k);

@@ -11,14 +11,14 @@
 //! (new indices appended in vertex order, so the result is deterministic). A path from the
 //! boundary into the interior thus duplicates every path vertex but its inner tip; a closed path
 //! or a tree cuts a closed surface open. The result is rebuilt through [`TriangleSoup`] and
-//! [`validate`], so every facet model invariant holds; rest lengths, face sources and fold lines
+//! [`rebuild`], so every facet model invariant holds; rest lengths, face sources and fold lines
 //! are carried over, so `E_S` and `E_C` of the cut model measure the same surface.
 //!
 //! A cut that would separate the part into pieces is refused ([`CutError::Disconnects`]), and so
 //! is one that duplicates no vertex ([`CutError::OpensNothing`]: a single interior edge, whose two
 //! sides cannot be told apart in an indexed mesh).
 
-use crate::mesh::{FacetModel, FoldEdge, NONE, SourceLines, TriangleSoup, validate};
+use crate::mesh::{FacetModel, FoldEdge, NONE, RebuildError, SourceLines, TriangleSoup, rebuild};
 
 use super::errors::CutError;
 
@@ -70,18 +70,10 @@ pub fn split_along_edges(model: &FacetModel, cut_edges: &[usize]) -> Result<Spli
         source_lines: SourceLines::default(),
         texture: None,
     };
-    let mut components = validate(&soup)
-        .map_err(|defects| CutError::InvalidResult(defects.to_string()))?
-        .components;
-    if components.len() != 1 {
-        return Err(CutError::Disconnects);
-    }
-    let mut cut_model = components.remove(0);
-    if cut_model.vertex_count() != original_vertex.len() {
-        return Err(CutError::InvalidResult(
-            "vertices were renumbered while rebuilding the cut model".to_string(),
-        ));
-    }
+    let mut cut_model = rebuild(&soup).map_err(|error| match error {
+        RebuildError::Disconnected => CutError::Disconnects,
+        RebuildError::Defect(what) => CutError::InvalidResult(what),
+    })?;
     let original_edge = original_edges(model, &cut_model, &original_vertex)?;
     let rest_lengths = original_edge
         .iter()

@@ -44,7 +44,7 @@ impl FacetModel {
         face_sources: Vec<u32>,
         fold_edges: &[(u32, u32, u32)],
     ) -> Self {
-        let (edges, edge_faces, face_edges) = build_edges(&triangles);
+        let (edges, edge_faces, face_edges) = build_edges(positions.len(), &triangles);
         let mut edge_fold_lines = vec![NONE; edges.len()];
         for &(a, b, line) in fold_edges {
             let key = [a.min(b), a.max(b)];
@@ -198,27 +198,35 @@ impl FacetModel {
 /// face.
 type EdgeTables = (Vec<[u32; 2]>, Vec<[u32; 2]>, Vec<[u32; 3]>);
 
-/// Builds the [`EdgeTables`] by sorting half-edges.
-fn build_edges(triangles: &[[u32; 3]]) -> EdgeTables {
-    let mut half_edges: Vec<([u32; 2], u32, u8)> = Vec::with_capacity(triangles.len() * 3);
-    for (f, t) in triangles.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            half_edges.push(([a.min(b), a.max(b)], f as u32, k as u8));
-        }
-    }
-    half_edges.sort_unstable();
-    let mut edges = Vec::with_capacity(half_edges.len() / 2 + 1);
-    let mut edge_faces: Vec<[u32; 2]> = Vec::with_capacity(half_edges.len() / 2 + 1);
+/// Builds the [`EdgeTables`]: the half-edges grouped by their lower vertex (compressed rows,
+/// linear), each group sorted by its higher vertex and then by half-edge (face, corner), which
+/// orders them as one sort of every half-edge by (edge, face, corner) would.
+fn build_edges(vertex_count: usize, triangles: &[[u32; 3]]) -> EdgeTables {
+    let ends = |half_edge: u32| {
+        let (face, corner) = ((half_edge / 3) as usize, (half_edge % 3) as usize);
+        let t = triangles[face];
+        let (a, b) = (t[corner], t[(corner + 1) % 3]);
+        (a.min(b), a.max(b))
+    };
+    let half_edges = 0..3 * triangles.len() as u32;
+    let (offsets, mut grouped) = compressed_rows(vertex_count, half_edges.map(|h| (ends(h).0, h)));
+    let mut edges = Vec::with_capacity(grouped.len() / 2 + 1);
+    let mut edge_faces: Vec<[u32; 2]> = Vec::with_capacity(grouped.len() / 2 + 1);
     let mut face_edges = vec![[NONE; 3]; triangles.len()];
-    for (key, f, k) in half_edges {
-        if edges.last() != Some(&key) {
-            edges.push(key);
-            edge_faces.push([f, NONE]);
-        } else {
-            edge_faces.last_mut().expect("edge pushed above")[1] = f;
+    for row in offsets.windows(2) {
+        let group = &mut grouped[row[0] as usize..row[1] as usize];
+        group.sort_unstable_by_key(|&h| (ends(h).1, h));
+        for &h in group.iter() {
+            let key = <[u32; 2]>::from(ends(h));
+            let face = h / 3;
+            if edges.last() != Some(&key) {
+                edges.push(key);
+                edge_faces.push([face, NONE]);
+            } else {
+                edge_faces.last_mut().expect("edge pushed above")[1] = face;
+            }
+            face_edges[face as usize][(h % 3) as usize] = (edges.len() - 1) as u32;
         }
-        face_edges[f as usize][k as usize] = (edges.len() - 1) as u32;
     }
     (edges, edge_faces, face_edges)
 }

@@ -4,6 +4,7 @@
 mod chains;
 mod defects;
 mod facet;
+mod rebuild;
 mod repair;
 mod rows;
 mod texture_seams;
@@ -14,6 +15,7 @@ pub use crate::geometry::tolerance::DEGENERATE_AREA_RATIO;
 pub use chains::chain_edges;
 pub use defects::{Defect, MAXIMUM_COORDINATE, MeshDefects};
 pub use facet::{FacetModel, NONE};
+pub use rebuild::{RebuildError, rebuild};
 pub use repair::{split_non_manifold, weld_duplicates};
 pub use rows::compressed_rows;
 pub use texture_seams::{SeamSource, split_at_texture_seams};
