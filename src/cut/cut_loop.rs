@@ -9,7 +9,7 @@ use super::errors::CutError;
 use super::opening::{lay_user_seams, open_and_flatten};
 use super::options::{
     CAP_CURVATURE, CUT_LOOP_ENERGY_TOLERANCE, CUTS_PER_CAP, CutConstraints, CutOptions,
-    DEFAULT_MAX_CUTS, EXTENSIONS_PER_CUT,
+    DEFAULT_MAX_CUTS, EXTENSIONS_PER_CUT, MIN_RELEASE, STALLED_STEPS,
 };
 use super::result::{Cut, CutFigures, CutResult, CutStop, UncutPattern};
 use super::seam;
@@ -68,6 +68,10 @@ pub fn cut_and_flatten(
     let mut cuts: Vec<Cut> = Vec::new();
     let mut tips: Vec<u32> = Vec::new();
     let mut uncut = None;
+    let mut payoff = Payoff::new(
+        (state.clone(), flattened.clone(), Vec::new()),
+        flattened.stats.energy,
+    );
     let step_budget = max_cuts * (1 + EXTENSIONS_PER_CUT);
     let mut reporting = false;
     let mut steps = 0;
@@ -145,7 +149,19 @@ pub fn cut_and_flatten(
         }
         state = improvement.state;
         flattened = improvement.flattened;
+        let snapshot = || (state.clone(), flattened.clone(), cuts.clone());
+        if payoff.record(flattened.stats.energy, snapshot) {
+            break CutStop::NoBetterCut;
+        }
     };
+    if !flattened.stats.accuracy.within(flatten_options.tolerance) && payoff.unpaid() {
+        // The steps since the last that paid released less than MIN_RELEASE together: length
+        // for nothing, taken back.
+        (state, flattened, cuts) = payoff.into_snapshot();
+        if cuts.is_empty() {
+            uncut = None;
+        }
+    }
     if reporting {
         progress.finish();
     }
@@ -165,6 +181,47 @@ pub fn cut_and_flatten(
         stop,
         uncut,
     })
+}
+
+/// Which cut steps paid: the state after the last step that lowered the spring energy by at
+/// least [`MIN_RELEASE`] below the last such state's (the start counts as one), and the steps
+/// taken since.
+struct Payoff<T> {
+    snapshot: T,
+    energy: f64,
+    steps_since: usize,
+}
+
+impl<T> Payoff<T> {
+    /// The start: `snapshot` at `energy`.
+    fn new(snapshot: T, energy: f64) -> Self {
+        Self {
+            snapshot,
+            energy,
+            steps_since: 0,
+        }
+    }
+
+    /// Records a step that ended at `energy`; when it pays (with the steps since the last that
+    /// paid), `snapshot` is kept. True when the last [`STALLED_STEPS`] steps have not paid.
+    fn record(&mut self, energy: f64, snapshot: impl FnOnce() -> T) -> bool {
+        if energy <= (1.0 - MIN_RELEASE) * self.energy {
+            *self = Self::new(snapshot(), energy);
+            return false;
+        }
+        self.steps_since += 1;
+        self.steps_since >= STALLED_STEPS
+    }
+
+    /// True when steps were taken since the last that paid.
+    fn unpaid(&self) -> bool {
+        self.steps_since > 0
+    }
+
+    /// The state after the last step that paid.
+    fn into_snapshot(self) -> T {
+        self.snapshot
+    }
 }
 
 /// The part's pattern made again with its outline kept from crossing itself
@@ -222,4 +279,42 @@ fn cut_sides(state: &CutState, cuts: &[Cut]) -> Vec<usize> {
         .filter(|&(e, &[a, b])| model.is_boundary_edge(e) && at_cut(a) && at_cut(b))
         .map(|(e, _)| e)
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::cut::cut_loop::*;
+
+    /// The step numbers a payoff keeps and whether it stalls, for a run of step energies from 100.
+    fn run(energies: &[f64]) -> (usize, bool) {
+        let mut payoff = Payoff::new(0, 100.0);
+        let mut stalled = false;
+        for (step, &energy) in energies.iter().enumerate() {
+            stalled = payoff.record(energy, || step + 1);
+            if stalled {
+                break;
+            }
+        }
+        (payoff.into_snapshot(), stalled)
+    }
+
+    #[test]
+    fn steps_that_release_little_one_by_one_pay_together() {
+        // 0.6 % and then 0.5 % more: together over 1 %, so the second step pays.
+        assert_eq!(run(&[99.4, 98.9]), (2, false));
+    }
+
+    #[test]
+    fn a_step_that_opens_the_way_pays_with_the_one_it_opens() {
+        // A short dart that releases nothing, then its extension that releases 40 %.
+        assert_eq!(run(&[100.2, 60.0]), (2, false));
+    }
+
+    #[test]
+    fn steps_that_do_not_pay_stall_the_loop_and_are_taken_back() {
+        let energies = [90.0, 89.9, 90.1, 89.5, 89.2, 50.0];
+        assert_eq!(STALLED_STEPS, 4);
+        // Step 1 paid; steps 2 to 5 release 0.9 % together: stalled, back to step 1.
+        assert_eq!(run(&energies), (1, true));
+    }
 }

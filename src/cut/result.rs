@@ -66,7 +66,8 @@ pub enum CutStop {
     ToleranceMet,
     /// [`super::options::CutOptions::max_cuts`] cuts were made.
     CutBudget,
-    /// No candidate cut lowered the error.
+    /// No candidate cut lowered the error, or the last cut steps did not release enough of the
+    /// spring energy together (4 steps, 1 %: see `docs/cutting.md`).
     NoBetterCut,
     /// The part's time limit passed ([`crate::flatten::FlattenOptions::deadline`]) before it
     /// was within tolerance: the pattern is the last one made.
