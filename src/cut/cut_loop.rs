@@ -154,9 +154,13 @@ pub fn cut_and_flatten(
             break CutStop::NoBetterCut;
         }
     };
-    if !flattened.stats.accuracy.within(flatten_options.tolerance) && payoff.unpaid() {
-        // The steps since the last that paid released less than MIN_RELEASE together: length
-        // for nothing, taken back.
+    let overlap_ended =
+        payoff.snapshot().1.stats.accuracy.overlap && !flattened.stats.accuracy.overlap;
+    let within = flattened.stats.accuracy.within(flatten_options.tolerance);
+    if payoff.unpaid() && !within && !overlap_ended {
+        // The steps since the last that paid released less than MIN_RELEASE together and
+        // neither brought the part within tolerance nor ended an overlap: length for nothing,
+        // taken back.
         (state, flattened, cuts) = payoff.into_snapshot();
         if cuts.is_empty() {
             uncut = None;
@@ -216,6 +220,11 @@ impl<T> Payoff<T> {
     /// True when steps were taken since the last that paid.
     fn unpaid(&self) -> bool {
         self.steps_since > 0
+    }
+
+    /// The state after the last step that paid.
+    fn snapshot(&self) -> &T {
+        &self.snapshot
     }
 
     /// The state after the last step that paid.

@@ -45,8 +45,9 @@ pub const EXTENSIONS_PER_CUT: usize = 3;
 /// [`STALLED_STEPS`].
 pub const MIN_RELEASE: f64 = 0.01;
 /// The cut loop stops after this many steps in a row that did not pay together
-/// ([`MIN_RELEASE`]), and unless the last step brought the pattern within tolerance, the steps
-/// since the last that paid are taken back (the cut model, its pattern and the cuts).
+/// ([`MIN_RELEASE`]), and unless the steps brought the pattern within tolerance or ended an
+/// overlap, the steps since the last that paid are taken back (the cut model, its pattern and the
+/// cuts).
 pub const STALLED_STEPS: usize = 4;
 /// When no line from the [`CutOptions::candidates`] highest maxima lowers the error without
 /// overlap, the lines from this many times as many maxima are measured before the loop gives up.
