@@ -23,9 +23,10 @@
 //! [`super::straighten::SNAP_FRACTION`] of the edge's end), the vertex moves onto the crossing so
 //! that the cut does not turn there: an inner vertex with no fold line on its faces and no
 //! other crossing on its edges, whose faces keep at least half their smallest angle and turn by
-//! less than [`MAX_MOVED_FACE_TURN`]. It moves along one of its own edges by at most a fifth of it, and the
-//! surface changes by about the mesh's own chord error (at most about twice an edge's sagitta on
-//! the samples, docs/cutting.md); the rest lengths of its edges scale with their 3D lengths.
+//! less than [`MAX_MOVED_FACE_TURN`]. It moves along one of its own edges by at most a fifth of
+//! it, and the surface changes by about the mesh's own chord error (at most about twice an edge's
+//! sagitta on the samples, docs/cutting.md); the rest lengths of its edges scale with their 3D
+//! lengths.
 //! Otherwise it stays and the cut turns there.
 //!
 //! The straightened path is refused, and the edge path kept, when it passes a blocked vertex or a
@@ -239,7 +240,7 @@ fn refine(state: &CutState, points: &[SurfacePoint]) -> Option<SmoothCut> {
         source_lines: SourceLines::default(),
         texture: None,
     };
-    let mut refined = rebuild(&soup).ok()?;
+    let mut refined = rebuild(soup).ok()?;
     let (rest_lengths, factors) = carried_edges(state, &refined, &parents, &inserted);
     refined.set_rest_lengths(rest_lengths);
     let mut original_vertex = state.original_vertex.clone();

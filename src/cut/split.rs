@@ -70,7 +70,7 @@ pub fn split_along_edges(model: &FacetModel, cut_edges: &[usize]) -> Result<Spli
         source_lines: SourceLines::default(),
         texture: None,
     };
-    let mut cut_model = rebuild(&soup).map_err(|error| match error {
+    let mut cut_model = rebuild(soup).map_err(|error| match error {
         RebuildError::Disconnected => CutError::Disconnects,
         RebuildError::Defect(what) => CutError::InvalidResult(what),
     })?;

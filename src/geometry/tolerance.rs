@@ -6,6 +6,17 @@
 /// refuses it).
 pub const DEGENERATE_AREA_RATIO: f64 = 1e-12;
 
+/// True when the triangle with these corners is degenerate: its area is at most
+/// [`DEGENERATE_AREA_RATIO`] times its longest edge squared (or not a number).
+pub fn has_zero_area([a, b, c]: [glam::DVec3; 3]) -> bool {
+    let area = 0.5 * (b - a).cross(c - a).length();
+    let longest = (b - a)
+        .length_squared()
+        .max((c - b).length_squared())
+        .max((a - c).length_squared());
+    area.is_nan() || area <= DEGENERATE_AREA_RATIO * longest
+}
+
 /// A triangle whose area is below this fraction of its longest edge squared is a rounding sliver of
 /// a mesher (along a trim loop, between nearly coplanar rulings) and is dropped.
 pub const SLIVER_AREA_RATIO: f64 = 1e-10;

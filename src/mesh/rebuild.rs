@@ -16,7 +16,7 @@ use std::fmt;
 
 use super::facet::{FacetModel, NONE};
 use crate::cad::TriangleSoup;
-use crate::geometry::tolerance::DEGENERATE_AREA_RATIO;
+use crate::geometry::tolerance::has_zero_area;
 
 /// Why an edited mesh is not a facet model.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -40,17 +40,12 @@ impl std::error::Error for RebuildError {}
 
 /// The facet model of an edited mesh, its vertices and faces in the soup's order; see the
 /// module documentation.
-pub fn rebuild(soup: &TriangleSoup) -> Result<FacetModel, RebuildError> {
-    check_triangles(soup)?;
+pub fn rebuild(soup: TriangleSoup) -> Result<FacetModel, RebuildError> {
+    check_triangles(&soup)?;
     let folds: Vec<(u32, u32, u32)> = (soup.fold_edges.iter())
         .map(|e| (e.vertices[0], e.vertices[1], e.fold_line))
         .collect();
-    let model = FacetModel::from_checked(
-        soup.positions.clone(),
-        soup.triangles.clone(),
-        soup.face_sources.clone(),
-        &folds,
-    );
+    let model = FacetModel::from_checked(soup.positions, soup.triangles, soup.face_sources, &folds);
     check_edges(&model)?;
     check_fans(&model)?;
     check_connected(model)
@@ -64,13 +59,7 @@ fn check_triangles(soup: &TriangleSoup) -> Result<(), RebuildError> {
         if t.iter().any(|&v| v as usize >= count) || t[0] == t[1] || t[1] == t[2] || t[2] == t[0] {
             return Err(defect(format!("triangle {face} has corners {t:?}")));
         }
-        let [a, b, c] = t.map(|v| soup.positions[v as usize]);
-        let area = 0.5 * (b - a).cross(c - a).length();
-        let longest = (b - a)
-            .length_squared()
-            .max((c - b).length_squared())
-            .max((a - c).length_squared());
-        if area.is_nan() || area <= DEGENERATE_AREA_RATIO * longest {
+        if has_zero_area(t.map(|v| soup.positions[v as usize])) {
             return Err(defect(format!("triangle {face} has zero area")));
         }
         t.iter().for_each(|&v| used[v as usize] = true);
@@ -209,7 +198,7 @@ mod tests {
     #[test]
     fn an_intact_mesh_rebuilds_to_what_validation_gives() {
         let soup = grid();
-        let rebuilt = rebuild(&soup).expect("a valid grid");
+        let rebuilt = rebuild(soup.clone()).expect("a valid grid");
         let validated = validate(&soup).expect("a valid grid").components.remove(0);
         assert_eq!(rebuilt, validated);
     }
@@ -218,7 +207,7 @@ mod tests {
     fn a_flipped_face_is_refused() {
         let mut soup = grid();
         soup.triangles[3].swap(1, 2);
-        assert!(matches!(rebuild(&soup), Err(RebuildError::Defect(_))));
+        assert!(matches!(rebuild(soup), Err(RebuildError::Defect(_))));
     }
 
     #[test]
@@ -227,7 +216,7 @@ mod tests {
         soup.positions.push(DVec3::new(0.5, 0.5, 1.0));
         soup.triangles.push([0, 4, 9]);
         soup.face_sources.push(0);
-        assert!(matches!(rebuild(&soup), Err(RebuildError::Defect(_))));
+        assert!(matches!(rebuild(soup), Err(RebuildError::Defect(_))));
     }
 
     #[test]
@@ -241,7 +230,7 @@ mod tests {
             DVec3::new(-1.0, -1.0, 0.0),
         ];
         let soup = TriangleSoup::new(positions, vec![[0, 1, 2], [0, 3, 4]]);
-        assert!(matches!(rebuild(&soup), Err(RebuildError::Defect(_))));
+        assert!(matches!(rebuild(soup), Err(RebuildError::Defect(_))));
     }
 
     #[test]
@@ -257,18 +246,18 @@ mod tests {
         soup.positions.extend(copy);
         soup.triangles.extend(copied);
         soup.face_sources.resize(soup.triangles.len(), 0);
-        assert_eq!(rebuild(&soup), Err(RebuildError::Disconnected));
+        assert_eq!(rebuild(soup), Err(RebuildError::Disconnected));
     }
 
     #[test]
     fn an_unused_vertex_and_a_zero_area_triangle_are_refused() {
         let mut soup = grid();
         soup.positions.push(DVec3::new(9.0, 9.0, 0.0));
-        assert!(matches!(rebuild(&soup), Err(RebuildError::Defect(_))));
+        assert!(matches!(rebuild(soup), Err(RebuildError::Defect(_))));
         let mut soup = grid();
         soup.positions[4] = DVec3::new(0.5, 0.5, 0.0);
         soup.positions[0] = DVec3::new(0.0, 0.0, 0.0);
         soup.positions[1] = DVec3::new(0.25, 0.25, 0.0);
-        assert!(matches!(rebuild(&soup), Err(RebuildError::Defect(_))));
+        assert!(matches!(rebuild(soup), Err(RebuildError::Defect(_))));
     }
 }

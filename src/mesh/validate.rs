@@ -13,7 +13,7 @@ use glam::DVec3;
 use super::defects::{Defect, MAXIMUM_COORDINATE, MeshDefects};
 use super::facet::{FacetModel, NONE};
 use crate::cad::TriangleSoup;
-use crate::geometry::tolerance::DEGENERATE_AREA_RATIO;
+use crate::geometry::tolerance::has_zero_area;
 
 /// A validated mesh: its connected components and the repairs made on the way.
 #[derive(Debug, Clone)]
@@ -110,17 +110,13 @@ fn drop_repeated_vertices(soup: &TriangleSoup, warnings: &mut Vec<Defect>) -> Ve
 
 fn check_areas(soup: &TriangleSoup, kept: &[usize], errors: &mut Vec<Defect>) {
     for &triangle in kept {
-        let [a, b, c] = soup.triangles[triangle].map(|v| soup.positions[v as usize]);
-        let area = 0.5 * (b - a).cross(c - a).length();
-        let longest = (b - a)
-            .length_squared()
-            .max((c - b).length_squared())
-            .max((a - c).length_squared());
+        let corners = soup.triangles[triangle].map(|v| soup.positions[v as usize]);
         // A non-finite or too large vertex is reported as such, not as a zero area.
-        let usable = [a, b, c]
-            .iter()
-            .all(|p| p.is_finite() && p.abs().max_element() <= MAXIMUM_COORDINATE);
-        if usable && area <= DEGENERATE_AREA_RATIO * longest {
+        let usable =
+            (corners.iter()).all(|p| p.is_finite() && p.abs().max_element() <= MAXIMUM_COORDINATE);
+        if usable && has_zero_area(corners) {
+            let [a, b, c] = corners;
+            let area = 0.5 * (b - a).cross(c - a).length();
             errors.push(Defect::ZeroArea { triangle, area });
         }
     }

@@ -23,20 +23,14 @@ use std::collections::BTreeMap;
 
 use glam::DVec3;
 
-use crate::geometry::tolerance::DEGENERATE_AREA_RATIO;
+use crate::geometry::tolerance::has_zero_area;
 
-/// True when the triangle's area is below [`DEGENERATE_AREA_RATIO`] times its longest edge
-/// squared (three distinct but collinear corners; a triangle with a repeated corner is not).
+/// True when the triangle has three distinct corners and zero area ([`has_zero_area`]: three
+/// collinear corners); a triangle with a repeated corner is not.
 pub fn is_degenerate(corners: [DVec3; 3]) -> bool {
     let [a, b, c] = corners;
-    if a == b || b == c || c == a {
-        return false;
-    }
-    let longest = (b - a)
-        .length_squared()
-        .max((c - b).length_squared())
-        .max((a - c).length_squared());
-    0.5 * (b - a).cross(c - a).length() <= DEGENERATE_AREA_RATIO * longest
+    let repeated = a == b || b == c || c == a;
+    !repeated && has_zero_area(corners)
 }
 
 /// Removes every zero-area triangle it can (see the module documentation): flips its longest edge
