@@ -3,6 +3,7 @@
 
 use std::path::Path;
 
+use flatcut::mesh::SeamSource;
 use flatcut::pipeline::{RunConfig, run_into};
 use flatcut::progress::Progress;
 
@@ -65,6 +66,14 @@ pub fn execute(
                     part.rejected.join(", ")
                 )
             }
+        );
+    }
+    let surface_rejected =
+        (report.parts.iter()).any(|part| !part.rejected.is_empty() && part.sheet_metal.is_none());
+    if surface_rejected && config.options.seams != SeamSource::Pieces {
+        say!(
+            "flatcut: hint: --seams pieces cuts a part that stays over tolerance into pieces, each \
+             within it (docs/cutting.md)"
         );
     }
     if json {

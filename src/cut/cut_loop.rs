@@ -23,7 +23,7 @@ use crate::progress::Progress;
 
 /// The flatten options of the cut loop: the caller's, converged to at least
 /// [`CUT_LOOP_ENERGY_TOLERANCE`].
-fn converged_options(options: &FlattenOptions) -> FlattenOptions {
+pub(super) fn converged_options(options: &FlattenOptions) -> FlattenOptions {
     let energy_tolerance = options.fast.energy_tolerance.min(CUT_LOOP_ENERGY_TOLERANCE);
     FlattenOptions {
         fast: FastOptions {

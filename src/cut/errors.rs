@@ -30,11 +30,17 @@ pub enum CutError {
     /// Rebuilding the cut model failed (an internal inconsistency).
     #[error("the cut model is invalid: {0}")]
     InvalidResult(String),
+    /// `--seams pieces` was asked of a part with a cut sidecar.
+    #[error(
+        "--seams pieces cuts the part along plane sections and keeps no user seam or no-cut \
+         region: remove the part's cut sidecar, or use --seams auto"
+    )]
+    PiecesWithSidecar,
     /// The surface has handles: no seam graph for it is built automatically.
     #[error(
         "the surface has genus {genus} (it has handles, like a torus): automatic seams handle only \
          surfaces without handles (closed like a sphere, or with boundaries like a ring); give seams \
-         that cut every handle"
+         that cut every handle, or cut it into pieces with --seams pieces"
     )]
     HigherGenus {
         /// Number of handles.

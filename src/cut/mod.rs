@@ -31,6 +31,7 @@ mod errors;
 mod opening;
 mod options;
 pub mod paths;
+mod pieces;
 mod result;
 pub mod seam;
 mod smooth_cut;
@@ -47,5 +48,6 @@ pub use options::{
     DEFAULT_MAX_CUTS, EXTENSIONS_PER_CUT, FULL_TRIALS, LENGTH_EXPONENT, NoCutRegion,
     SCREEN_ITERATIONS, TRIAL_BUDGET, TRIAL_STEP_TOLERANCE, WIDER_SEARCH,
 };
+pub use pieces::{MAX_SECTIONS, MIN_BALANCE, MIN_PIECE_TRIANGLES, SCREEN_FACTOR, cut_into_pieces};
 pub use result::{Cut, CutFigures, CutResult, CutStop, Seam, UncutPattern};
 pub use seam::SeamKind;

@@ -83,7 +83,7 @@ pub(super) fn open_and_flatten(
 
 /// Cuts automatic seams until the model is a disk; `signs` says which curvature regions the
 /// seams of a closed surface run through.
-fn open_to_disk(
+pub(super) fn open_to_disk(
     state: &mut CutState,
     constraints: &CutConstraints,
     seams: &mut Vec<Seam>,

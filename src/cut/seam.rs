@@ -63,6 +63,8 @@ pub enum SeamKind {
     /// Part of the seam that halves a smooth closed surface along the bisector of its two
     /// farthest points (see `cut_graph::bisector_cut_graph`).
     Bisector,
+    /// A plane section that cut the part into pieces (`--seams pieces`; see `pieces`).
+    Section,
 }
 
 /// The next automatic seam to cut, or `None` when the model is a disk (one boundary loop, no

@@ -7,6 +7,7 @@ mod facet;
 mod rebuild;
 mod repair;
 mod rows;
+mod section;
 mod texture_seams;
 mod validate;
 
@@ -18,5 +19,8 @@ pub use facet::{FacetModel, NONE};
 pub use rebuild::{RebuildError, rebuild};
 pub use repair::{split_non_manifold, weld_duplicates};
 pub use rows::compressed_rows;
+pub use section::{
+    EdgeOrigin, Plane, SECTION_SNAP, SectionPiece, VertexOrigin, principal_axes, section,
+};
 pub use texture_seams::{SeamSource, split_at_texture_seams};
 pub use validate::{ValidatedMesh, validate};

@@ -20,6 +20,9 @@ pub enum SeamSource {
     /// Every chart of the file's texture layout (OBJ `vt`) is one part: its boundaries are the
     /// seams, as a garment's sewing pattern has them.
     FromUv,
+    /// The cut stage makes no crest-line cut: a part that does not flatten within tolerance
+    /// is cut into pieces by plane sections until each does (see `crate::cut::cut_into_pieces`).
+    Pieces,
 }
 
 impl SeamSource {

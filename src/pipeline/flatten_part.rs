@@ -2,10 +2,11 @@
 //! tolerance, the pattern turned to its grain, and the part's pattern made from it. A
 //! sheet-metal part, unfolded exactly when it was loaded, only gets its pattern made.
 
-use crate::cut::{CutStop, cut_and_flatten};
+use crate::cut::{CutConstraints, CutError, CutResult, CutStop, cut_and_flatten, cut_into_pieces};
 use crate::error::Error;
 use crate::flatten::orient::orient;
 use crate::flatten::{Accuracy, FlattenStats, Flattened, SpringSystem, StopReason};
+use crate::mesh::SeamSource;
 use crate::pattern::{FlatShape, PatternSource, part_pattern};
 use crate::progress::Progress;
 
@@ -13,10 +14,25 @@ use super::config::RunOptions;
 use super::load::{PartJob, SheetPart};
 use super::part_result::PartResult;
 
-/// Flattens one part, with seams and crest-line cuts until it is within tolerance or the cut
-/// budget is spent, and makes its pattern.
+/// Flattens one loaded part into its results: one ([`flatten_part`]), or with `--seams pieces`
+/// one per piece ([`flatten_in_pieces`]).
+pub fn flatten_job(
+    job: PartJob,
+    options: &RunOptions,
+    progress: &dyn Progress,
+) -> Result<Vec<PartResult>, Error> {
+    if options.seams == SeamSource::Pieces && job.sheet.is_none() {
+        flatten_in_pieces(job, options, progress)
+    } else {
+        Ok(vec![flatten_part(job, options, progress)?])
+    }
+}
+
+/// Flattens one part whole, with seams and crest-line cuts until it is within tolerance or the
+/// cut budget is spent, and makes its pattern (whatever `options.seams` says: see
+/// [`flatten_job`]).
 pub fn flatten_part(
-    mut job: PartJob,
+    job: PartJob,
     options: &RunOptions,
     progress: &dyn Progress,
 ) -> Result<PartResult, Error> {
@@ -24,7 +40,7 @@ pub fn flatten_part(
         return Ok(unfolded_part(job, &sheet, options));
     }
     let started = std::time::Instant::now();
-    let mut result = cut_and_flatten(
+    let result = cut_and_flatten(
         &job.model,
         &job.stiffness,
         &job.constraints,
@@ -32,11 +48,74 @@ pub fn flatten_part(
         &options.cut,
         progress,
     )
-    .map_err(|reason| Error::Cut {
+    .map_err(|reason| cut_error(&job, reason))?;
+    Ok(part_result(job, result, started, options))
+}
+
+/// Cuts one part into pieces, each within tolerance ([`cut_into_pieces`]), and makes each
+/// piece's pattern: one result per piece, named `<part>-p<k>`. A part with a cut sidecar is
+/// refused (its seams and no-cut regions would not be kept).
+pub fn flatten_in_pieces(
+    job: PartJob,
+    options: &RunOptions,
+    progress: &dyn Progress,
+) -> Result<Vec<PartResult>, Error> {
+    if job.constraints != CutConstraints::default() {
+        return Err(cut_error(&job, CutError::PiecesWithSidecar));
+    }
+    let started = std::time::Instant::now();
+    let pieces = cut_into_pieces(
+        &job.model,
+        &job.stiffness,
+        &options.part_flatten_options(),
+        progress,
+    )
+    .map_err(|reason| cut_error(&job, reason))?;
+    let count = pieces.len();
+    Ok(pieces
+        .into_iter()
+        .enumerate()
+        .map(|(k, piece)| part_result(piece_job(&job, k, count, &piece), piece, started, options))
+        .collect())
+}
+
+/// The error of a part the cut stage failed on.
+fn cut_error(job: &PartJob, reason: CutError) -> Error {
+    Error::Cut {
         path: job.source.clone(),
         part: job.name.clone(),
         reason,
-    })?;
+    }
+}
+
+/// The job of piece `k` of `count` of the part: the part's, but for its name and model.
+fn piece_job(job: &PartJob, k: usize, count: usize, piece: &CutResult) -> PartJob {
+    let mut warnings = job.warnings.clone();
+    warnings.push(format!("piece {} of {count} of {}", k + 1, job.name));
+    PartJob {
+        name: format!("{}-p{}", job.name, k + 1),
+        source: job.source.clone(),
+        units: job.units,
+        quantity: job.quantity,
+        attributes: job.attributes.clone(),
+        fold_line_count: job.fold_line_count,
+        tessellation: job.tessellation,
+        model: piece.model.clone(),
+        stiffness: piece.stiffness.clone(),
+        constraints: CutConstraints::default(),
+        warnings,
+        sheet: None,
+    }
+}
+
+/// The part's result from its cut model and pattern: the pattern turned to the grain, its time
+/// the whole part's so far, its drawing made.
+fn part_result(
+    mut job: PartJob,
+    mut result: CutResult,
+    started: std::time::Instant,
+    options: &RunOptions,
+) -> PartResult {
     let grain = job.attributes.grain;
     orient(&result.model, &mut result.flattened, grain);
     if let Some(uncut) = &mut result.uncut {
@@ -65,7 +144,7 @@ pub fn flatten_part(
     });
     job.model = result.model;
     job.stiffness = result.stiffness;
-    Ok(PartResult {
+    PartResult {
         job,
         flattened: result.flattened,
         seams: result.seams,
@@ -75,7 +154,7 @@ pub fn flatten_part(
         original_vertex: result.original_vertex,
         cut_edges: result.cut_edges,
         pattern,
-    })
+    }
 }
 
 /// The result of a sheet-metal part: its exact unfold as the pattern (no seam, no cut), its

@@ -2,7 +2,8 @@
 //! their patterns and the nested layout (checked independently), and [`write_outputs`] writes the
 //! output folder through [`crate::export`]. The stages one part goes through are also callable
 //! on their own: [`load_parts`] reads an input into parts (ingest, tessellate, validate,
-//! stiffness) and [`flatten_part`] flattens, cuts and makes the pattern of one. The fan-in,
+//! stiffness) and [`flatten_job`] flattens, cuts and makes the pattern of one (or, with
+//! `--seams pieces`, of each of its pieces: [`flatten_in_pieces`]). The fan-in,
 //! [`nest_patterns`] (and [`nest_patterns_into`] an output folder), nests the pattern files runs
 //! wrote, grouped by material and thickness, without flattening again.
 
@@ -27,7 +28,7 @@ pub use config::{
     RunOptions,
 };
 pub use facet_model::{FacetModelOutput, FacetSource, facet_model, write_facet_model};
-pub use flatten_part::flatten_part;
+pub use flatten_part::{flatten_in_pieces, flatten_job, flatten_part};
 pub use load::{
     PartJob, SheetPart, TessellationFigures, load_parts, tessellate_part, tessellate_step,
 };

@@ -11,7 +11,7 @@ use crate::pattern::{PatternFile, part_contours};
 use crate::progress::Progress;
 
 use super::config::{NestingConfig, RunConfig};
-use super::flatten_part::flatten_part;
+use super::flatten_part::flatten_job;
 use super::load::{PartJob, load_parts};
 use super::part_result::PartResult;
 
@@ -120,9 +120,12 @@ pub fn run_loaded(
                 inner: progress,
                 prefix: format!("part {}/{count} {}", index + 1, job.name),
             };
-            flatten_part(job, &config.options, &part_progress)
+            flatten_job(job, &config.options, &part_progress)
         })
-        .collect::<Result<Vec<PartResult>, _>>()?;
+        .collect::<Result<Vec<Vec<PartResult>>, _>>()?
+        .into_iter()
+        .flatten()
+        .collect::<Vec<PartResult>>();
     let tolerance = config.options.flatten.tolerance;
     let patterns: Vec<PatternFile> = parts
         .iter()

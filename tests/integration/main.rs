@@ -10,6 +10,7 @@ mod flatten;
 mod golden;
 mod nesting;
 mod outputs;
+mod pieces;
 mod sheet_metal;
 mod sheet_metal_bends;
 mod sheet_metal_cone;

@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# `--seams pieces` on the real meshes: every mesh of ../shared/meshes/ cut into pieces, one
+# fresh process each, timed, every piece checked by the independent metrics
+# (../shared/bench/metrics.py). One line per mesh on standard output: pieces, pieces within
+# 1 % (E_S and E_C as the metrics measure them), the worst piece's E_S and E_C, flipped
+# triangles and self-overlapping pieces over all pieces, and the section curves' length (each
+# section is a seam of the two pieces it separates, counted once).
+#
+# Usage: bench/real_meshes_pieces.sh OUT [TIMEOUT_SECONDS] [MESH...]
+#   OUT              folder for the runs (OUT/NAME/ per mesh)
+#   TIMEOUT_SECONDS  a run still going after this is stopped and listed as such (default 300)
+#   MESH             mesh files (default: every ../shared/meshes/*.obj)
+# FLATCUT_ARGS adds options to every run (`--repair --units m` for the garments, say); FLATCUT
+# names the binary (default target/release/flatcut).
+set -u
+here=$(cd "$(dirname "$0")/.." && pwd)
+out=${1:?usage: bench/real_meshes_pieces.sh OUT [TIMEOUT_SECONDS] [MESH...]}
+limit=${2:-300}
+shift $(( $# >= 2 ? 2 : 1 ))
+meshes=("$@")
+[ ${#meshes[@]} -eq 0 ] && meshes=("$here"/../shared/meshes/*.obj)
+flatcut=${FLATCUT:-"$here/target/release/flatcut"}
+mkdir -p "$out"
+printf '%-34s %5s %8s %6s %6s %9s %9s %7s %7s %11s\n' mesh exit seconds pieces within worst_E_S worst_E_C flipped overlap section_len
+for mesh in "${meshes[@]}"; do
+  name=$(basename "$mesh" .obj)
+  dir="$out/$name"
+  rm -rf "$dir"
+  start=$(date +%s.%N)
+  # shellcheck disable=SC2086
+  timeout "$limit" "$flatcut" flatten "$mesh" -o "$dir" --seams pieces ${FLATCUT_ARGS:-} >"$out/$name.log" 2>&1
+  code=$?
+  seconds=$(echo "$(date +%s.%N) - $start" | bc)
+  if [ ! -f "$dir/report.json" ]; then
+    printf '%-34s %5s %8.1f %s\n' "$name" "$code" "$seconds" "$(tail -1 "$out/$name.log" | cut -c1-120)"
+    continue
+  fi
+  python3 - "$dir" "$here/../shared/bench" "$code" "$seconds" "$name" <<'PY'
+import json, os, sys
+folder, bench, code, seconds, name = sys.argv[1:]
+sys.path.insert(0, bench)
+import metrics
+report = json.load(open(os.path.join(folder, "report.json")))
+within = flipped = overlapping = missing = 0
+worst_s = worst_c = 0.0
+section = 0.0
+for part in report["parts"]:
+    stem = os.path.join(folder, part["name"])
+    section += sum(s["length"] for s in part["seams"] if s["kind"] == "section") / 2
+    if not os.path.exists(stem + ".pattern.obj"):
+        missing += 1
+        continue
+    m = metrics.evaluate_files(stem + ".mesh.obj", stem + ".pattern.obj")
+    worst_s, worst_c = max(worst_s, m["E_S"]), max(worst_c, m["E_C"])
+    flipped += m["flipped"]
+    overlapping += bool(m.get("boundary_self_intersection"))
+    within += m["E_S"] <= 0.01 and m["E_C"] <= 0.01 and m["flipped"] == 0 \
+        and not m.get("boundary_self_intersection")
+print("%-34s %5s %8.1f %6d %6d %8.3f%% %8.3f%% %7d %7d %11.4g%s" % (
+    name, code, float(seconds), len(report["parts"]), within, 100 * worst_s, 100 * worst_c,
+    flipped, overlapping, section, " (%d without a pattern)" % missing if missing else ""))
+PY
+done

@@ -1,0 +1,441 @@
+//! Pieces (`--seams pieces`): a part that does not flatten within tolerance in one piece is cut
+//! in two by a plane section, and each side is handled the same way, until every piece is
+//! within tolerance. No crest-line cut is made: where the default cuts a dart, this cuts a
+//! seam, which is what a scanned statue or a closed body needs (their crest-line cuts stall)
+//! and what a pattern maker sews.
+//!
+//! Each section is a plane through the piece's area centroid, normal to one of four directions
+//! in the plane of its two principal axes of largest spread (the axes and their bisectors): of
+//! those leaving at least [`MIN_BALANCE`] of the area on either side, the one of shortest
+//! section curve. A closed piece or one with handles is cut without being flattened first. Any
+//! other piece is opened to a disk by seams (one per extra boundary loop, as in
+//! [`super::cut_and_flatten`]) and flattened quickly (the fast solver's pattern, flips allowed);
+//! over [`SCREEN_FACTOR`] times the tolerance it is cut without its valid flattening, which costs
+//! far more. Otherwise it is flattened validly (no crest-line cut) and kept when it is within
+//! tolerance. A piece of fewer than [`MIN_PIECE_TRIANGLES`] triangles, or one past
+//! [`MAX_SECTIONS`] sections deep, or one whose part ran out of time, is kept as it is
+//! (rejected when over tolerance).
+
+use glam::DVec3;
+
+use super::cut_graph::RegionSigns;
+use super::cut_loop::{converged_options, cut_and_flatten};
+use super::errors::CutError;
+use super::opening::open_to_disk;
+use super::options::{CutConstraints, CutOptions};
+use super::result::{CutResult, CutStop, Seam};
+use super::seam::{SeamKind, genus};
+use super::state::CutState;
+use crate::flatten::{FlattenOptions, Stiffness, flatten_from, flatten_unrepaired};
+use crate::mesh::{
+    EdgeOrigin, FacetModel, NONE, Plane, SectionPiece, chain_edges, principal_axes, section,
+};
+use crate::progress::{NoProgress, Progress};
+
+/// A piece with fewer triangles is not cut again.
+pub const MIN_PIECE_TRIANGLES: usize = 2;
+
+/// A piece whose quick flattening is over this many times the tolerance is cut without being
+/// flattened validly (see [`cut_into_pieces`]).
+pub const SCREEN_FACTOR: f64 = 2.0;
+
+/// A piece this many sections deep is not cut again.
+pub const MAX_SECTIONS: usize = 64;
+
+/// The smallest share of a piece's area a section leaves on either side, unless no candidate
+/// plane does.
+pub const MIN_BALANCE: f64 = 0.25;
+
+/// A piece of the part, before it is flattened.
+struct Piece {
+    model: FacetModel,
+    stiffness: Stiffness,
+    /// For each vertex, the part's vertex it copies (or, for a section point, the nearer end of
+    /// the part's edge it lies on).
+    part_vertex: Vec<u32>,
+    /// Per edge, true where it lies on a section.
+    section_edges: Vec<bool>,
+    /// How many sections made it.
+    depth: usize,
+}
+
+/// Cuts the part into pieces by plane sections until each flattens within tolerance; see the
+/// module documentation. The pieces come depth first, the positive side of each section first.
+pub fn cut_into_pieces(
+    model: &FacetModel,
+    stiffness: &Stiffness,
+    flatten_options: &FlattenOptions,
+    progress: &dyn Progress,
+) -> Result<Vec<CutResult>, CutError> {
+    let mut stack = vec![Piece {
+        model: model.clone(),
+        stiffness: stiffness.clone(),
+        part_vertex: (0..model.vertex_count() as u32).collect(),
+        section_edges: vec![false; model.edges().len()],
+        depth: 0,
+    }];
+    let mut done = Vec::new();
+    while let Some(piece) = stack.pop() {
+        progress.status(&format!(
+            "pieces: {} made, {} to go",
+            done.len(),
+            stack.len() + 1
+        ));
+        let must_cut = piece.model.is_closed() || genus(&piece.model) > 0;
+        let flattened = if must_cut {
+            None
+        } else {
+            screened_flattening(&piece, flatten_options, progress).transpose()
+        };
+        if let Some(Ok(result)) = &flattened
+            && result
+                .flattened
+                .stats
+                .accuracy
+                .within(flatten_options.tolerance)
+        {
+            done.push(finished(&piece, result.clone(), flatten_options));
+            continue;
+        }
+        let cuttable = piece.model.triangle_count() >= MIN_PIECE_TRIANGLES
+            && piece.depth < MAX_SECTIONS
+            && !flatten_options.deadline.passed();
+        if let Some(sides) = cuttable.then(|| halves(&piece)).flatten() {
+            stack.extend(sides.into_iter().rev());
+            continue;
+        }
+        let result = match flattened {
+            Some(result) => result?,
+            None => flatten_piece(&piece, flatten_options, progress)?,
+        };
+        done.push(finished(&piece, result, flatten_options));
+    }
+    Ok(done)
+}
+
+/// The piece's valid flattening ([`flatten_piece`]), or `None` when a quick flattening of the
+/// opened piece (the fast solver's pattern, flips allowed: [`flatten_unrepaired`]) is over
+/// [`SCREEN_FACTOR`] times the tolerance: the valid flattening, which costs far more, would not
+/// be within it.
+fn screened_flattening(
+    piece: &Piece,
+    options: &FlattenOptions,
+    progress: &dyn Progress,
+) -> Result<Option<CutResult>, CutError> {
+    let (opened, seams) = opened(piece)?;
+    let limit = SCREEN_FACTOR * options.tolerance;
+    let quick = flatten_unrepaired(&opened.model, &opened.stiffness, options, &NoProgress)?;
+    let accuracy = quick.stats.accuracy;
+    if accuracy.area_error > limit || accuracy.shape_error > limit {
+        return Ok(None);
+    }
+    flatten_opened(opened, seams, options, progress).map(Some)
+}
+
+/// The piece opened to a disk and flattened validly ([`flatten_opened`]).
+fn flatten_piece(
+    piece: &Piece,
+    options: &FlattenOptions,
+    progress: &dyn Progress,
+) -> Result<CutResult, CutError> {
+    let (opened, seams) = opened(piece)?;
+    flatten_opened(opened, seams, options, progress)
+}
+
+/// The piece opened to a disk by seams, one per extra boundary loop (as in
+/// [`super::cut_and_flatten`]), with those seams.
+fn opened(piece: &Piece) -> Result<(CutState, Vec<Seam>), CutError> {
+    let mut opened = CutState {
+        model: piece.model.clone(),
+        stiffness: piece.stiffness.clone(),
+        original_vertex: (0..piece.model.vertex_count() as u32).collect(),
+    };
+    let mut seams = Vec::new();
+    open_to_disk(
+        &mut opened,
+        &CutConstraints::default(),
+        &mut seams,
+        RegionSigns::Positive,
+    )?;
+    Ok((opened, seams))
+}
+
+/// The opened piece flattened validly with no crest-line cut, on to the cut loop's
+/// convergence when the first flattening is over tolerance; its vertices numbered by the piece's
+/// and its opening seams first.
+fn flatten_opened(
+    opened: CutState,
+    mut seams: Vec<Seam>,
+    options: &FlattenOptions,
+    progress: &dyn Progress,
+) -> Result<CutResult, CutError> {
+    let no_cuts = CutOptions {
+        max_cuts: Some(0),
+        ..CutOptions::default()
+    };
+    let mut result = cut_and_flatten(
+        &opened.model,
+        &opened.stiffness,
+        &CutConstraints::default(),
+        options,
+        &no_cuts,
+        progress,
+    )?;
+    for v in &mut result.original_vertex {
+        *v = opened.original_vertex[*v as usize];
+    }
+    seams.append(&mut result.seams);
+    result.seams = seams;
+    if !result.flattened.stats.accuracy.within(options.tolerance) {
+        let converged = flatten_from(
+            &result.model,
+            &result.stiffness,
+            &result.flattened.positions,
+            &converged_options(options),
+        )?;
+        let better = converged.stats.accuracy.flipped == 0
+            && !converged.stats.accuracy.overlap
+            && converged.stats.energy < result.flattened.stats.energy;
+        if better {
+            result.flattened = converged;
+        }
+    }
+    Ok(result)
+}
+
+/// A flattened piece as a result of the whole part: its vertices numbered by the part's, its
+/// section curves among its seams, and why it was not cut further when it is over tolerance.
+fn finished(piece: &Piece, mut result: CutResult, options: &FlattenOptions) -> CutResult {
+    let mut seams = section_seams(piece);
+    seams.append(&mut result.seams);
+    result.seams = seams;
+    for v in &mut result.original_vertex {
+        *v = piece.part_vertex[*v as usize];
+    }
+    result.stop = if result.flattened.stats.accuracy.within(options.tolerance) {
+        CutStop::ToleranceMet
+    } else if options.deadline.passed() {
+        CutStop::TimeLimit
+    } else {
+        CutStop::NoBetterCut
+    };
+    result
+}
+
+/// The piece's section curves on its boundary, as seams.
+fn section_seams(piece: &Piece) -> Vec<Seam> {
+    let model = &piece.model;
+    let edges: Vec<[u32; 2]> = (model.edges().iter().enumerate())
+        .filter(|&(e, _)| piece.section_edges[e] && model.is_boundary_edge(e))
+        .map(|(_, &edge)| edge)
+        .collect();
+    chain_edges(&edges)
+        .into_iter()
+        .map(|path| {
+            let points: Vec<DVec3> = (path.iter())
+                .map(|&v| model.positions()[v as usize])
+                .collect();
+            let length = points.windows(2).map(|w| w[0].distance(w[1])).sum();
+            Seam {
+                kind: SeamKind::Section,
+                points,
+                length,
+            }
+        })
+        .collect()
+}
+
+/// The connected pieces of the piece's two sides along the first of its candidate sections
+/// ([`section_planes`]) that makes valid pieces, or `None` when none does.
+fn halves(piece: &Piece) -> Option<Vec<Piece>> {
+    let sides = (section_planes(&piece.model).into_iter())
+        .find_map(|plane| section(&piece.model, plane))?;
+    Some(sides.into_iter().map(|side| child(piece, side)).collect())
+}
+
+/// The planes the piece may be cut along, best first: those leaving at least [`MIN_BALANCE`]
+/// of its area on either side by increasing section length, then the others by decreasing
+/// balance.
+fn section_planes(model: &FacetModel) -> Vec<Plane> {
+    let (centroid, axes) = principal_axes(model);
+    let normals = [
+        axes[0],
+        axes[1],
+        (axes[0] + axes[1]).normalize(),
+        (axes[0] - axes[1]).normalize(),
+    ];
+    let mut candidates: Vec<(Plane, f64, f64)> = normals
+        .iter()
+        .map(|&normal| {
+            let plane = Plane::through(centroid, normal);
+            let (length, balance) = section_estimate(model, plane);
+            (plane, length, balance)
+        })
+        .filter(|&(_, _, balance)| balance > 0.0)
+        .collect();
+    let rank = |&(_, length, balance): &(Plane, f64, f64)| {
+        if balance >= MIN_BALANCE {
+            (0, length)
+        } else {
+            (1, -balance)
+        }
+    };
+    candidates.sort_by(|a, b| {
+        let (ra, rb) = (rank(a), rank(b));
+        ra.0.cmp(&rb.0).then(ra.1.total_cmp(&rb.1))
+    });
+    candidates.into_iter().map(|(plane, _, _)| plane).collect()
+}
+
+/// The length of the section curve of `plane` (crossing points not snapped; an edge lying in the
+/// plane counts half in each of its faces) and the smaller share of the area on one side (faces
+/// counted by their centroid).
+fn section_estimate(model: &FacetModel, plane: Plane) -> (f64, f64) {
+    let positions = model.positions();
+    let (mut length, mut positive, mut total) = (0.0, 0.0, 0.0);
+    for (f, t) in model.triangles().iter().enumerate() {
+        let corners = t.map(|v| positions[v as usize]);
+        let d = corners.map(|p| plane.distance(p));
+        let area = model.triangle_area(f);
+        total += area;
+        if d[0] + d[1] + d[2] > 0.0 {
+            positive += area;
+        }
+        length += face_section_length(corners, d);
+    }
+    let balance = if total > 0.0 {
+        positive.min(total - positive) / total
+    } else {
+        0.0
+    };
+    (length, balance)
+}
+
+/// The length of a plane's section of one face, from its corners' signed distances `d`: the
+/// segment between its two crossing points (a corner on the plane is one), half an edge lying
+/// in the plane (its other face has the other half), nothing else.
+fn face_section_length(corners: [DVec3; 3], d: [f64; 3]) -> f64 {
+    let on_plane: Vec<usize> = (0..3).filter(|&k| d[k] == 0.0).collect();
+    if let [a, b] = on_plane[..] {
+        return 0.5 * corners[a].distance(corners[b]);
+    }
+    let mut points: Vec<DVec3> = on_plane.iter().map(|&k| corners[k]).collect();
+    for k in 0..3 {
+        let j = (k + 1) % 3;
+        if d[k] * d[j] < 0.0 {
+            points.push(corners[k].lerp(corners[j], d[k] / (d[k] - d[j])));
+        }
+    }
+    match points[..] {
+        [a, b] => a.distance(b),
+        _ => 0.0,
+    }
+}
+
+/// One side's piece, its vertices, stiffness and section edges carried over from its parent.
+fn child(parent: &Piece, side: SectionPiece) -> Piece {
+    let part_vertex = (side.vertex_origins.iter())
+        .map(|origin| parent.part_vertex[origin.nearer_vertex(&parent.model) as usize])
+        .collect();
+    let factors = parent.stiffness.factors();
+    let factor_of = |e: u32| factors.get(e as usize).copied();
+    let stiffness = (side.edge_origins.iter())
+        .map(|origin| match *origin {
+            EdgeOrigin::OnEdge(e) => factor_of(e).unwrap_or(1.0),
+            EdgeOrigin::InFace(crossed) => (crossed.iter())
+                .filter(|&&e| e != NONE)
+                .filter_map(|&e| factor_of(e))
+                .fold(1.0, f64::max),
+        })
+        .collect();
+    let section_edges = (side.edge_origins.iter())
+        .zip(&side.on_section)
+        .map(|(origin, &on)| {
+            on || matches!(origin, EdgeOrigin::OnEdge(e) if parent.section_edges[*e as usize])
+        })
+        .collect();
+    Piece {
+        model: side.model,
+        stiffness: Stiffness::from_factors(stiffness),
+        part_vertex,
+        section_edges,
+        depth: parent.depth + 1,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{TriangleSoup, validate};
+
+    /// A flat strip of `length` × `width` unit squares in the xy plane, two triangles each.
+    fn strip(length: u32, width: u32) -> FacetModel {
+        let mut positions = Vec::new();
+        for j in 0..=width {
+            for i in 0..=length {
+                positions.push(DVec3::new(i as f64, j as f64, 0.0));
+            }
+        }
+        let at = |i: u32, j: u32| j * (length + 1) + i;
+        let mut triangles = Vec::new();
+        for j in 0..width {
+            for i in 0..length {
+                triangles.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                triangles.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        let soup = TriangleSoup::new(positions, triangles);
+        validate(&soup).unwrap().components.remove(0)
+    }
+
+    #[test]
+    fn a_strip_is_cut_across_its_middle_where_the_section_is_shortest() {
+        let model = strip(20, 4);
+        let plane = section_planes(&model)[0];
+        assert!(plane.normal.dot(DVec3::X).abs() > 1.0 - 1e-9, "{plane:?}");
+        assert!((plane.distance(DVec3::new(10.0, 2.0, 0.0))).abs() < 1e-9);
+        let (length, balance) = section_estimate(&model, plane);
+        assert!((length - 4.0).abs() < 1e-9, "{length}");
+        assert!((balance - 0.5).abs() < 1e-9, "{balance}");
+    }
+
+    #[test]
+    fn a_flat_part_is_one_piece_and_keeps_its_vertices() {
+        let model = strip(6, 3);
+        let pieces = cut_into_pieces(
+            &model,
+            &Stiffness::uniform(&model),
+            &FlattenOptions::default(),
+            &NoProgress,
+        )
+        .expect("flattens");
+        assert_eq!(pieces.len(), 1);
+        assert_eq!(pieces[0].stop, CutStop::ToleranceMet);
+        assert!(pieces[0].seams.is_empty());
+        let identity: Vec<u32> = (0..model.vertex_count() as u32).collect();
+        assert_eq!(pieces[0].original_vertex, identity);
+    }
+
+    #[test]
+    fn the_halves_of_a_strip_carry_its_stiffness_and_mark_their_section_edges() {
+        let model = strip(20, 4);
+        let mut stiffness = Stiffness::uniform(&model);
+        stiffness.raise_where(3.0, |_| true);
+        let piece = Piece {
+            part_vertex: (0..model.vertex_count() as u32).collect(),
+            section_edges: vec![false; model.edges().len()],
+            stiffness,
+            model,
+            depth: 0,
+        };
+        let halves = halves(&piece).expect("two halves");
+        assert_eq!(halves.len(), 2);
+        for half in &halves {
+            assert!(half.stiffness.factors().iter().all(|&f| f == 3.0));
+            let seams = section_seams(half);
+            assert_eq!(seams.len(), 1);
+            assert!((seams[0].length - 4.0).abs() < 1e-9);
+            assert_eq!(half.depth, 1);
+        }
+    }
+}

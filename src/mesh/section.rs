@@ -1,0 +1,537 @@
+//! Plane sections of a facet model (`--seams pieces`): the model cut in two along the curve
+//! where a plane crosses it, the crossed faces split at the crossing points, and each side taken
+//! apart into its connected pieces.
+//!
+//! A crossing within [`SECTION_SNAP`] of an edge's end passes through that end instead, so no
+//! sliver triangle is made; no vertex moves, so the pieces together are exactly the model's
+//! surface, and the section curve keeps within a fifth of an edge of the plane.
+
+use std::collections::BTreeSet;
+
+use glam::DVec3;
+
+use super::facet::{FacetModel, NONE};
+use super::repair::split_non_manifold;
+use super::validate::validate;
+use crate::cad::{FoldEdge, TriangleSoup};
+
+/// A crossing within this fraction of an edge's length from one of its ends passes through that
+/// end (the rule of the cut stage's refinement).
+pub const SECTION_SNAP: f64 = 0.2;
+
+/// A plane: the points `p` with `normal · p = offset`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Plane {
+    /// Unit normal; its side is the positive one.
+    pub normal: DVec3,
+    /// Signed distance of the plane from the origin along `normal`.
+    pub offset: f64,
+}
+
+impl Plane {
+    /// The plane through `point` with the (unit) `normal`.
+    pub fn through(point: DVec3, normal: DVec3) -> Self {
+        Self {
+            normal,
+            offset: normal.dot(point),
+        }
+    }
+
+    /// Signed distance of `point` from the plane.
+    pub fn distance(&self, point: DVec3) -> f64 {
+        self.normal.dot(point) - self.offset
+    }
+}
+
+/// Where a vertex of a piece comes from in the model that was cut.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum VertexOrigin {
+    /// A vertex of the model.
+    Vertex(u32),
+    /// The point at `t` along the model's edge `edge`, from its first vertex to its second.
+    Crossing {
+        /// The edge crossed.
+        edge: u32,
+        /// Where along it, in (0, 1).
+        t: f64,
+    },
+}
+
+impl VertexOrigin {
+    /// The model vertex at the origin, or the nearer end of the edge it crosses.
+    pub fn nearer_vertex(&self, model: &FacetModel) -> u32 {
+        match *self {
+            Self::Vertex(v) => v,
+            Self::Crossing { edge, t } => model.edges()[edge as usize][usize::from(t >= 0.5)],
+        }
+    }
+
+    /// True if the origin is `vertex` or lies on an edge ending there.
+    fn touches(&self, model: &FacetModel, vertex: u32) -> bool {
+        match *self {
+            Self::Vertex(v) => v == vertex,
+            Self::Crossing { edge, .. } => model.edges()[edge as usize].contains(&vertex),
+        }
+    }
+}
+
+/// Where an edge of a piece comes from in the model that was cut.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EdgeOrigin {
+    /// It is the model's edge, or the part of it on one side of the section.
+    OnEdge(u32),
+    /// It crosses a face of the model, between the crossings of these model edges (one of
+    /// them [`NONE`] when the edge ends at a vertex of the face).
+    InFace([u32; 2]),
+}
+
+/// One connected piece of one side of a section.
+#[derive(Debug, Clone)]
+pub struct SectionPiece {
+    /// Its facet model.
+    pub model: FacetModel,
+    /// Where each of its vertices comes from.
+    pub vertex_origins: Vec<VertexOrigin>,
+    /// Where each of its edges comes from.
+    pub edge_origins: Vec<EdgeOrigin>,
+    /// Per edge, true where it runs along the section curve (both ends on the plane, and not
+    /// along the model's own boundary).
+    pub on_section: Vec<bool>,
+}
+
+/// The model cut by `plane` into the connected pieces of its two sides (the positive side's
+/// first), or `None` when the plane leaves one side empty or a side cannot be made a valid facet
+/// model.
+pub fn section(model: &FacetModel, plane: Plane) -> Option<Vec<SectionPiece>> {
+    let sides = SidedVertices::new(model, plane);
+    let mut triangles: [Vec<[u32; 3]>; 2] = [Vec::new(), Vec::new()];
+    let mut sources: [Vec<u32>; 2] = [Vec::new(), Vec::new()];
+    for (face, &corners) in model.triangles().iter().enumerate() {
+        for (side, triangle) in sides.split_face(model, face, corners) {
+            triangles[side].push(triangle);
+            sources[side].push(model.face_sources()[face]);
+        }
+    }
+    if triangles.iter().any(Vec::is_empty) {
+        return None;
+    }
+    let mut pieces = Vec::new();
+    for (side_triangles, side_sources) in triangles.into_iter().zip(sources) {
+        pieces.extend(side_pieces(model, &sides, side_triangles, side_sources)?);
+    }
+    Some(pieces)
+}
+
+/// The model's vertices and the crossing points, with the side of the plane each lies on.
+struct SidedVertices {
+    /// Every model vertex, then one point per crossed edge.
+    positions: Vec<DVec3>,
+    origins: Vec<VertexOrigin>,
+    /// `+1`, `-1`, or `0` on the plane (crossings and snapped vertices).
+    signs: Vec<i8>,
+    /// Per model edge, its crossing point's index, or [`NONE`].
+    crossing: Vec<u32>,
+}
+
+impl SidedVertices {
+    fn new(model: &FacetModel, plane: Plane) -> Self {
+        let mut distances: Vec<f64> = (model.positions().iter())
+            .map(|&p| plane.distance(p))
+            .collect();
+        let along = |d: &[f64], [a, b]: [u32; 2]| d[a as usize] / (d[a as usize] - d[b as usize]);
+        let crosses = |d: &[f64], [a, b]: [u32; 2]| d[a as usize] * d[b as usize] < 0.0;
+        let mut snapped = Vec::new();
+        for &edge in model.edges() {
+            if crosses(&distances, edge) {
+                let t = along(&distances, edge);
+                if t < SECTION_SNAP {
+                    snapped.push(edge[0]);
+                } else if t > 1.0 - SECTION_SNAP {
+                    snapped.push(edge[1]);
+                }
+            }
+        }
+        for v in snapped {
+            distances[v as usize] = 0.0;
+        }
+        let mut positions = model.positions().to_vec();
+        let mut origins: Vec<VertexOrigin> = (0..positions.len() as u32)
+            .map(VertexOrigin::Vertex)
+            .collect();
+        let mut signs: Vec<i8> = distances.iter().map(|&d| sign(d)).collect();
+        let mut crossing = vec![NONE; model.edges().len()];
+        for (e, &edge) in model.edges().iter().enumerate() {
+            if crosses(&distances, edge) {
+                let t = along(&distances, edge);
+                let [a, b] = edge.map(|v| model.positions()[v as usize]);
+                crossing[e] = positions.len() as u32;
+                positions.push(a.lerp(b, t));
+                origins.push(VertexOrigin::Crossing { edge: e as u32, t });
+                signs.push(0);
+            }
+        }
+        Self {
+            positions,
+            origins,
+            signs,
+            crossing,
+        }
+    }
+
+    /// The triangles face `face` (corners `corners`) becomes, each with its side (0 positive, 1
+    /// negative); a face with no corner on the negative side is positive.
+    fn split_face(
+        &self,
+        model: &FacetModel,
+        face: usize,
+        corners: [u32; 3],
+    ) -> Vec<(usize, [u32; 3])> {
+        let signs = corners.map(|v| self.signs[v as usize]);
+        let side_of = |s: i8| usize::from(s < 0);
+        if !signs.contains(&-1) || !signs.contains(&1) {
+            let side = usize::from(signs.contains(&-1));
+            return vec![(side, corners)];
+        }
+        let crossing_of = |a: u32, b: u32| {
+            let edge = (model.face_edges()[face].iter())
+                .find(|&&e| {
+                    let [p, q] = model.edges()[e as usize];
+                    (p, q) == (a.min(b), a.max(b))
+                })
+                .copied()
+                .unwrap_or(NONE);
+            self.crossing.get(edge as usize).copied().unwrap_or(NONE)
+        };
+        if let Some(k) = signs.iter().position(|&s| s == 0) {
+            // The plane passes through corner k and crosses the opposite edge.
+            let [z, b, c] = rotated(corners, k);
+            let x = crossing_of(b, c);
+            let sb = self.signs[b as usize];
+            return vec![(side_of(sb), [z, b, x]), (side_of(-sb), [z, x, c])];
+        }
+        // One corner alone on its side: a triangle there, a quad on the other.
+        let k = (0..3)
+            .find(|&k| signs[(k + 1) % 3] == signs[(k + 2) % 3])
+            .unwrap_or(0);
+        let [a, b, c] = rotated(corners, k);
+        let (xab, xac) = (crossing_of(a, b), crossing_of(a, c));
+        let lone = side_of(signs[k]);
+        let other = 1 - lone;
+        let p = |v: u32| self.positions[v as usize];
+        let quad = if p(xab).distance(p(c)) <= p(b).distance(p(xac)) {
+            [[xab, b, c], [xab, c, xac]]
+        } else {
+            [[xab, b, xac], [b, c, xac]]
+        };
+        vec![(lone, [a, xab, xac]), (other, quad[0]), (other, quad[1])]
+    }
+}
+
+/// `-1`, `0` or `1`.
+fn sign(d: f64) -> i8 {
+    if d > 0.0 {
+        1
+    } else if d < 0.0 {
+        -1
+    } else {
+        0
+    }
+}
+
+/// The corners starting at corner `k`, orientation kept.
+fn rotated(corners: [u32; 3], k: usize) -> [u32; 3] {
+    [corners[k], corners[(k + 1) % 3], corners[(k + 2) % 3]]
+}
+
+/// The connected pieces of one side: its triangles (over [`SidedVertices`]' numbering) made a
+/// soup of the vertices they use, vertices where two fans of the side meet split apart,
+/// validated into components.
+fn side_pieces(
+    model: &FacetModel,
+    sides: &SidedVertices,
+    triangles: Vec<[u32; 3]>,
+    face_sources: Vec<u32>,
+) -> Option<Vec<SectionPiece>> {
+    let used: BTreeSet<u32> = triangles.iter().flatten().copied().collect();
+    let mut local = vec![NONE; sides.positions.len()];
+    let global: Vec<u32> = used.into_iter().collect();
+    for (i, &g) in global.iter().enumerate() {
+        local[g as usize] = i as u32;
+    }
+    let mut soup = TriangleSoup::new(
+        global
+            .iter()
+            .map(|&g| sides.positions[g as usize])
+            .collect(),
+        (triangles.iter())
+            .map(|t| t.map(|g| local[g as usize]))
+            .collect(),
+    );
+    soup.face_sources = face_sources;
+    let (split, _) = split_non_manifold(&soup);
+    // The global vertex of every split soup vertex (copies come after the originals).
+    let mut of_split: Vec<u32> = global.clone();
+    of_split.resize(split.positions.len(), NONE);
+    for (before, after) in soup.triangles.iter().zip(&split.triangles) {
+        for k in 0..3 {
+            of_split[after[k] as usize] = global[before[k] as usize];
+        }
+    }
+    let mut split = split;
+    split.fold_edges = fold_edges(model, sides, &split.triangles, &of_split);
+    let validated = validate(&split).ok()?;
+    let pieces = (validated.components.into_iter())
+        .zip(validated.soup_vertices)
+        .map(|(piece, soup_vertices)| {
+            let vertices: Vec<u32> = soup_vertices
+                .iter()
+                .map(|&s| of_split[s as usize])
+                .collect();
+            described_piece(model, sides, piece, &vertices)
+        })
+        .collect();
+    Some(pieces)
+}
+
+/// The fold-line edges of the model that the soup's edges lie on.
+fn fold_edges(
+    model: &FacetModel,
+    sides: &SidedVertices,
+    triangles: &[[u32; 3]],
+    global: &[u32],
+) -> Vec<FoldEdge> {
+    let mut folds = BTreeSet::new();
+    for t in triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let origins = [a, b].map(|v| sides.origins[global[v as usize] as usize]);
+            if let EdgeOrigin::OnEdge(e) = edge_origin(model, origins) {
+                let line = model.edge_fold_lines()[e as usize];
+                if line != NONE {
+                    folds.insert((a.min(b), a.max(b), line));
+                }
+            }
+        }
+    }
+    (folds.into_iter())
+        .map(|(a, b, fold_line)| FoldEdge {
+            vertices: [a, b],
+            fold_line,
+        })
+        .collect()
+}
+
+/// The edge of the model two origins lie on together, or the crossed edges of the face between
+/// them.
+fn edge_origin(model: &FacetModel, ends: [VertexOrigin; 2]) -> EdgeOrigin {
+    let crossed = |origin: VertexOrigin| match origin {
+        VertexOrigin::Crossing { edge, .. } => edge,
+        VertexOrigin::Vertex(_) => NONE,
+    };
+    match ends {
+        [VertexOrigin::Vertex(a), VertexOrigin::Vertex(b)] => match model.find_edge(a, b) {
+            Some(e) => EdgeOrigin::OnEdge(e as u32),
+            None => EdgeOrigin::InFace([NONE, NONE]),
+        },
+        [VertexOrigin::Vertex(a), crossing] | [crossing, VertexOrigin::Vertex(a)]
+            if crossing.touches(model, a) =>
+        {
+            EdgeOrigin::OnEdge(crossed(crossing))
+        }
+        [p, q] => EdgeOrigin::InFace([crossed(p), crossed(q)]),
+    }
+}
+
+/// A piece with the origins of its vertices and edges and its section edges.
+fn described_piece(
+    model: &FacetModel,
+    sides: &SidedVertices,
+    piece: FacetModel,
+    global: &[u32],
+) -> SectionPiece {
+    let vertex_origins: Vec<VertexOrigin> =
+        global.iter().map(|&g| sides.origins[g as usize]).collect();
+    let on_plane = |v: u32| sides.signs[global[v as usize] as usize] == 0;
+    let mut edge_origins = Vec::with_capacity(piece.edges().len());
+    let mut on_section = Vec::with_capacity(piece.edges().len());
+    for &[a, b] in piece.edges() {
+        let origin = edge_origin(model, [a, b].map(|v| vertex_origins[v as usize]));
+        let along_boundary =
+            matches!(origin, EdgeOrigin::OnEdge(e) if model.is_boundary_edge(e as usize));
+        on_section.push(on_plane(a) && on_plane(b) && !along_boundary);
+        edge_origins.push(origin);
+    }
+    SectionPiece {
+        model: piece,
+        vertex_origins,
+        edge_origins,
+        on_section,
+    }
+}
+
+/// The principal axes of the model's surface (area-weighted, about its area centroid), the
+/// axis of largest spread first, with the centroid.
+pub fn principal_axes(model: &FacetModel) -> (DVec3, [DVec3; 3]) {
+    let positions = model.positions();
+    let mut total = 0.0;
+    let mut centroid = DVec3::ZERO;
+    let mut second = [[0.0; 3]; 3];
+    for (f, t) in model.triangles().iter().enumerate() {
+        let area = model.triangle_area(f);
+        let corners = t.map(|v| positions[v as usize]);
+        total += area;
+        centroid += area * (corners[0] + corners[1] + corners[2]) / 3.0;
+        // The second moment of a triangle: (sum of p pᵀ over corners + c cᵀ with c the
+        // corner sum) · area / 12.
+        let sum = corners[0] + corners[1] + corners[2];
+        for i in 0..3 {
+            for j in 0..3 {
+                let corner_terms: f64 = corners.iter().map(|p| p[i] * p[j]).sum();
+                second[i][j] += area * (corner_terms + sum[i] * sum[j]) / 12.0;
+            }
+        }
+    }
+    if total <= 0.0 {
+        return (DVec3::ZERO, [DVec3::X, DVec3::Y, DVec3::Z]);
+    }
+    centroid /= total;
+    let mut covariance = [[0.0; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            covariance[i][j] = second[i][j] / total - centroid[i] * centroid[j];
+        }
+    }
+    (centroid, symmetric_eigenvectors(covariance))
+}
+
+/// The eigenvectors of a symmetric 3×3 matrix, by cyclic Jacobi rotations, ordered by
+/// decreasing eigenvalue.
+fn symmetric_eigenvectors(mut a: [[f64; 3]; 3]) -> [DVec3; 3] {
+    let mut v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    for _sweep in 0..50 {
+        let off = a[0][1].powi(2) + a[0][2].powi(2) + a[1][2].powi(2);
+        let scale = a[0][0].powi(2) + a[1][1].powi(2) + a[2][2].powi(2);
+        if off <= 1e-30 * scale.max(f64::MIN_POSITIVE) {
+            break;
+        }
+        for (p, q) in [(0, 1), (0, 2), (1, 2)] {
+            if a[p][q] == 0.0 {
+                continue;
+            }
+            let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+            let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+            let c = 1.0 / (t * t + 1.0).sqrt();
+            let s = t * c;
+            for row in &mut a {
+                let (akp, akq) = (row[p], row[q]);
+                row[p] = c * akp - s * akq;
+                row[q] = s * akp + c * akq;
+            }
+            let (row_p, row_q) = (a[p], a[q]);
+            a[p] = std::array::from_fn(|k| c * row_p[k] - s * row_q[k]);
+            a[q] = std::array::from_fn(|k| s * row_p[k] + c * row_q[k]);
+            for row in &mut v {
+                let (vp, vq) = (row[p], row[q]);
+                row[p] = c * vp - s * vq;
+                row[q] = s * vp + c * vq;
+            }
+        }
+    }
+    let mut order = [0, 1, 2];
+    order.sort_by(|&i, &j| a[j][j].total_cmp(&a[i][i]));
+    order.map(|k| DVec3::new(v[0][k], v[1][k], v[2][k]).normalize_or(DVec3::X))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A flat `n` × `n` grid of unit squares in the xy plane, two triangles each.
+    fn grid(n: u32) -> FacetModel {
+        let mut positions = Vec::new();
+        for j in 0..=n {
+            for i in 0..=n {
+                positions.push(DVec3::new(i as f64, j as f64, 0.0));
+            }
+        }
+        let at = |i: u32, j: u32| j * (n + 1) + i;
+        let mut triangles = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                triangles.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                triangles.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        let soup = TriangleSoup::new(positions, triangles);
+        validate(&soup).unwrap().components.remove(0)
+    }
+
+    #[test]
+    fn a_plane_across_a_grid_cuts_it_into_two_pieces_of_the_right_areas() {
+        let model = grid(10);
+        let plane = Plane::through(DVec3::new(3.5, 0.0, 0.0), DVec3::X);
+        let pieces = section(&model, plane).expect("both sides have faces");
+        assert_eq!(pieces.len(), 2);
+        let areas: Vec<f64> = pieces.iter().map(|p| p.model.area()).collect();
+        assert!((areas[0] - 65.0).abs() < 1e-9, "{areas:?}");
+        assert!((areas[1] - 35.0).abs() < 1e-9, "{areas:?}");
+        for piece in &pieces {
+            let section_length: f64 = (piece.model.edges().iter())
+                .zip(&piece.on_section)
+                .filter(|&(_, &on)| on)
+                .map(|(&[a, b], _)| {
+                    let p = piece.model.positions();
+                    p[a as usize].distance(p[b as usize])
+                })
+                .sum();
+            assert!((section_length - 10.0).abs() < 1e-9, "{section_length}");
+            for (v, origin) in piece.vertex_origins.iter().enumerate() {
+                let nearer = origin.nearer_vertex(&model);
+                let distance =
+                    piece.model.positions()[v].distance(model.positions()[nearer as usize]);
+                assert!(distance <= 0.5 * 2f64.sqrt() + 1e-12);
+            }
+        }
+    }
+
+    #[test]
+    fn a_crossing_near_a_vertex_passes_through_it_and_makes_no_sliver() {
+        let model = grid(4);
+        let plane = Plane::through(DVec3::new(2.1, 0.0, 0.0), DVec3::X);
+        let pieces = section(&model, plane).unwrap();
+        for piece in &pieces {
+            for f in 0..piece.model.triangle_count() {
+                assert!(piece.model.triangle_area(f) >= 0.2 * 0.5 * 0.5 - 1e-12);
+            }
+        }
+        let total: f64 = pieces.iter().map(|p| p.model.area()).sum();
+        assert!((total - 16.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_plane_missing_the_model_is_no_section() {
+        let model = grid(3);
+        assert!(section(&model, Plane::through(DVec3::new(5.0, 0.0, 0.0), DVec3::X)).is_none());
+    }
+
+    #[test]
+    fn the_principal_axes_of_a_long_strip_start_along_it() {
+        let mut positions = Vec::new();
+        for i in 0..=20 {
+            positions.push(DVec3::new(i as f64, 0.0, 0.0));
+            positions.push(DVec3::new(i as f64, 2.0, 0.0));
+        }
+        let triangles = (0..20)
+            .flat_map(|i| [[2 * i, 2 * i + 2, 2 * i + 3], [2 * i, 2 * i + 3, 2 * i + 1]])
+            .collect();
+        let model = validate(&TriangleSoup::new(positions, triangles))
+            .unwrap()
+            .components
+            .remove(0);
+        let (centroid, axes) = principal_axes(&model);
+        assert!(centroid.distance(DVec3::new(10.0, 1.0, 0.0)) < 1e-9);
+        assert!(axes[0].dot(DVec3::X).abs() > 1.0 - 1e-9);
+        assert!(axes[1].dot(DVec3::Y).abs() > 1.0 - 1e-9);
+        assert!(axes[2].dot(DVec3::Z).abs() > 1.0 - 1e-9);
+    }
+}
