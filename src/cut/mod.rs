@@ -48,6 +48,9 @@ pub use options::{
     DEFAULT_MAX_CUTS, EXTENSIONS_PER_CUT, FULL_TRIALS, LENGTH_EXPONENT, NoCutRegion,
     SCREEN_ITERATIONS, TRIAL_BUDGET, TRIAL_STEP_TOLERANCE, WIDER_SEARCH,
 };
-pub use pieces::{MAX_SECTIONS, MIN_BALANCE, MIN_PIECE_TRIANGLES, SCREEN_FACTOR, cut_into_pieces};
+pub use pieces::{
+    FLAT_DEFICIT, MAX_SECTIONS, MIN_BALANCE, MIN_PIECE_TRIANGLES, SCREEN_FACTOR, SHIFT,
+    cut_into_pieces,
+};
 pub use result::{Cut, CutFigures, CutResult, CutStop, Seam, UncutPattern};
 pub use seam::SeamKind;

@@ -4,10 +4,12 @@
 //! seam, which is what a scanned statue or a closed body needs (their crest-line cuts stall)
 //! and what a pattern maker sews.
 //!
-//! Each section is a plane through the piece's area centroid, normal to one of four directions
-//! in the plane of its two principal axes of largest spread (the axes and their bisectors): of
-//! those leaving at least [`MIN_BALANCE`] of the area on either side, the one of shortest
-//! section curve. A closed piece or one with handles is cut without being flattened first. Any
+//! Each section is a plane through the piece's interior vertex of largest angle deficit (so the
+//! curvature concentrated there opens on the section) or through its area centroid, normal to
+//! one of four directions in the plane of its two principal axes of largest spread (the axes
+//! and their bisectors): of those leaving at least [`MIN_BALANCE`] of the area on either side,
+//! those through the vertex first, then those through the centroid, each by shortest section
+//! curve. A closed piece or one with handles is cut without being flattened first. Any
 //! other piece is opened to a disk by seams (one per extra boundary loop, as in
 //! [`super::cut_and_flatten`]) and flattened quickly (the fast solver's pattern, flips allowed);
 //! over [`SCREEN_FACTOR`] times the tolerance it is cut without its valid flattening, which costs
@@ -24,7 +26,7 @@ use super::errors::CutError;
 use super::opening::open_to_disk;
 use super::options::{CutConstraints, CutOptions};
 use super::result::{CutResult, CutStop, Seam};
-use super::seam::{SeamKind, genus};
+use super::seam::{SeamKind, angle_deficits, genus};
 use super::state::CutState;
 use crate::flatten::{FlattenOptions, Stiffness, flatten_from, flatten_unrepaired};
 use crate::mesh::{
@@ -38,6 +40,13 @@ pub const MIN_PIECE_TRIANGLES: usize = 2;
 /// A piece whose quick flattening is over this many times the tolerance is cut without being
 /// flattened validly (see [`cut_into_pieces`]).
 pub const SCREEN_FACTOR: f64 = 2.0;
+
+/// An angle deficit (radians) at most this is flat: no plane is laid through its vertex.
+pub const FLAT_DEFICIT: f64 = 1e-6;
+
+/// A candidate plane is also tried shifted by this fraction of the mean edge length either way
+/// (see `section_planes`).
+pub const SHIFT: f64 = 0.37;
 
 /// A piece this many sections deep is not cut again.
 pub const MAX_SECTIONS: usize = 64;
@@ -253,9 +262,13 @@ fn halves(piece: &Piece) -> Option<Vec<Piece>> {
     Some(sides.into_iter().map(|side| child(piece, side)).collect())
 }
 
-/// The planes the piece may be cut along, best first: those leaving at least [`MIN_BALANCE`]
-/// of its area on either side by increasing section length, then the others by decreasing
-/// balance.
+/// The planes the piece may be cut along, best first. Through two points: the interior vertex of
+/// largest angle deficit (where the surface's curvature concentrates: on a section it is a
+/// boundary vertex of both sides, free to open), and the area centroid. Of the planes through
+/// either that leave at least [`MIN_BALANCE`] of the area on either side, those through the
+/// vertex come first, each group by increasing section length; then the other planes by
+/// decreasing balance; then all of them shifted by [`SHIFT`] of the mean edge length either
+/// way, for a piece every one of those planes touches at a vertex.
 fn section_planes(model: &FacetModel) -> Vec<Plane> {
     let (centroid, axes) = principal_axes(model);
     let normals = [
@@ -264,27 +277,53 @@ fn section_planes(model: &FacetModel) -> Vec<Plane> {
         (axes[0] + axes[1]).normalize(),
         (axes[0] - axes[1]).normalize(),
     ];
-    let mut candidates: Vec<(Plane, f64, f64)> = normals
-        .iter()
-        .map(|&normal| {
-            let plane = Plane::through(centroid, normal);
+    let deficits = angle_deficits(model);
+    let peak = (0..deficits.len())
+        .max_by(|&a, &b| deficits[a].abs().total_cmp(&deficits[b].abs()))
+        .filter(|&v| deficits[v].abs() > FLAT_DEFICIT)
+        .map(|v| model.positions()[v]);
+    let points = peak.into_iter().chain([centroid]);
+    let mut candidates: Vec<(usize, Plane, f64, f64)> = points
+        .enumerate()
+        .flat_map(|(rank, point)| normals.map(|normal| (rank, Plane::through(point, normal))))
+        .map(|(rank, plane)| {
             let (length, balance) = section_estimate(model, plane);
-            (plane, length, balance)
+            (rank, plane, length, balance)
         })
-        .filter(|&(_, _, balance)| balance > 0.0)
+        .filter(|&(_, _, _, balance)| balance > 0.0)
         .collect();
-    let rank = |&(_, length, balance): &(Plane, f64, f64)| {
+    let key = |&(rank, _, length, balance): &(usize, Plane, f64, f64)| {
         if balance >= MIN_BALANCE {
-            (0, length)
+            (rank, length)
         } else {
-            (1, -balance)
+            (2, -balance)
         }
     };
     candidates.sort_by(|a, b| {
-        let (ra, rb) = (rank(a), rank(b));
-        ra.0.cmp(&rb.0).then(ra.1.total_cmp(&rb.1))
+        let (ka, kb) = (key(a), key(b));
+        ka.0.cmp(&kb.0).then(ka.1.total_cmp(&kb.1))
     });
-    candidates.into_iter().map(|(plane, _, _)| plane).collect()
+    let shift = SHIFT * mean_edge_length(model);
+    let unshifted: Vec<Plane> = candidates
+        .into_iter()
+        .map(|(_, plane, _, _)| plane)
+        .collect();
+    let shifted = (unshifted.iter()).flat_map(|plane| {
+        [shift, -shift].map(|by| Plane {
+            offset: plane.offset + by,
+            ..*plane
+        })
+    });
+    unshifted.iter().copied().chain(shifted).collect()
+}
+
+/// The mean length of the model's edges.
+fn mean_edge_length(model: &FacetModel) -> f64 {
+    let positions = model.positions();
+    let total: f64 = (model.edges().iter())
+        .map(|&[a, b]| positions[a as usize].distance(positions[b as usize]))
+        .sum();
+    total / model.edges().len().max(1) as f64
 }
 
 /// The length of the section curve of `plane` (crossing points not snapped; an edge lying in the
@@ -397,6 +436,34 @@ mod tests {
         let (length, balance) = section_estimate(&model, plane);
         assert!((length - 4.0).abs() < 1e-9, "{length}");
         assert!((balance - 0.5).abs() < 1e-9, "{balance}");
+    }
+
+    #[test]
+    fn a_cone_is_cut_through_its_apex_where_its_curvature_is() {
+        let ring = 12;
+        let mut positions = vec![DVec3::new(0.1, 0.0, 1.0)];
+        positions.extend((0..ring).map(|k| {
+            let angle = std::f64::consts::TAU * k as f64 / ring as f64;
+            DVec3::new(angle.cos(), angle.sin(), 0.0)
+        }));
+        let triangles = (0..ring).map(|k| [0, 1 + k, 1 + (k + 1) % ring]).collect();
+        let model = validate(&TriangleSoup::new(positions.clone(), triangles))
+            .unwrap()
+            .components
+            .remove(0);
+        let plane = section_planes(&model)[0];
+        assert_eq!(plane.distance(positions[0]), 0.0, "{plane:?}");
+        let sides = section(&model, plane).expect("two sides");
+        assert_eq!(sides.len(), 2);
+        for side in &sides {
+            let apex = (side.vertex_origins.iter())
+                .position(|origin| *origin == crate::mesh::VertexOrigin::Vertex(0))
+                .expect("the apex is on both sides");
+            assert!(
+                angle_deficits(&side.model)[apex] == 0.0,
+                "a boundary vertex"
+            );
+        }
     }
 
     #[test]

@@ -100,7 +100,8 @@ pub struct SectionPiece {
 }
 
 /// The model cut by `plane` into the connected pieces of its two sides (the positive side's
-/// first), or `None` when the plane leaves one side empty or a side cannot be made a valid facet
+/// first), or `None` when the plane leaves one side empty, touches the surface at a vertex from
+/// one side (two fans of one side would meet there) or a side cannot be made a valid facet
 /// model.
 pub fn section(model: &FacetModel, plane: Plane) -> Option<Vec<SectionPiece>> {
     let sides = SidedVertices::new(model, plane);
@@ -244,8 +245,9 @@ fn rotated(corners: [u32; 3], k: usize) -> [u32; 3] {
 }
 
 /// The connected pieces of one side: its triangles (over [`SidedVertices`]' numbering) made a
-/// soup of the vertices they use, vertices where two fans of the side meet split apart,
-/// validated into components.
+/// soup of the vertices they use, validated into components; `None` where two fans of the side
+/// meet at a vertex (the plane touches the surface there from one side: a piece would touch
+/// itself) or validation fails.
 fn side_pieces(
     model: &FacetModel,
     sides: &SidedVertices,
@@ -268,25 +270,17 @@ fn side_pieces(
             .collect(),
     );
     soup.face_sources = face_sources;
+    // Two fans of the side meeting at a vertex on the plane: the piece would touch itself there.
     let (split, _) = split_non_manifold(&soup);
-    // The global vertex of every split soup vertex (copies come after the originals).
-    let mut of_split: Vec<u32> = global.clone();
-    of_split.resize(split.positions.len(), NONE);
-    for (before, after) in soup.triangles.iter().zip(&split.triangles) {
-        for k in 0..3 {
-            of_split[after[k] as usize] = global[before[k] as usize];
-        }
+    if split.positions.len() > soup.positions.len() {
+        return None;
     }
-    let mut split = split;
-    split.fold_edges = fold_edges(model, sides, &split.triangles, &of_split);
-    let validated = validate(&split).ok()?;
+    soup.fold_edges = fold_edges(model, sides, &soup.triangles, &global);
+    let validated = validate(&soup).ok()?;
     let pieces = (validated.components.into_iter())
         .zip(validated.soup_vertices)
         .map(|(piece, soup_vertices)| {
-            let vertices: Vec<u32> = soup_vertices
-                .iter()
-                .map(|&s| of_split[s as usize])
-                .collect();
+            let vertices: Vec<u32> = soup_vertices.iter().map(|&s| global[s as usize]).collect();
             described_piece(model, sides, piece, &vertices)
         })
         .collect();
