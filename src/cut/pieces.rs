@@ -14,7 +14,9 @@
 //! [`super::cut_and_flatten`]) and flattened quickly (the fast solver's pattern, flips allowed);
 //! over [`SCREEN_FACTOR`] times the tolerance it is cut without its valid flattening, which costs
 //! far more. Otherwise it is flattened validly (no crest-line cut) and kept when it is within
-//! tolerance. A piece of fewer than [`MIN_PIECE_TRIANGLES`] triangles, or one past
+//! tolerance. A piece of fewer than [`MIN_PIECE_TRIANGLES`] triangles or smaller than the part's
+//! mean triangle (a piece around a point the sections cannot open would otherwise be cut into
+//! ever smaller ones there), or one past
 //! [`MAX_SECTIONS`] sections deep, or one whose part ran out of time, is kept as it is
 //! (rejected when over tolerance).
 
@@ -76,6 +78,7 @@ pub fn cut_into_pieces(
     flatten_options: &FlattenOptions,
     progress: &dyn Progress,
 ) -> Result<Vec<CutResult>, CutError> {
+    let smallest_cut = model.area() / model.triangle_count() as f64;
     let mut stack = vec![Piece {
         model: model.clone(),
         stiffness: stiffness.clone(),
@@ -107,6 +110,7 @@ pub fn cut_into_pieces(
             continue;
         }
         let cuttable = piece.model.triangle_count() >= MIN_PIECE_TRIANGLES
+            && piece.model.area() >= smallest_cut
             && piece.depth < MAX_SECTIONS
             && !flatten_options.deadline.passed();
         if let Some(sides) = cuttable.then(|| halves(&piece)).flatten() {
@@ -405,31 +409,12 @@ fn child(parent: &Piece, side: SectionPiece) -> Piece {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::test_grid as grid;
     use crate::mesh::{TriangleSoup, validate};
-
-    /// A flat strip of `length` × `width` unit squares in the xy plane, two triangles each.
-    fn strip(length: u32, width: u32) -> FacetModel {
-        let mut positions = Vec::new();
-        for j in 0..=width {
-            for i in 0..=length {
-                positions.push(DVec3::new(i as f64, j as f64, 0.0));
-            }
-        }
-        let at = |i: u32, j: u32| j * (length + 1) + i;
-        let mut triangles = Vec::new();
-        for j in 0..width {
-            for i in 0..length {
-                triangles.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
-                triangles.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
-            }
-        }
-        let soup = TriangleSoup::new(positions, triangles);
-        validate(&soup).unwrap().components.remove(0)
-    }
 
     #[test]
     fn a_strip_is_cut_across_its_middle_where_the_section_is_shortest() {
-        let model = strip(20, 4);
+        let model = grid(20, 4);
         let plane = section_planes(&model)[0];
         assert!(plane.normal.dot(DVec3::X).abs() > 1.0 - 1e-9, "{plane:?}");
         assert!((plane.distance(DVec3::new(10.0, 2.0, 0.0))).abs() < 1e-9);
@@ -468,7 +453,7 @@ mod tests {
 
     #[test]
     fn a_flat_part_is_one_piece_and_keeps_its_vertices() {
-        let model = strip(6, 3);
+        let model = grid(6, 3);
         let pieces = cut_into_pieces(
             &model,
             &Stiffness::uniform(&model),
@@ -485,7 +470,7 @@ mod tests {
 
     #[test]
     fn the_halves_of_a_strip_carry_its_stiffness_and_mark_their_section_edges() {
-        let model = strip(20, 4);
+        let model = grid(20, 4);
         let mut stiffness = Stiffness::uniform(&model);
         stiffness.raise_where(3.0, |_| true);
         let piece = Piece {

@@ -19,6 +19,8 @@ pub use facet::{FacetModel, NONE};
 pub use rebuild::{RebuildError, rebuild};
 pub use repair::{split_non_manifold, weld_duplicates};
 pub use rows::compressed_rows;
+#[cfg(test)]
+pub(crate) use section::tests::grid as test_grid;
 pub use section::{
     EdgeOrigin, Plane, SECTION_SNAP, SectionPiece, VertexOrigin, principal_axes, section,
 };

@@ -437,21 +437,21 @@ fn symmetric_eigenvectors(mut a: [[f64; 3]; 3]) -> [DVec3; 3] {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    /// A flat `n` × `n` grid of unit squares in the xy plane, two triangles each.
-    fn grid(n: u32) -> FacetModel {
+    /// A flat grid of `columns` × `rows` unit squares in the xy plane, two triangles each.
+    pub(crate) fn grid(columns: u32, rows: u32) -> FacetModel {
         let mut positions = Vec::new();
-        for j in 0..=n {
-            for i in 0..=n {
+        for j in 0..=rows {
+            for i in 0..=columns {
                 positions.push(DVec3::new(i as f64, j as f64, 0.0));
             }
         }
-        let at = |i: u32, j: u32| j * (n + 1) + i;
+        let at = |i: u32, j: u32| j * (columns + 1) + i;
         let mut triangles = Vec::new();
-        for j in 0..n {
-            for i in 0..n {
+        for j in 0..rows {
+            for i in 0..columns {
                 triangles.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
                 triangles.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
             }
@@ -462,7 +462,7 @@ mod tests {
 
     #[test]
     fn a_plane_across_a_grid_cuts_it_into_two_pieces_of_the_right_areas() {
-        let model = grid(10);
+        let model = grid(10, 10);
         let plane = Plane::through(DVec3::new(3.5, 0.0, 0.0), DVec3::X);
         let pieces = section(&model, plane).expect("both sides have faces");
         assert_eq!(pieces.len(), 2);
@@ -490,7 +490,7 @@ mod tests {
 
     #[test]
     fn a_crossing_near_a_vertex_passes_through_it_and_makes_no_sliver() {
-        let model = grid(4);
+        let model = grid(4, 4);
         let plane = Plane::through(DVec3::new(2.1, 0.0, 0.0), DVec3::X);
         let pieces = section(&model, plane).unwrap();
         for piece in &pieces {
@@ -504,7 +504,7 @@ mod tests {
 
     #[test]
     fn a_plane_missing_the_model_is_no_section() {
-        let model = grid(3);
+        let model = grid(3, 3);
         assert!(section(&model, Plane::through(DVec3::new(5.0, 0.0, 0.0), DVec3::X)).is_none());
     }
 
