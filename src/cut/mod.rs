@@ -50,7 +50,7 @@ pub use options::{
 };
 pub use pieces::{
     FLAT_DEFICIT, MAX_SECTIONS, MIN_BALANCE, MIN_PIECE_TRIANGLES, SCREEN_FACTOR, SHIFT,
-    cut_into_pieces,
+    SMALLEST_PIECE, cut_into_pieces,
 };
 pub use result::{Cut, CutFigures, CutResult, CutStop, Seam, UncutPattern};
 pub use seam::SeamKind;

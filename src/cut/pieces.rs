@@ -14,9 +14,8 @@
 //! [`super::cut_and_flatten`]) and flattened quickly (the fast solver's pattern, flips allowed);
 //! over [`SCREEN_FACTOR`] times the tolerance it is cut without its valid flattening, which costs
 //! far more. Otherwise it is flattened validly (no crest-line cut) and kept when it is within
-//! tolerance. A piece of fewer than [`MIN_PIECE_TRIANGLES`] triangles or smaller than the part's
-//! mean triangle (a piece around a point the sections cannot open would otherwise be cut into
-//! ever smaller ones there), or one past
+//! tolerance. A piece of fewer than [`MIN_PIECE_TRIANGLES`] triangles or smaller than
+//! [`SMALLEST_PIECE`] of the part's mean triangle, or one past
 //! [`MAX_SECTIONS`] sections deep, or one whose part ran out of time, is kept as it is
 //! (rejected when over tolerance).
 
@@ -45,6 +44,10 @@ pub const SCREEN_FACTOR: f64 = 2.0;
 
 /// An angle deficit (radians) at most this is flat: no plane is laid through its vertex.
 pub const FLAT_DEFICIT: f64 = 1e-6;
+
+/// A piece smaller than this fraction of the part's mean triangle is not cut again: a safety
+/// bound against cutting ever smaller pieces around one point.
+pub const SMALLEST_PIECE: f64 = 1e-3;
 
 /// A candidate plane is also tried shifted by this fraction of the mean edge length either way
 /// (see `section_planes`).
@@ -78,7 +81,7 @@ pub fn cut_into_pieces(
     flatten_options: &FlattenOptions,
     progress: &dyn Progress,
 ) -> Result<Vec<CutResult>, CutError> {
-    let smallest_cut = model.area() / model.triangle_count() as f64;
+    let smallest_cut = SMALLEST_PIECE * model.area() / model.triangle_count() as f64;
     let mut stack = vec![Piece {
         model: model.clone(),
         stiffness: stiffness.clone(),

@@ -100,8 +100,7 @@ pub struct SectionPiece {
 }
 
 /// The model cut by `plane` into the connected pieces of its two sides (the positive side's
-/// first), or `None` when the plane leaves one side empty, touches the surface at a vertex from
-/// one side (two fans of one side would meet there) or a side cannot be made a valid facet
+/// first), or `None` when the plane leaves one side empty or a side cannot be made a valid facet
 /// model.
 pub fn section(model: &FacetModel, plane: Plane) -> Option<Vec<SectionPiece>> {
     let sides = SidedVertices::new(model, plane);
@@ -245,9 +244,9 @@ fn rotated(corners: [u32; 3], k: usize) -> [u32; 3] {
 }
 
 /// The connected pieces of one side: its triangles (over [`SidedVertices`]' numbering) made a
-/// soup of the vertices they use, validated into components; `None` where two fans of the side
-/// meet at a vertex (the plane touches the surface there from one side: a piece would touch
-/// itself) or validation fails.
+/// soup of the vertices they use, a vertex where two fans of the side meet (the plane touches the
+/// surface there from one side) split into one copy per fan, validated into components; `None`
+/// when validation fails.
 fn side_pieces(
     model: &FacetModel,
     sides: &SidedVertices,
@@ -270,17 +269,27 @@ fn side_pieces(
             .collect(),
     );
     soup.face_sources = face_sources;
-    // Two fans of the side meeting at a vertex on the plane: the piece would touch itself there.
+    // Two fans of one side meeting at a vertex on the plane (the plane touches the surface there
+    // from one side) get a copy of the vertex each.
     let (split, _) = split_non_manifold(&soup);
-    if split.positions.len() > soup.positions.len() {
-        return None;
+    // The global vertex of every split soup vertex (copies come after the originals).
+    let mut of_split: Vec<u32> = global.clone();
+    of_split.resize(split.positions.len(), NONE);
+    for (before, after) in soup.triangles.iter().zip(&split.triangles) {
+        for k in 0..3 {
+            of_split[after[k] as usize] = global[before[k] as usize];
+        }
     }
-    soup.fold_edges = fold_edges(model, sides, &soup.triangles, &global);
-    let validated = validate(&soup).ok()?;
+    let mut split = split;
+    split.fold_edges = fold_edges(model, sides, &split.triangles, &of_split);
+    let validated = validate(&split).ok()?;
     let pieces = (validated.components.into_iter())
         .zip(validated.soup_vertices)
         .map(|(piece, soup_vertices)| {
-            let vertices: Vec<u32> = soup_vertices.iter().map(|&s| global[s as usize]).collect();
+            let vertices: Vec<u32> = soup_vertices
+                .iter()
+                .map(|&s| of_split[s as usize])
+                .collect();
             described_piece(model, sides, piece, &vertices)
         })
         .collect();
