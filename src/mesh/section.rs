@@ -519,18 +519,7 @@ pub(crate) mod tests {
 
     #[test]
     fn the_principal_axes_of_a_long_strip_start_along_it() {
-        let mut positions = Vec::new();
-        for i in 0..=20 {
-            positions.push(DVec3::new(i as f64, 0.0, 0.0));
-            positions.push(DVec3::new(i as f64, 2.0, 0.0));
-        }
-        let triangles = (0..20)
-            .flat_map(|i| [[2 * i, 2 * i + 2, 2 * i + 3], [2 * i, 2 * i + 3, 2 * i + 1]])
-            .collect();
-        let model = validate(&TriangleSoup::new(positions, triangles))
-            .unwrap()
-            .components
-            .remove(0);
+        let model = grid(20, 2);
         let (centroid, axes) = principal_axes(&model);
         assert!(centroid.distance(DVec3::new(10.0, 1.0, 0.0)) < 1e-9);
         assert!(axes[0].dot(DVec3::X).abs() > 1.0 - 1e-9);

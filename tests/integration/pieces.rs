@@ -6,7 +6,9 @@
 use std::f64::consts::TAU;
 use std::path::Path;
 
-use crate::util::{flatten_into, read_obj, read_report, recompute, sample, stderr, write_obj};
+use crate::util::{
+    area, flatten_into, read_obj, read_report, recompute, sample, stderr, write_obj,
+};
 
 /// A torus of radii 100 and 40, `around` × `across` quads, two triangles each: a closed surface
 /// with a handle.
@@ -37,17 +39,7 @@ fn surface_area(path: &Path) -> f64 {
     let (vertices, faces) = read_obj(path);
     faces
         .iter()
-        .map(|&[a, b, c]| {
-            let [p, q, r] = [vertices[a], vertices[b], vertices[c]];
-            let u = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
-            let v = [r[0] - p[0], r[1] - p[1], r[2] - p[2]];
-            let n = [
-                u[1] * v[2] - u[2] * v[1],
-                u[2] * v[0] - u[0] * v[2],
-                u[0] * v[1] - u[1] * v[0],
-            ];
-            0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt()
-        })
+        .map(|&[a, b, c]| area(vertices[a], vertices[b], vertices[c]))
         .sum()
 }
 

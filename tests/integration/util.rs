@@ -100,7 +100,8 @@ fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
-fn area(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
+/// Area of the 3D triangle `a b c`.
+pub fn area(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
     let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
     let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
     let cross = [
