@@ -44,13 +44,17 @@ enum Command {
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let progress = TerminalProgress::new();
-    let result: anyhow::Result<Outcome> = match cli.command {
+    // The command runs on a thread of rayon's pool: the solvers' parallel loops, called on
+    // thousands of small pieces, then start where they are called instead of handing each loop
+    // to the pool from outside and sleeping until it is done (that hand-over was 40 % of a
+    // 20k-triangle scan cut into pieces).
+    let result: anyhow::Result<Outcome> = rayon::scope(|_| match cli.command {
         Command::Run(args) => run::run(args, &progress),
         Command::Flatten(args) => flatten::run(args, &progress),
         Command::Nest(args) => nest::run(args, &progress),
         Command::Tessellate(args) => tessellate::run(args),
         Command::Batch(args) => batch::run(args),
         Command::BatchPart => batch::run_worker(),
-    };
+    });
     exit_code(result)
 }
