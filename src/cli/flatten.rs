@@ -59,11 +59,12 @@ pub struct PartArgs {
     #[arg(long, value_enum, default_value_t = Units::default())]
     units: Units,
     /// Where a part's pieces come from: `auto` (each connected mesh is one part, opened by the
-    /// cut stage's seams and cut along crest lines), `from-uv` (each chart of the OBJ's texture
-    /// layout, `vt`, is one part: a garment's sewing pattern pieces, their layout the start of
-    /// the flattening) or `pieces` (no crest-line cut: a part over tolerance is cut by plane
-    /// sections into pieces `<part>-p1`, `-p2`, ... until each is within tolerance; for scans
-    /// and closed bodies).
+    /// cut stage's seams and cut along crest lines; a part still over tolerance after them, or
+    /// one with handles, is cut into pieces as by `pieces`), `whole` (as `auto`, but such a part
+    /// is rejected whole), `from-uv` (each chart of the OBJ's texture layout, `vt`, is one part:
+    /// a garment's sewing pattern pieces, their layout the start of the flattening) or `pieces`
+    /// (no crest-line cut: a part over tolerance is cut by plane sections into pieces
+    /// `<part>-p1`, `-p2`, ... until each is within tolerance).
     #[arg(long, value_enum, default_value_t = SeamSource::default())]
     seams: SeamSource,
     /// Repair a mesh file's connectivity, with a warning for each change: weld vertices at the

@@ -70,10 +70,10 @@ pub fn execute(
     }
     let surface_rejected =
         (report.parts.iter()).any(|part| !part.rejected.is_empty() && part.sheet_metal.is_none());
-    if surface_rejected && config.options.seams != SeamSource::Pieces {
+    if surface_rejected && config.options.seams == SeamSource::Whole {
         say!(
-            "flatcut: hint: --seams pieces cuts a part that stays over tolerance into pieces, each \
-             within it (docs/cutting.md)"
+            "flatcut: hint: --seams auto cuts a part that stays over tolerance whole into pieces, \
+             each within it (docs/cutting.md)"
         );
     }
     if json {

@@ -265,9 +265,14 @@ fn without_overlap(
 /// [`DEFAULT_MAX_CUTS`]. A closed UV sphere halved along its bisector holds about `3.5π` (28
 /// cuts); a box opened to its net holds none (8).
 pub fn default_cut_budget(model: &FacetModel) -> usize {
-    let curvature: f64 = seam::angle_deficits(model).iter().map(|d| d.abs()).sum();
-    let scaled = (CUTS_PER_CAP * curvature / CAP_CURVATURE).ceil();
+    let scaled = (CUTS_PER_CAP * total_absolute_curvature(model) / CAP_CURVATURE).ceil();
     DEFAULT_MAX_CUTS.max(scaled as usize)
+}
+
+/// The total absolute Gaussian curvature `∫|K| dA = Σ |2π − Σθ|` over the interior vertices of
+/// the model, radians.
+pub fn total_absolute_curvature(model: &FacetModel) -> f64 {
+    seam::angle_deficits(model).iter().map(|d| d.abs()).sum()
 }
 
 /// The edges of the cut model that are sides of a cut: boundary edges both of whose ends lie at

@@ -31,6 +31,7 @@ mod errors;
 mod opening;
 mod options;
 pub mod paths;
+mod piece;
 mod pieces;
 mod result;
 pub mod seam;
@@ -41,16 +42,16 @@ pub mod straighten;
 mod trials;
 
 pub use crest::{DEFAULT_CANDIDATES, DEFAULT_DART_FLOOR};
-pub use cut_loop::{cut_and_flatten, default_cut_budget};
+pub use cut_loop::{cut_and_flatten, default_cut_budget, total_absolute_curvature};
 pub use errors::CutError;
 pub use options::{
     CAP_CURVATURE, CUT_LOOP_ENERGY_TOLERANCE, CUTS_PER_CAP, CutConstraints, CutOptions,
     DEFAULT_MAX_CUTS, EXTENSIONS_PER_CUT, FULL_TRIALS, LENGTH_EXPONENT, NoCutRegion,
-    SCREEN_ITERATIONS, TRIAL_BUDGET, TRIAL_STEP_TOLERANCE, WIDER_SEARCH,
+    PIECES_CURVATURE, SCREEN_ITERATIONS, TRIAL_BUDGET, TRIAL_STEP_TOLERANCE, WIDER_SEARCH,
 };
 pub use pieces::{
-    FLAT_DEFICIT, MAX_SECTIONS, MIN_BALANCE, MIN_PIECE_TRIANGLES, SCREEN_FACTOR, SHIFT,
-    SMALLEST_PIECE, cut_into_pieces,
+    FLAT_DEFICIT, GLUE_SCREEN_FACTOR, MAX_SECTIONS, MIN_BALANCE, MIN_PIECE_TRIANGLES,
+    SCREEN_FACTOR, SHIFT, SMALLEST_PIECE, cut_into_pieces,
 };
 pub use result::{Cut, CutFigures, CutResult, CutStop, Seam, UncutPattern};
 pub use seam::SeamKind;

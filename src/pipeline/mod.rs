@@ -2,8 +2,9 @@
 //! their patterns and the nested layout (checked independently), and [`write_outputs`] writes the
 //! output folder through [`crate::export`]. The stages one part goes through are also callable
 //! on their own: [`load_parts`] reads an input into parts (ingest, tessellate, validate,
-//! stiffness) and [`flatten_job`] flattens, cuts and makes the pattern of one (or, with
-//! `--seams pieces`, of each of its pieces: [`flatten_in_pieces`]). The fan-in,
+//! stiffness) and [`flatten_job`] flattens, cuts and makes the pattern of one (or of each of its
+//! pieces: [`flatten_in_pieces`] with `--seams pieces`, [`flatten_or_cut_into_pieces`] by
+//! default when the part does not come within tolerance whole). The fan-in,
 //! [`nest_patterns`] (and [`nest_patterns_into`] an output folder), nests the pattern files runs
 //! wrote, grouped by material and thickness, without flattening again.
 
@@ -28,7 +29,7 @@ pub use config::{
     RunOptions,
 };
 pub use facet_model::{FacetModelOutput, FacetSource, facet_model, write_facet_model};
-pub use flatten_part::{flatten_in_pieces, flatten_job, flatten_part};
+pub use flatten_part::{flatten_in_pieces, flatten_job, flatten_or_cut_into_pieces, flatten_part};
 pub use load::{
     PartJob, SheetPart, TessellationFigures, load_parts, tessellate_part, tessellate_step,
 };

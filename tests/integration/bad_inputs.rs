@@ -6,11 +6,18 @@ use crate::util::{flatcut, stderr};
 
 /// Writes `content` to `name` in a fresh directory, flattens it, and checks the refusal.
 fn refuses(name: &str, content: &[u8], expected: &str) {
+    refuses_with(name, content, &[], expected);
+}
+
+/// As [`refuses`], with `options` on the command line.
+fn refuses_with(name: &str, content: &[u8], options: &[&str], expected: &str) {
     let directory = tempfile::tempdir().expect("temporary directory");
     let input = directory.path().join(name);
     std::fs::write(&input, content).expect("write input");
     let output_directory = directory.path().join("out");
-    let output = flatcut(&["flatten", path(&input), "-o", path(&output_directory)]);
+    let mut arguments = vec!["flatten", path(&input), "-o", path(&output_directory)];
+    arguments.extend_from_slice(options);
+    let output = flatcut(&arguments);
     let message = stderr(&output);
     assert_eq!(output.status.code(), Some(1), "{name}: {message}");
     assert!(
@@ -112,9 +119,28 @@ fn holed_torus(missing: usize) -> String {
     text
 }
 
+/// Automatic seams do not cut handles: kept whole, such a surface is refused; by default it is
+/// cut into pieces instead.
 #[test]
 fn surface_with_a_handle_and_a_boundary() {
-    refuses("handle.obj", holed_torus(1).as_bytes(), "handle");
+    let text = holed_torus(1);
+    refuses_with(
+        "handle.obj",
+        text.as_bytes(),
+        &["--seams", "whole"],
+        "handle",
+    );
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let input = directory.path().join("handle.obj");
+    std::fs::write(&input, &text).expect("write input");
+    let output = crate::util::flatten_into(&input, &directory.path().join("out"), &[]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let report = crate::util::read_report(&directory.path().join("out"));
+    let warnings = report["parts"][0]["warnings"].to_string();
+    assert!(
+        warnings.contains("it has genus 1, which automatic seams do not open"),
+        "{warnings}"
+    );
 }
 
 #[test]

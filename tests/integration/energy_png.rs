@@ -53,8 +53,9 @@ fn pixels_near_between(
 
 #[test]
 fn saddle_map_spans_the_colour_scale() {
-    // Uncut: the cuts that bring the saddle within tolerance release most of its energy.
-    let pixmap = energy_png("saddle", &["--max-cuts", "0"]);
+    // Uncut and whole: the cuts (or pieces) that bring the saddle within tolerance release most
+    // of its energy.
+    let pixmap = energy_png("saddle", &["--max-cuts", "0", "--seams", "whole"]);
     assert_eq!(pixmap.width(), DEFAULT_WIDTH_PIXELS);
     assert!(pixmap.height() > 800, "{}", pixmap.height());
     // Near both ends of the scale and in the middle (the converged saddle has little energy

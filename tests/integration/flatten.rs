@@ -175,7 +175,7 @@ fn over_tolerance_exits_3_and_still_writes_outputs() {
     let output = flatten_into(
         &sample("saddle.obj"),
         directory.path(),
-        &["--tolerance", "0.0001"],
+        &["--tolerance", "0.0001", "--seams", "whole"],
     );
     assert_eq!(output.status.code(), Some(3), "{}", stderr(&output));
     let part = &read_report(directory.path())["parts"][0];

@@ -174,8 +174,11 @@ fn a_closed_stdout_or_stderr_is_a_quiet_exit() {
 fn a_rejected_part_is_marked_and_says_why() {
     let directory = tempfile::tempdir().expect("temporary directory");
     let folder = directory.path();
-    let output =
-        crate::util::flatten_into(&sample("saddle.obj"), folder, &["--tolerance", "0.0001"]);
+    let output = crate::util::flatten_into(
+        &sample("saddle.obj"),
+        folder,
+        &["--tolerance", "0.0001", "--seams", "whole"],
+    );
     let message = stderr(&output);
     assert_eq!(output.status.code(), Some(3), "{message}");
     assert!(folder.join("saddle.REJECTED.dxf").exists());
@@ -231,6 +234,8 @@ fn a_rejected_part_is_marked_on_the_sheet_too() {
         folder.to_str().unwrap(),
         "--tolerance",
         "0.0001",
+        "--seams",
+        "whole",
         "--sheet",
         "1000x1000",
         "--work",

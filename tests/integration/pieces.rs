@@ -43,9 +43,10 @@ fn surface_area(path: &Path) -> f64 {
         .sum()
 }
 
-/// Flattens `input` in pieces and checks every piece; returns the pieces' names.
-fn assert_pieces_within_tolerance(input: &Path, directory: &Path) -> Vec<String> {
-    let output = flatten_into(input, directory, &["--seams", "pieces"]);
+/// Flattens `input` with `options` into pieces and checks every piece; returns the pieces'
+/// names.
+fn assert_pieces_within_tolerance(input: &Path, directory: &Path, options: &[&str]) -> Vec<String> {
+    let output = flatten_into(input, directory, options);
     assert!(output.status.success(), "{}", stderr(&output));
     let report = read_report(directory);
     let parts = report["parts"].as_array().expect("parts");
@@ -77,22 +78,38 @@ fn assert_pieces_within_tolerance(input: &Path, directory: &Path) -> Vec<String>
     names
 }
 
+/// A closed torus stays over tolerance whole: `--seams whole` rejects it after its crest-line
+/// cuts, the default cuts it into pieces instead, and each piece says why.
 #[test]
-fn a_torus_the_default_seams_refuse_comes_out_in_pieces_each_within_tolerance() {
+fn a_torus_over_tolerance_whole_comes_out_in_pieces_each_within_tolerance() {
     let directory = tempfile::tempdir().expect("temporary directory");
     let input = directory.path().join("torus.obj");
     let (vertices, faces) = torus(48, 20);
     write_obj(&input, &vertices, &faces);
-    let refused = flatten_into(&input, &directory.path().join("auto"), &[]);
-    assert!(!refused.status.success());
-    assert!(
-        stderr(&refused).contains("--seams pieces"),
-        "{}",
-        stderr(&refused)
+    let whole = flatten_into(
+        &input,
+        &directory.path().join("whole"),
+        &["--seams", "whole"],
     );
-    let names = assert_pieces_within_tolerance(&input, &directory.path().join("pieces"));
+    assert_eq!(whole.status.code(), Some(3), "{}", stderr(&whole));
+    assert!(
+        stderr(&whole).contains("--seams auto cuts"),
+        "{}",
+        stderr(&whole)
+    );
+    let pieces = directory.path().join("pieces");
+    let names = assert_pieces_within_tolerance(&input, &pieces, &[]);
     assert!(names.len() >= 4, "{names:?}");
     assert_eq!(names[0], "torus-p1");
+    let report = read_report(&pieces);
+    let warnings = report["parts"][0]["warnings"].to_string();
+    assert!(
+        warnings.contains(&format!(
+            "cut into {} pieces (--seams auto): whole, closed, it does not lie flat",
+            names.len()
+        )),
+        "{warnings}"
+    );
 }
 
 #[test]
@@ -100,7 +117,7 @@ fn the_hemisphere_comes_out_in_pieces_each_within_tolerance_with_the_same_files_
     let directory = tempfile::tempdir().expect("temporary directory");
     let input = sample("hemisphere.obj");
     let first = directory.path().join("first");
-    let names = assert_pieces_within_tolerance(&input, &first);
+    let names = assert_pieces_within_tolerance(&input, &first, &["--seams", "pieces"]);
     assert!(names.len() >= 2, "{names:?}");
     let second = directory.path().join("second");
     let output = flatten_into(&input, &second, &["--seams", "pieces"]);

@@ -1,0 +1,270 @@
+//! A piece of a part cut by plane sections (`--seams pieces`), before it is flattened, and the
+//! gluing of two neighbouring pieces back together along the section curve they share.
+
+use std::collections::BTreeMap;
+
+use glam::DVec3;
+
+use crate::cad::{FoldEdge, TriangleSoup};
+use crate::flatten::Stiffness;
+use crate::mesh::{FacetModel, NONE, rebuild};
+
+/// A piece of the part, before it is flattened.
+#[derive(Debug, Clone)]
+pub(super) struct Piece {
+    /// Its facet model.
+    pub model: FacetModel,
+    /// Its edges' stiffness.
+    pub stiffness: Stiffness,
+    /// For each vertex, the part's vertex it copies (or, for a section point, the nearer end of
+    /// the part's edge it lies on).
+    pub part_vertex: Vec<u32>,
+    /// Per edge, true where it lies on a section.
+    pub section_edges: Vec<bool>,
+    /// How many sections made it.
+    pub depth: usize,
+}
+
+/// A point by the bits of its coordinates: a section point is computed once, so both pieces it
+/// bounds hold it exactly.
+pub(super) type PointKey = [u64; 3];
+
+/// An edge by its ends' [`PointKey`]s, in order.
+pub(super) type SideKey = [PointKey; 2];
+
+/// The length of the edge of `key`.
+pub(super) fn side_length(key: &SideKey) -> f64 {
+    let [a, b] = key.map(|p| DVec3::from_array(p.map(f64::from_bits)));
+    a.distance(b)
+}
+
+/// The exact key of a point.
+fn point_key(p: DVec3) -> PointKey {
+    p.to_array().map(f64::to_bits)
+}
+
+impl Piece {
+    /// The whole part as one piece.
+    pub fn whole(model: &FacetModel, stiffness: &Stiffness) -> Self {
+        Self {
+            model: model.clone(),
+            stiffness: stiffness.clone(),
+            part_vertex: (0..model.vertex_count() as u32).collect(),
+            section_edges: vec![false; model.edges().len()],
+            depth: 0,
+        }
+    }
+
+    /// Its boundary edges on a section, by their ends' positions, with their edge.
+    pub fn section_sides(&self) -> BTreeMap<SideKey, usize> {
+        let positions = self.model.positions();
+        (self.model.edges().iter().enumerate())
+            .filter(|&(e, _)| self.section_edges[e] && self.model.is_boundary_edge(e))
+            .map(|(e, &[a, b])| {
+                let mut key = [a, b].map(|v| point_key(positions[v as usize]));
+                key.sort();
+                (key, e)
+            })
+            .collect()
+    }
+
+    /// The piece and `other` glued along the section edges they share into one piece, or `None`
+    /// when they share none, when a point of the shared curve is not one vertex on either side
+    /// (a vertex the section touched, split per fan), or when the union is not a facet model.
+    /// The shared edges are no longer section edges; stiffness, fold lines and the part's
+    /// vertices carry over.
+    pub fn glued(&self, other: &Piece) -> Option<Piece> {
+        let mine = self.section_sides();
+        let theirs = other.section_sides();
+        let shared: Vec<(usize, usize)> = (mine.iter())
+            .filter_map(|(key, &e)| theirs.get(key).map(|&f| (e, f)))
+            .collect();
+        let welds = welds(self, other, &shared)?;
+        let count = self.model.vertex_count() as u32;
+        let mut next = count;
+        let their_vertex: Vec<u32> = (0..other.model.vertex_count() as u32)
+            .map(|v| {
+                welds.get(&v).copied().unwrap_or_else(|| {
+                    next += 1;
+                    next - 1
+                })
+            })
+            .collect();
+        let mut positions = self.model.positions().to_vec();
+        let mut part_vertex = self.part_vertex.clone();
+        for (v, &to) in their_vertex.iter().enumerate() {
+            if to >= count {
+                positions.push(other.model.positions()[v]);
+                part_vertex.push(other.part_vertex[v]);
+            }
+        }
+        let mut soup = TriangleSoup::new(positions, self.model.triangles().to_vec());
+        soup.triangles
+            .extend((other.model.triangles().iter()).map(|t| t.map(|v| their_vertex[v as usize])));
+        soup.face_sources = [self.model.face_sources(), other.model.face_sources()].concat();
+        let identity: Vec<u32> = (0..count).collect();
+        let sides = [(self, &identity[..]), (other, &their_vertex[..])];
+        soup.fold_edges = fold_edges(&sides);
+        let model = rebuild(soup).ok()?;
+        let glued_edges: Vec<[u32; 2]> = (shared.iter())
+            .map(|&(e, _)| self.model.edges()[e])
+            .collect();
+        let (stiffness, section_edges) = edge_attributes(&model, &sides, &glued_edges);
+        Some(Piece {
+            model,
+            stiffness,
+            part_vertex,
+            section_edges,
+            depth: self.depth.max(other.depth),
+        })
+    }
+}
+
+/// Each of `other`'s vertices on the shared section edges (`(mine, theirs)` edge pairs) and the
+/// vertex of `piece` at the same point; `None` when there is no shared edge or a point is not
+/// one vertex on either side.
+fn welds(piece: &Piece, other: &Piece, shared: &[(usize, usize)]) -> Option<BTreeMap<u32, u32>> {
+    if shared.is_empty() {
+        return None;
+    }
+    let mut welds = BTreeMap::new();
+    let mut welded_to = BTreeMap::new();
+    for &(e, f) in shared {
+        let [a, b] = piece.model.edges()[e];
+        let their_ends = other.model.edges()[f];
+        for theirs in their_ends {
+            let at = point_key(other.model.positions()[theirs as usize]);
+            let mine = if point_key(piece.model.positions()[a as usize]) == at {
+                a
+            } else {
+                b
+            };
+            if *welds.entry(theirs).or_insert(mine) != mine
+                || *welded_to.entry(mine).or_insert(theirs) != theirs
+            {
+                return None;
+            }
+        }
+    }
+    Some(welds)
+}
+
+/// The fold-line edges of the pieces, each piece's vertices renumbered by its map.
+fn fold_edges(sides: &[(&Piece, &[u32])]) -> Vec<FoldEdge> {
+    let mut folds = BTreeMap::new();
+    for &(piece, number) in sides {
+        let lines = piece.model.edge_fold_lines();
+        for (e, &[a, b]) in piece.model.edges().iter().enumerate() {
+            if lines[e] != NONE {
+                let [a, b] = [number[a as usize], number[b as usize]];
+                folds.insert([a.min(b), a.max(b)], lines[e]);
+            }
+        }
+    }
+    (folds.into_iter())
+        .map(|(vertices, fold_line)| FoldEdge {
+            vertices,
+            fold_line,
+        })
+        .collect()
+}
+
+/// The glued model's stiffness and section flags, from the pieces' edges (each piece's vertices
+/// renumbered by its map): the stiffer where both have an edge, and no section flag on the
+/// `glued` edges (numbered as the first piece's).
+fn edge_attributes(
+    model: &FacetModel,
+    sides: &[(&Piece, &[u32])],
+    glued: &[[u32; 2]],
+) -> (Stiffness, Vec<bool>) {
+    let ordered = |[a, b]: [u32; 2]| [a.min(b), a.max(b)];
+    let mut attributes: BTreeMap<[u32; 2], (f64, bool)> = BTreeMap::new();
+    for &(piece, number) in sides {
+        let factors = piece.stiffness.factors();
+        for (e, &[a, b]) in piece.model.edges().iter().enumerate() {
+            let key = ordered([number[a as usize], number[b as usize]]);
+            let factor = factors.get(e).copied().unwrap_or(1.0);
+            let entry = attributes.entry(key).or_insert((factor, false));
+            entry.0 = entry.0.max(factor);
+            entry.1 |= piece.section_edges[e];
+        }
+    }
+    for &edge in glued {
+        if let Some(entry) = attributes.get_mut(&ordered(edge)) {
+            entry.1 = false;
+        }
+    }
+    let (factors, sections) = (model.edges().iter())
+        .map(|&edge| {
+            attributes
+                .get(&ordered(edge))
+                .copied()
+                .unwrap_or((1.0, false))
+        })
+        .unzip();
+    (Stiffness::from_factors(factors), sections)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{Plane, section, test_grid as grid};
+
+    /// The grid's two halves across `x = 10`, as pieces.
+    fn halves() -> (FacetModel, Vec<Piece>) {
+        let model = grid(20, 4);
+        let mut stiffness = Stiffness::uniform(&model);
+        stiffness.raise_where(2.0, |_| true);
+        let whole = Piece::whole(&model, &stiffness);
+        let plane = Plane::through(DVec3::new(10.0, 2.0, 0.0), DVec3::X);
+        let sides = section(&model, plane).expect("two sides");
+        let pieces = (sides.into_iter())
+            .map(|side| {
+                let part_vertex = (side.vertex_origins.iter())
+                    .map(|origin| origin.nearer_vertex(&model))
+                    .collect();
+                Piece {
+                    stiffness: Stiffness::from_factors(vec![2.0; side.model.edges().len()]),
+                    section_edges: side.on_section.clone(),
+                    part_vertex,
+                    model: side.model,
+                    depth: whole.depth + 1,
+                }
+            })
+            .collect();
+        (model, pieces)
+    }
+
+    #[test]
+    fn two_halves_glue_back_into_the_whole() {
+        let (model, pieces) = halves();
+        let glued = pieces[0].glued(&pieces[1]).expect("they share the section");
+        assert_eq!(glued.model.triangle_count(), model.triangle_count());
+        assert_eq!(glued.model.vertex_count(), model.vertex_count());
+        assert_eq!(glued.model.edges().len(), model.edges().len());
+        assert!((glued.model.area() - model.area()).abs() < 1e-9);
+        assert!(glued.section_edges.iter().all(|&on| !on), "no section left");
+        assert!(glued.section_sides().is_empty());
+        assert!(glued.stiffness.factors().iter().all(|&f| f == 2.0));
+        let mut vertices = glued.part_vertex.clone();
+        vertices.sort();
+        vertices.dedup();
+        assert_eq!(
+            vertices.len(),
+            model.vertex_count(),
+            "each part vertex once"
+        );
+        assert_eq!(glued.depth, 1);
+    }
+
+    #[test]
+    fn a_piece_does_not_glue_to_itself_or_to_a_stranger() {
+        let (model, pieces) = halves();
+        assert!(
+            pieces[0].glued(&pieces[0]).is_none(),
+            "its own section edges are not a shared curve with two sides"
+        );
+        let stranger = Piece::whole(&model, &Stiffness::uniform(&model));
+        assert!(pieces[0].glued(&stranger).is_none(), "no shared section");
+    }
+}
