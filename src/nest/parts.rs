@@ -5,11 +5,16 @@ use glam::DVec2;
 
 use super::{NestItem, Rotations};
 use crate::geometry::long_side_of_smallest_rectangle;
-use crate::pattern::{PatternError, PatternFile, part_contours, sample_closed};
+use crate::pattern::{PatternError, PatternFile, part_contours, sample_closed, segment_length};
 
 /// Largest step when a fitted contour (lines and arcs) is sampled back into a polygon for the
 /// nester, in mm: arcs are followed within a fraction of the chord tolerance.
 pub const OUTLINE_SAMPLE_STEP: f64 = 1.0;
+
+/// Fewest steps along a contour's length when it is sampled for the nester: a part a few
+/// millimetres round (a sub-millimetre piece of a scan in mm, drawn as two arcs) is sampled
+/// finer than [`OUTLINE_SAMPLE_STEP`], so its polygon has an area.
+pub const MIN_OUTLINE_SAMPLES: f64 = 16.0;
 
 /// One nesting item per pattern file, in mm: the contour that will be cut (made with the file's
 /// own chord tolerance and seam allowance), with `rotations` taken from the part's minimum-area
@@ -37,7 +42,16 @@ fn nest_item(
     let scale = drawing.units.millimetres();
     let contours = part_contours(drawing, &pattern.options)?;
     let to_millimetres = |ring: Vec<DVec2>| ring.into_iter().map(|p| p * scale).collect();
-    let step = OUTLINE_SAMPLE_STEP / scale;
+    let length: f64 = (0..contours.outer.len())
+        .map(|k| {
+            let (vertex, next) = (
+                contours.outer[k],
+                contours.outer[(k + 1) % contours.outer.len()],
+            );
+            segment_length(vertex.point, next.point, vertex.bulge)
+        })
+        .sum();
+    let step = (OUTLINE_SAMPLE_STEP / scale).min(length / MIN_OUTLINE_SAMPLES);
     let outer: Vec<DVec2> = to_millimetres(sample_closed(&contours.outer, step));
     Ok(NestItem {
         name: drawing.name.clone(),

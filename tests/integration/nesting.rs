@@ -141,3 +141,36 @@ fn a_part_with_grain_is_nested_with_the_grain_along_x() {
         "circumferential grain: y extent {along_y}"
     );
 }
+
+/// A part a fraction of a millimetre round (a scan's piece in the wrong units), whose cut outline
+/// is drawn as two arcs, still gets a nesting polygon with an area: it was refused, "the outline
+/// has fewer than 3 points", and the whole run with it.
+#[test]
+fn a_sub_millimetre_part_is_nested() {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let input = directory.path().join("tiny_disc.obj");
+    let segments = 48;
+    let mut vertices = vec![[0.0, 0.0, 0.0]];
+    vertices.extend((0..segments).map(|k| {
+        let angle = std::f64::consts::TAU * k as f64 / segments as f64;
+        [0.1 * angle.cos(), 0.1 * angle.sin(), 0.0]
+    }));
+    let faces: Vec<[usize; 3]> = (0..segments)
+        .map(|k| [0, 1 + k, 1 + (k + 1) % segments])
+        .collect();
+    crate::util::write_obj(&input, &vertices, &faces);
+    let out = directory.path().join("out");
+    let output = flatcut(&[
+        "run",
+        input.to_str().expect("utf-8"),
+        "-o",
+        out.to_str().expect("utf-8"),
+        "--roll",
+        "100",
+        "--work",
+        "2000",
+    ]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let report = read_report(&out);
+    assert_eq!(report["sheets"].as_array().map(Vec::len), Some(1));
+}
