@@ -4,6 +4,8 @@
 
 use std::path::Path;
 
+use rayon::prelude::*;
+
 use crate::error::Error;
 use crate::export::DxfOptions;
 use crate::export::part_files::{PartFileOptions, PartFiles, write_part_files};
@@ -71,7 +73,9 @@ pub fn write_outputs(
         dxf,
         energy: config.energy_png,
     };
-    for (part, pattern_file) in output.parts.iter().zip(&output.patterns) {
+    // Each part's files are made and written on their own, so parts go in parallel: a part cut
+    // into hundreds of pieces writes hundreds of sets, each with its energy picture to render.
+    (output.parts.par_iter().zip(&output.patterns)).try_for_each(|(part, pattern_file)| {
         let files = PartFiles {
             source: &part.job.source,
             model: &part.job.model,
@@ -82,8 +86,8 @@ pub fn write_outputs(
             cuts: part.cuts.len(),
             spring_constant: config.options.flatten.spring_constant,
         };
-        write_part_files(directory, &files, &file_options)?;
-    }
+        write_part_files(directory, &files, &file_options)
+    })?;
     let sheets = match &output.nesting {
         Some(nested) => {
             let drawings: Vec<PartDrawing> = output
