@@ -16,11 +16,10 @@ use crate::cad::{SourceLines, TextureCorners, TriangleSoup};
 pub enum SeamSource {
     /// The whole connected mesh is one part; the cut stage lays its seams and cuts it along
     /// crest lines, and a part still over tolerance after them (or one with handles) is cut into
-    /// pieces as [`Self::Pieces`] does.
+    /// pieces as `pieces` does.
     #[default]
     Auto,
-    /// As [`Self::Auto`], but the part stays whole: over tolerance after its cuts, it is
-    /// rejected.
+    /// As `auto`, but the part stays whole: over tolerance after its cuts, it is rejected.
     Whole,
     /// Every chart of the file's texture layout (OBJ `vt`) is one part: its boundaries are the
     /// seams, as a garment's sewing pattern has them.
