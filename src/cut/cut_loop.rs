@@ -3,8 +3,6 @@
 
 use std::collections::BTreeSet;
 
-use glam::DVec3;
-
 use super::errors::CutError;
 use super::opening::{lay_user_seams, open_and_flatten};
 use super::options::{
@@ -13,7 +11,7 @@ use super::options::{
 };
 use super::result::{Cut, CutFigures, CutResult, CutStop, UncutPattern};
 use super::seam;
-use super::state::{CutState, polyline};
+use super::state::{CutState, PointKey, point_key, polyline};
 use super::trials::{Starts, best_cut_widening};
 use crate::flatten::{
     FastOptions, FlattenOptions, Flattened, Stiffness, flatten_from, overlap_free_flatten,
@@ -279,12 +277,11 @@ pub fn total_absolute_curvature(model: &FacetModel) -> f64 {
 /// a point of some cut (copies keep their original's position exactly; a smoothed cut's points
 /// are inserted vertices that have no input vertex of their own).
 fn cut_sides(state: &CutState, cuts: &[Cut]) -> Vec<usize> {
-    let key = |p: DVec3| p.to_array().map(f64::to_bits);
-    let on_cut: BTreeSet<[u64; 3]> = cuts
+    let on_cut: BTreeSet<PointKey> = cuts
         .iter()
-        .flat_map(|cut| cut.points.iter().map(|&p| key(p)))
+        .flat_map(|cut| cut.points.iter().map(|&p| point_key(p)))
         .collect();
-    let at_cut = |v: u32| on_cut.contains(&key(state.model.positions()[v as usize]));
+    let at_cut = |v: u32| on_cut.contains(&point_key(state.model.positions()[v as usize]));
     let model = &state.model;
     model
         .edges()

@@ -5,6 +5,7 @@ use std::collections::BTreeMap;
 
 use glam::DVec3;
 
+use super::state::{PointKey, point_key};
 use crate::cad::{FoldEdge, TriangleSoup};
 use crate::flatten::Stiffness;
 use crate::mesh::{FacetModel, NONE, rebuild};
@@ -25,10 +26,6 @@ pub(super) struct Piece {
     pub depth: usize,
 }
 
-/// A point by the bits of its coordinates: a section point is computed once, so both pieces it
-/// bounds hold it exactly.
-pub(super) type PointKey = [u64; 3];
-
 /// An edge by its ends' [`PointKey`]s, in order.
 pub(super) type SideKey = [PointKey; 2];
 
@@ -36,11 +33,6 @@ pub(super) type SideKey = [PointKey; 2];
 pub(super) fn side_length(key: &SideKey) -> f64 {
     let [a, b] = key.map(|p| DVec3::from_array(p.map(f64::from_bits)));
     a.distance(b)
-}
-
-/// The exact key of a point.
-fn point_key(p: DVec3) -> PointKey {
-    p.to_array().map(f64::to_bits)
 }
 
 impl Piece {

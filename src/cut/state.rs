@@ -13,6 +13,15 @@ use super::split::split_along_edges;
 use crate::flatten::Stiffness;
 use crate::mesh::{FacetModel, NONE};
 
+/// A point by the bits of its coordinates: copies of a vertex, and a section point on both
+/// pieces it bounds, hold their position exactly, so equal keys are the same point.
+pub(super) type PointKey = [u64; 3];
+
+/// The exact key of a point ([`PointKey`]).
+pub(super) fn point_key(p: DVec3) -> PointKey {
+    p.to_array().map(f64::to_bits)
+}
+
 /// The model being cut, with its stiffness and the way back to the input's vertices.
 #[derive(Debug, Clone)]
 pub(super) struct CutState {

@@ -5,7 +5,7 @@ use glam::DVec2;
 
 use super::{NestItem, Rotations};
 use crate::geometry::long_side_of_smallest_rectangle;
-use crate::pattern::{PatternError, PatternFile, part_contours, sample_closed, segment_length};
+use crate::pattern::{PatternError, PatternFile, closed_length, part_contours, sample_closed};
 
 /// Largest step when a fitted contour (lines and arcs) is sampled back into a polygon for the
 /// nester, in mm: arcs are followed within a fraction of the chord tolerance.
@@ -42,16 +42,8 @@ fn nest_item(
     let scale = drawing.units.millimetres();
     let contours = part_contours(drawing, &pattern.options)?;
     let to_millimetres = |ring: Vec<DVec2>| ring.into_iter().map(|p| p * scale).collect();
-    let length: f64 = (0..contours.outer.len())
-        .map(|k| {
-            let (vertex, next) = (
-                contours.outer[k],
-                contours.outer[(k + 1) % contours.outer.len()],
-            );
-            segment_length(vertex.point, next.point, vertex.bulge)
-        })
-        .sum();
-    let step = (OUTLINE_SAMPLE_STEP / scale).min(length / MIN_OUTLINE_SAMPLES);
+    let step =
+        (OUTLINE_SAMPLE_STEP / scale).min(closed_length(&contours.outer) / MIN_OUTLINE_SAMPLES);
     let outer: Vec<DVec2> = to_millimetres(sample_closed(&contours.outer, step));
     Ok(NestItem {
         name: drawing.name.clone(),

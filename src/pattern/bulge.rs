@@ -152,6 +152,17 @@ pub fn sample_segment(start: DVec2, end: DVec2, bulge: f64, max_step: f64) -> Ve
         .collect()
 }
 
+/// The length of a closed bulge polyline (its arcs along the arc).
+pub fn closed_length(vertices: &[BulgeVertex]) -> f64 {
+    let count = vertices.len();
+    (0..count)
+        .map(|index| {
+            let (vertex, next) = (vertices[index], vertices[(index + 1) % count]);
+            segment_length(vertex.point, next.point, vertex.bulge)
+        })
+        .sum()
+}
+
 /// Points along a closed bulge polyline, for drawing and measuring: every vertex, and points on
 /// arcs no further apart than `max_step`.
 pub fn sample_closed(vertices: &[BulgeVertex], max_step: f64) -> Vec<DVec2> {
@@ -257,6 +268,19 @@ mod tests {
         }
         // 2 acos(1 - 0.01 / 10) = 0.0894 rad per step: 36 steps over the half circle.
         assert_eq!(arc_points.len(), 36);
+    }
+
+    #[test]
+    fn a_closed_length_follows_the_arcs() {
+        let square = [(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0)]
+            .map(|(x, y)| BulgeVertex::straight(DVec2::new(x, y)));
+        assert!((closed_length(&square) - 8.0).abs() < 1e-12);
+        // Two half circles of radius 1: a full circle.
+        let circle = [(-1.0, 0.0), (1.0, 0.0)].map(|(x, y)| BulgeVertex {
+            bulge: 1.0,
+            ..BulgeVertex::straight(DVec2::new(x, y))
+        });
+        assert!((closed_length(&circle) - std::f64::consts::TAU).abs() < 1e-12);
     }
 
     #[test]

@@ -21,8 +21,9 @@ mod pattern_file;
 mod seam_allowance;
 
 pub use bulge::{
-    BulgeArc, BulgeVertex, STRAIGHT_BULGE, distance_to_line_segment, distance_to_segment,
-    polyline_bounds, sample_closed, sample_open, segment_bounds, segment_length,
+    BulgeArc, BulgeVertex, STRAIGHT_BULGE, closed_length, distance_to_line_segment,
+    distance_to_segment, polyline_bounds, sample_closed, sample_open, segment_bounds,
+    segment_length,
 };
 pub use contour::{
     DEFAULT_CHORD_TOLERANCE, DUPLICATE_FRACTION, MAX_ARC_SWEEP, MIN_SEGMENT_LENGTH_IN_TOLERANCES,
