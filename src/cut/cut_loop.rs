@@ -3,16 +3,17 @@
 
 use std::collections::BTreeSet;
 
+use super::coarse::{self, PLAN_ABOVE_TRIANGLES};
+use super::crest_cuts::{Cutting, Plan, cut_along_crest_lines};
 use super::errors::CutError;
 use super::opening::{lay_user_seams, open_and_flatten};
 use super::options::{
     CAP_CURVATURE, CUT_LOOP_ENERGY_TOLERANCE, CUTS_PER_CAP, CutConstraints, CutOptions,
-    DEFAULT_MAX_CUTS, EXTENSIONS_PER_CUT, MIN_RELEASE, STALLED_STEPS,
+    DEFAULT_MAX_CUTS,
 };
-use super::result::{Cut, CutFigures, CutResult, CutStop, UncutPattern};
+use super::result::{Cut, CutResult};
 use super::seam;
-use super::state::{CutState, PointKey, point_key, polyline};
-use super::trials::{Starts, best_cut_widening};
+use super::state::{CutState, PointKey, point_key};
 use crate::flatten::{
     FastOptions, FlattenOptions, Flattened, Stiffness, flatten_from, overlap_free_flatten,
 };
@@ -33,7 +34,9 @@ pub(super) fn converged_options(options: &FlattenOptions) -> FlattenOptions {
 }
 
 /// Opens the part with seams, flattens it and cuts it along crest lines until it is within
-/// tolerance; see the module documentation.
+/// tolerance; see the module documentation. A part of more than [`PLAN_ABOVE_TRIANGLES`]
+/// triangles plans its cuts on a coarse remesh first (docs/cutting.md, "Planning on a coarse
+/// remesh").
 pub fn cut_and_flatten(
     model: &FacetModel,
     stiffness: &Stiffness,
@@ -49,7 +52,7 @@ pub fn cut_and_flatten(
     };
     let mut user_seams = Vec::new();
     lay_user_seams(&mut state, constraints, &mut user_seams)?;
-    let (mut state, seams, mut flattened) =
+    let (state, seams, mut flattened) =
         open_and_flatten(&state, constraints, user_seams, flatten_options, progress)?;
     let max_cuts = options
         .max_cuts
@@ -63,110 +66,26 @@ pub fn cut_and_flatten(
         flattened = without_overlap(&state, flattened, &loop_options, None)?;
     }
     let flatten_options = &loop_options;
-    let mut cuts: Vec<Cut> = Vec::new();
-    let mut tips: Vec<u32> = Vec::new();
-    let mut uncut = None;
-    let mut payoff = Payoff::new(
-        (state.clone(), flattened.clone(), Vec::new()),
-        flattened.stats.energy,
-    );
-    let step_budget = max_cuts * (1 + EXTENSIONS_PER_CUT);
-    let mut reporting = false;
-    let mut steps = 0;
-    let stop = loop {
-        if flattened.stats.accuracy.within(flatten_options.tolerance) {
-            break CutStop::ToleranceMet;
-        }
-        if flatten_options.deadline.passed() {
-            break CutStop::TimeLimit;
-        }
-        let new_cut_allowed = cuts.len() < max_cuts;
-        if steps >= step_budget || (!new_cut_allowed && tips.is_empty()) {
-            break CutStop::CutBudget;
-        }
-        let blocked = state.blocked(&constraints.no_cut_regions);
-        let starts = Starts {
-            tips: &tips,
-            new_cut_allowed,
-            blocked: &blocked,
-        };
-        if !reporting {
-            progress.start("cut", step_budget as u64);
-            reporting = true;
-        }
-        let Some(improvement) =
-            best_cut_widening(&state, &flattened, flatten_options, options, &starts)?
-        else {
-            // Trials cut short by the deadline find nothing: that is the time limit's doing.
-            break if flatten_options.deadline.passed() {
-                CutStop::TimeLimit
-            } else if new_cut_allowed {
-                CutStop::NoBetterCut
-            } else {
-                CutStop::CutBudget
-            };
-        };
-        steps += 1;
-        progress.advance(steps as u64);
-        let line = &improvement.line;
-        // The line's vertices are those of the cut state (a straightened cut inserts vertices).
-        let points = polyline(&improvement.state.model, &line.vertices);
-        let vertices: Vec<u32> = line
-            .vertices
-            .iter()
-            .map(|&v| improvement.state.original_vertex[v as usize])
-            .collect();
-        let tip = line.vertices[line.vertices.len() - 1];
-        let after = CutFigures::of(&improvement.flattened);
-        match tips.iter().position(|&known| known == line.vertices[0]) {
-            Some(extended) => {
-                let cut = &mut cuts[extended];
-                cut.points.extend_from_slice(&points[1..]);
-                cut.vertices.extend_from_slice(&vertices[1..]);
-                cut.length += line.length;
-                cut.after = after;
-                tips[extended] = tip;
-            }
-            None => {
-                if cuts.is_empty() {
-                    uncut = Some(UncutPattern {
-                        model: state.model.clone(),
-                        stiffness: state.stiffness.clone(),
-                        flattened: flattened.clone(),
-                    });
-                }
-                cuts.push(Cut {
-                    points,
-                    vertices,
-                    length: line.length,
-                    before: CutFigures::of(&flattened),
-                    after,
-                });
-                tips.push(tip);
-            }
-        }
-        state = improvement.state;
-        flattened = improvement.flattened;
-        let snapshot = || (state.clone(), flattened.clone(), cuts.clone());
-        if payoff.record(flattened.stats.energy, snapshot) {
-            break CutStop::NoBetterCut;
-        }
+    let mut cutting = Cutting::uncut(state, flattened);
+    let plan = Plan {
+        max_cuts,
+        regions: &constraints.no_cut_regions,
+        flatten_options,
+        options,
     };
-    let overlap_ended =
-        payoff.snapshot().1.stats.accuracy.overlap && !flattened.stats.accuracy.overlap;
-    let within = flattened.stats.accuracy.within(flatten_options.tolerance);
-    if payoff.unpaid() && !within && !overlap_ended {
-        // The steps since the last that paid released less than MIN_RELEASE together and
-        // neither brought the part within tolerance nor ended an overlap: length for nothing,
-        // taken back.
-        (state, flattened, cuts) = payoff.into_snapshot();
-        if cuts.is_empty() {
-            uncut = None;
-        }
+    if planned_on_coarse_remesh(&cutting, &plan)
+        && let Some(planned) = coarse::plan_cuts(&cutting, &plan, progress)?
+    {
+        cutting = planned;
     }
-    if reporting {
-        progress.finish();
-    }
+    let (cutting, stop) = cut_along_crest_lines(cutting, &plan, "cut", progress)?;
+    let Cutting {
+        state,
+        mut flattened,
+        cuts,
+        uncut,
+        ..
+    } = cutting;
     if flattened.stats.accuracy.overlap {
         let tolerance = Some(flatten_options.tolerance);
         flattened = without_overlap(&state, flattened, flatten_options, tolerance)?;
@@ -185,50 +104,13 @@ pub fn cut_and_flatten(
     })
 }
 
-/// Which cut steps paid: the state after the last step that lowered the spring energy by at
-/// least [`MIN_RELEASE`] below the last such state's (the start counts as one), and the steps
-/// taken since.
-struct Payoff<T> {
-    snapshot: T,
-    energy: f64,
-    steps_since: usize,
-}
-
-impl<T> Payoff<T> {
-    /// The start: `snapshot` at `energy`.
-    fn new(snapshot: T, energy: f64) -> Self {
-        Self {
-            snapshot,
-            energy,
-            steps_since: 0,
-        }
-    }
-
-    /// Records a step that ended at `energy`; when it pays (with the steps since the last that
-    /// paid), `snapshot` is kept. True when the last [`STALLED_STEPS`] steps have not paid.
-    fn record(&mut self, energy: f64, snapshot: impl FnOnce() -> T) -> bool {
-        if energy <= (1.0 - MIN_RELEASE) * self.energy {
-            *self = Self::new(snapshot(), energy);
-            return false;
-        }
-        self.steps_since += 1;
-        self.steps_since >= STALLED_STEPS
-    }
-
-    /// True when steps were taken since the last that paid.
-    fn unpaid(&self) -> bool {
-        self.steps_since > 0
-    }
-
-    /// The state after the last step that paid.
-    fn snapshot(&self) -> &T {
-        &self.snapshot
-    }
-
-    /// The state after the last step that paid.
-    fn into_snapshot(self) -> T {
-        self.snapshot
-    }
+/// Whether the part's cuts are planned on a coarse remesh first: it is over tolerance, has more
+/// than [`PLAN_ABOVE_TRIANGLES`] triangles and may be cut.
+fn planned_on_coarse_remesh(cutting: &Cutting, plan: &Plan<'_>) -> bool {
+    let accuracy = &cutting.flattened.stats.accuracy;
+    plan.max_cuts > 0
+        && !accuracy.within(plan.flatten_options.tolerance)
+        && cutting.state.model.triangle_count() > PLAN_ABOVE_TRIANGLES
 }
 
 /// The part's pattern made again with its outline kept from crossing itself
@@ -290,42 +172,4 @@ fn cut_sides(state: &CutState, cuts: &[Cut]) -> Vec<usize> {
         .filter(|&(e, &[a, b])| model.is_boundary_edge(e) && at_cut(a) && at_cut(b))
         .map(|(e, _)| e)
         .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use crate::cut::cut_loop::*;
-
-    /// The step numbers a payoff keeps and whether it stalls, for a run of step energies from 100.
-    fn run(energies: &[f64]) -> (usize, bool) {
-        let mut payoff = Payoff::new(0, 100.0);
-        let mut stalled = false;
-        for (step, &energy) in energies.iter().enumerate() {
-            stalled = payoff.record(energy, || step + 1);
-            if stalled {
-                break;
-            }
-        }
-        (payoff.into_snapshot(), stalled)
-    }
-
-    #[test]
-    fn steps_that_release_little_one_by_one_pay_together() {
-        // 0.6 % and then 0.5 % more: together over 1 %, so the second step pays.
-        assert_eq!(run(&[99.4, 98.9]), (2, false));
-    }
-
-    #[test]
-    fn a_step_that_opens_the_way_pays_with_the_one_it_opens() {
-        // A short dart that releases nothing, then its extension that releases 40 %.
-        assert_eq!(run(&[100.2, 60.0]), (2, false));
-    }
-
-    #[test]
-    fn steps_that_do_not_pay_stall_the_loop_and_are_taken_back() {
-        let energies = [90.0, 89.9, 90.1, 89.5, 89.2, 50.0];
-        assert_eq!(STALLED_STEPS, 4);
-        // Step 1 paid; steps 2 to 5 release 0.9 % together: stalled, back to step 1.
-        assert_eq!(run(&energies), (1, true));
-    }
 }

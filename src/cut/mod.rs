@@ -23,7 +23,9 @@
 //! Cuts never run along or across a fold line (no vertex of a fold-line edge is crossed) nor
 //! through a no-cut region; a developable part within tolerance gets no cut.
 
+mod coarse;
 mod crest;
+mod crest_cuts;
 mod cut_graph;
 mod cut_loop;
 mod density;
@@ -41,6 +43,7 @@ mod state;
 pub mod straighten;
 mod trials;
 
+pub use coarse::{PLAN_ABOVE_TRIANGLES, PLAN_TRIANGLES};
 pub use crest::{DEFAULT_CANDIDATES, DEFAULT_DART_FLOOR};
 pub use cut_loop::{cut_and_flatten, default_cut_budget, total_absolute_curvature};
 pub use errors::CutError;

@@ -279,42 +279,72 @@ pub fn lay_polyline(
             points: points.len(),
         });
     }
-    let on_boundary = boundary_flags(model);
-    let snapped: Vec<u32> = points.iter().map(|&p| nearest_vertex(model, p)).collect();
-    let mut path = vec![snapped[0]];
-    for (i, pair) in snapped.windows(2).enumerate() {
-        let (from, to) = (pair[0], pair[1]);
-        if from == to {
-            continue;
-        }
-        let passable = |v: u32| {
-            v == to || (!blocked[v as usize] && !on_boundary[v as usize] && !path.contains(&v))
-        };
-        let (paths, _) = dijkstra(model, adjacency, &[from], passable, |v| v == to);
-        let stretch = paths.path_to(to).ok_or(CutError::SeamNotLaid {
-            seam,
-            from: i,
-            to: i + 1,
+    let snapped: Vec<u32> = points
+        .iter()
+        .map(|&p| nearest_vertex(model, p, |_| true).unwrap_or(0))
+        .collect();
+    let path =
+        join_vertices(model, adjacency, blocked, &snapped[..1], &snapped[1..]).map_err(|from| {
+            CutError::SeamNotLaid {
+                seam,
+                from,
+                to: from + 1,
+            }
         })?;
-        path.extend_from_slice(&stretch[1..]);
-    }
     if path.len() < 2 {
         return Err(CutError::SeamTooShort { seam, points: 1 });
     }
     Ok(path)
 }
 
-/// The vertex nearest to `point` (the lowest index among equals).
-fn nearest_vertex(model: &FacetModel, point: DVec3) -> u32 {
+/// Joins a path from one of the vertices `from` through the vertices `to`, in order, by shortest
+/// paths through interior, unblocked vertices not already on the path (the ends of each stretch
+/// may be on the boundary; a vertex equal to the one before is skipped): the vertex path, or the
+/// index of the first stretch that cannot be laid.
+pub fn join_vertices(
+    model: &FacetModel,
+    adjacency: &Adjacency,
+    blocked: &[bool],
+    from: &[u32],
+    to: &[u32],
+) -> Result<Vec<u32>, usize> {
+    let on_boundary = boundary_flags(model);
+    let mut path: Vec<u32> = Vec::new();
+    for (i, &target) in to.iter().enumerate() {
+        let sources = match path.last() {
+            Some(&last) => vec![last],
+            None => from.to_vec(),
+        };
+        if sources == [target] {
+            continue;
+        }
+        let passable = |v: u32| {
+            v == target || (!blocked[v as usize] && !on_boundary[v as usize] && !path.contains(&v))
+        };
+        let (paths, _) = dijkstra(model, adjacency, &sources, passable, |v| v == target);
+        let stretch = paths.path_to(target).ok_or(i)?;
+        let skip = usize::from(!path.is_empty());
+        path.extend_from_slice(&stretch[skip..]);
+    }
+    Ok(path)
+}
+
+/// The vertex nearest to `point` among those `eligible` (the lowest index among equals).
+pub fn nearest_vertex(
+    model: &FacetModel,
+    point: DVec3,
+    eligible: impl Fn(u32) -> bool,
+) -> Option<u32> {
     model
         .positions()
         .iter()
         .enumerate()
+        .filter(|&(v, _)| eligible(v as u32))
         .min_by(|(_, a), (_, b)| {
             a.distance_squared(point)
                 .total_cmp(&b.distance_squared(point))
         })
-        .map_or(0, |(v, _)| v as u32)
+        .map(|(v, _)| v as u32)
 }
 
 #[cfg(test)]

@@ -287,7 +287,7 @@ fn cut_candidate(
 }
 
 /// Whether a cut error only says that this line cannot be cut.
-fn uncuttable(error: &CutError) -> bool {
+pub(super) fn uncuttable(error: &CutError) -> bool {
     matches!(
         error,
         CutError::Disconnects

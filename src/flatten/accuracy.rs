@@ -15,6 +15,7 @@
 use glam::DVec2;
 use serde::Serialize;
 
+use crate::geometry::segments_intersect;
 use crate::mesh::FacetModel;
 
 /// Default permissible `E_S` and `E_C` (1 %, the paper's): the bound on the area and shape errors
@@ -175,49 +176,4 @@ fn any_segments_cross(segments: &[[u32; 2]], pattern: &[DVec2]) -> bool {
             })
         })
     })
-}
-
-/// True if closed segments `pq` and `rs` have a point in common.
-pub fn segments_intersect(p: DVec2, q: DVec2, r: DVec2, s: DVec2) -> bool {
-    let orientation = |a: DVec2, b: DVec2, c: DVec2| (b - a).perp_dot(c - a);
-    let on_segment = |a: DVec2, b: DVec2, c: DVec2| {
-        c.x >= a.x.min(b.x) && c.x <= a.x.max(b.x) && c.y >= a.y.min(b.y) && c.y <= a.y.max(b.y)
-    };
-    let (d1, d2) = (orientation(r, s, p), orientation(r, s, q));
-    let (d3, d4) = (orientation(p, q, r), orientation(p, q, s));
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
-        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
-    {
-        return true;
-    }
-    (d1 == 0.0 && on_segment(r, s, p))
-        || (d2 == 0.0 && on_segment(r, s, q))
-        || (d3 == 0.0 && on_segment(p, q, r))
-        || (d4 == 0.0 && on_segment(p, q, s))
-}
-
-#[cfg(test)]
-mod tests {
-    use crate::flatten::accuracy::*;
-
-    #[test]
-    fn crossing_and_disjoint_segments() {
-        let v = |x, y| DVec2::new(x, y);
-        assert!(segments_intersect(
-            v(0., 0.),
-            v(2., 2.),
-            v(0., 2.),
-            v(2., 0.)
-        ));
-        assert!(!segments_intersect(
-            v(0., 0.),
-            v(1., 0.),
-            v(0., 1.),
-            v(1., 1.)
-        ));
-        assert!(
-            segments_intersect(v(0., 0.), v(2., 0.), v(1., 0.), v(1., 1.)),
-            "touching counts"
-        );
-    }
 }
