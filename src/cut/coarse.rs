@@ -21,7 +21,8 @@
 //! Transfer: each planned cut (a 3D polyline on the remesh) is laid on the part: its points snap
 //! to the nearest vertices (the first to the boundary, or an earlier cut's side, when it started
 //! there), joined by shortest edge paths, and the path is cut along its geodesic straightening
-//! ([`smooth_cut`]), as the loop cuts. The part cut along every planned cut is flattened afresh,
+//! ([`smooth_cut`]), as the loop cuts; a cut whose straightening would touch the boundary, or
+//! that starts on a cut left out, is left out. The part cut along the planned cuts is flattened afresh,
 //! as a part is first flattened. The cut loop then goes on from there if it is still over
 //! tolerance: extensions from the planned cuts' tips, or new cuts.
 
@@ -350,8 +351,11 @@ fn barycentric(corners: [DVec2; 3], p: DVec2) -> Option<[f64; 3]> {
 /// The part cut along the planned cuts (3D polylines on the remesh of spacing `spacing`) and
 /// flattened afresh, as a part is first flattened (warm-started from the uncut pattern, whose cut
 /// sides lie on each other, the solver stalls far from the minimum: the 20k hemisphere with 12
-/// planned cuts stopped at 5 % `E_S`, overlapping); `None` when a cut cannot be laid or the
-/// pattern is not valid with a lower error than the part's.
+/// planned cuts stopped at 5 % `E_S`, overlapping); `None` when no cut can be laid or the
+/// pattern is not valid with a lower error than the part's. A planned cut that cannot be laid
+/// (its straightening would touch the boundary, or it starts on one that was not laid) is left
+/// out: the loop goes on from the others (the FreeCAD quarter torus: 4 of 5 laid, within
+/// tolerance).
 fn lay_planned_cuts(
     cutting: &Cutting,
     planned: &[Cut],
@@ -362,11 +366,13 @@ fn lay_planned_cuts(
     let mut state = cutting.state.clone();
     let mut paths = Vec::new();
     for cut in planned {
-        let Some((next, path)) = lay_cut(&state, &cut.points, spacing, plan.regions)? else {
-            return Ok(None);
-        };
-        state = next;
-        paths.push(path);
+        if let Some((next, path)) = lay_cut(&state, &cut.points, spacing, plan.regions)? {
+            state = next;
+            paths.push(path);
+        }
+    }
+    if paths.is_empty() {
+        return Ok(None);
     }
     let flattened = flatten(
         &state.model,
@@ -435,10 +441,11 @@ fn lay_cut(
 }
 
 /// An edge path of `model` along the polyline `points`: its points snapped to their nearest
-/// vertices, joined by shortest paths. A polyline that starts within half the remesh `spacing`
-/// of the boundary (the outline or an earlier cut's side) starts there, from every copy of the
-/// nearest boundary vertex, so that it enters the side it came from; `None` when the path
-/// cannot be laid or passes a vertex twice.
+/// vertices, joined by shortest paths. It starts at the boundary (the outline or an earlier
+/// cut's side), from every copy of the boundary vertex nearest to the polyline's first point, so
+/// that it enters the side it came from; `None` when no boundary vertex is within half the
+/// remesh `spacing` of that point (the plan's cut started on a cut that was not laid, or inside),
+/// or the path cannot be laid or passes a vertex twice.
 fn edge_path(
     model: &FacetModel,
     blocked: &[bool],
@@ -448,21 +455,14 @@ fn edge_path(
     let on_boundary = boundary_flags(model);
     let open = |v: u32| !blocked[v as usize] && !on_boundary[v as usize];
     let (&first, rest) = points.split_first()?;
-    let on_outline = nearest_vertex(model, first, |v| {
+    let start = nearest_vertex(model, first, |v| {
         on_boundary[v as usize] && !blocked[v as usize]
     })
-    .filter(|&v| model.positions()[v as usize].distance(first) <= 0.5 * spacing);
-    let sources: Vec<u32> = match on_outline {
-        Some(v) => {
-            let key = point_key(model.positions()[v as usize]);
-            (0..model.vertex_count() as u32)
-                .filter(|&w| {
-                    on_boundary[w as usize] && point_key(model.positions()[w as usize]) == key
-                })
-                .collect()
-        }
-        None => vec![nearest_vertex(model, first, open)?],
-    };
+    .filter(|&v| model.positions()[v as usize].distance(first) <= 0.5 * spacing)?;
+    let key = point_key(model.positions()[start as usize]);
+    let sources: Vec<u32> = (0..model.vertex_count() as u32)
+        .filter(|&w| on_boundary[w as usize] && point_key(model.positions()[w as usize]) == key)
+        .collect();
     let mut snapped: Vec<u32> = Vec::new();
     for &point in rest {
         let v = nearest_vertex(model, point, open)?;
