@@ -155,7 +155,9 @@ pub(super) fn cut_along_crest_lines(
         state = improvement.state;
         flattened = improvement.flattened;
         let snapshot = || (state.clone(), flattened.clone(), cuts.clone(), tips.clone());
-        if payoff.record(flattened.stats.energy, snapshot) {
+        let stalled = payoff.record(flattened.stats.energy, snapshot);
+        // A step that brings the part within tolerance ends the loop as such, paid or not.
+        if stalled && !flattened.stats.accuracy.within(flatten_options.tolerance) {
             break CutStop::NoBetterCut;
         }
     };

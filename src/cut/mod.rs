@@ -17,7 +17,9 @@
 //!    are flattened on (`best_cut`, docs/cutting.md); among those that lower the error (`max(E_S, E_C)`, an
 //!    overlapping pattern counting as worse than any other) the shortest that meets the tolerance
 //!    is kept, or else the one of largest measured gain `ΔE / L^LENGTH_EXPONENT`; a line from the
-//!    inner end of an earlier cut extends that cut;
+//!    inner end of an earlier cut extends that cut (`crest_cuts`); a part of more than
+//!    [`PLAN_ABOVE_TRIANGLES`] triangles plans its cuts on a coarse remesh of its pattern first
+//!    and lays them on the part (`coarse`), the loop going on from there;
 //! 4. the cut model, its pattern and every cut with its figures before and after come back.
 //!
 //! Cuts never run along or across a fold line (no vertex of a fold-line edge is crossed) nor
