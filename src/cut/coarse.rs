@@ -43,7 +43,7 @@ use super::smooth_cut::{Straightened, smooth_cut};
 use super::state::{CutState, point_key, polyline};
 use super::trials::{is_better, uncuttable};
 use crate::flatten::{Stiffness, flatten, flatten_from};
-use crate::geometry::{distance_to_segment, inside, segments_intersect};
+use crate::geometry::{barycentric, distance_to_segment, inside, segments_intersect};
 use crate::mesh::{FacetModel, NONE, TriangleSoup, validate};
 use crate::progress::Progress;
 
@@ -300,7 +300,7 @@ impl<'a> PatternLocator<'a> {
         let model = &self.state.model;
         let holding = self.buckets[y * self.columns + x].iter().find_map(|&f| {
             let t = model.triangles()[f as usize];
-            let weights = barycentric(t.map(|v| self.pattern[v as usize]), p)?;
+            let weights = weights_inside(t.map(|v| self.pattern[v as usize]), p)?;
             Some(
                 (0..3)
                     .map(|k| model.positions()[t[k] as usize] * weights[k])
@@ -335,17 +335,9 @@ impl<'a> PatternLocator<'a> {
 }
 
 /// Barycentric weights of `p` in the triangle `corners`, when it lies in it (within rounding).
-fn barycentric(corners: [DVec2; 3], p: DVec2) -> Option<[f64; 3]> {
-    let [a, b, c] = corners;
-    let area = (b - a).perp_dot(c - a);
-    if area.abs() <= f64::MIN_POSITIVE {
-        return None;
-    }
-    let wa = (b - p).perp_dot(c - p) / area;
-    let wb = (c - p).perp_dot(a - p) / area;
-    let wc = 1.0 - wa - wb;
-    let slack = -1e-12;
-    (wa >= slack && wb >= slack && wc >= slack).then_some([wa, wb, wc])
+fn weights_inside(corners: [DVec2; 3], p: DVec2) -> Option<[f64; 3]> {
+    let weights = barycentric(corners, p)?;
+    weights.iter().all(|&w| w >= -1e-12).then_some(weights)
 }
 
 /// The part cut along the planned cuts (3D polylines on the remesh of spacing `spacing`) and
@@ -571,10 +563,10 @@ mod tests {
     }
 
     #[test]
-    fn barycentric_weights_rebuild_the_point() {
+    fn weights_inside_a_triangle_rebuild_the_point() {
         let corners = [DVec2::ZERO, DVec2::X, DVec2::Y];
-        let weights = barycentric(corners, DVec2::new(0.25, 0.5)).expect("inside");
+        let weights = weights_inside(corners, DVec2::new(0.25, 0.5)).expect("inside");
         assert!((weights[0] - 0.25).abs() < 1e-12 && (weights[2] - 0.5).abs() < 1e-12);
-        assert!(barycentric(corners, DVec2::new(1.0, 1.0)).is_none());
+        assert!(weights_inside(corners, DVec2::new(1.0, 1.0)).is_none());
     }
 }

@@ -193,6 +193,18 @@ pub fn refined_grid_search<T: Copy>(
     best
 }
 
+/// Barycentric coordinates of `point` in the triangle `corners` (None when degenerate).
+pub fn barycentric(corners: [DVec2; 3], point: DVec2) -> Option<[f64; 3]> {
+    let [a, b, c] = corners;
+    let area = (b - a).perp_dot(c - a);
+    if area.abs() <= f64::MIN_POSITIVE {
+        return None;
+    }
+    let wb = (point - a).perp_dot(c - a) / area;
+    let wc = (b - a).perp_dot(point - a) / area;
+    Some([1.0 - wb - wc, wb, wc])
+}
+
 #[cfg(test)]
 mod tests {
     use crate::geometry::plane::*;

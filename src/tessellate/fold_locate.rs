@@ -7,6 +7,7 @@ use glam::{DVec2, DVec3};
 use super::face_mesh::FaceMesh;
 use super::options::TessellateError;
 use crate::cad::SurfaceDomain;
+use crate::geometry::barycentric;
 use crate::geometry::tolerance::{CORNER_TOLERANCE, INSIDE_TOLERANCE};
 
 /// Samples of a polyline segment when its length on the mesh is measured.
@@ -55,18 +56,6 @@ pub fn corner_domains(mesh: &FaceMesh, domain: &SurfaceDomain) -> Vec<[DVec2; 3]
             unwrapped.map(|(u, v)| DVec2::new(u.unwrap_or(mean) + shift, v))
         })
         .collect()
-}
-
-/// Barycentric coordinates of `point` in the triangle `corners` (None when degenerate).
-fn barycentric(corners: [DVec2; 3], point: DVec2) -> Option<[f64; 3]> {
-    let [a, b, c] = corners;
-    let area = (b - a).perp_dot(c - a);
-    if area.abs() <= f64::MIN_POSITIVE {
-        return None;
-    }
-    let wb = (point - a).perp_dot(c - a) / area;
-    let wc = (b - a).perp_dot(point - a) / area;
-    Some([1.0 - wb - wc, wb, wc])
 }
 
 /// The triangle of `candidates` that contains `point` best (largest smallest weight).
