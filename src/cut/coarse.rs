@@ -123,6 +123,10 @@ fn coarse_remesh(state: &CutState, pattern: &[DVec2]) -> Option<Remesh> {
         .iter()
         .map(|p| cdt.insert(Point2::new(p.x, p.y)).ok())
         .collect::<Option<_>>()?;
+    // Two outline points at one place (spade keeps one vertex) cannot bound the remesh.
+    if cdt.num_vertices() != handles.len() {
+        return None;
+    }
     for (k, &from) in handles.iter().enumerate() {
         let to = handles[(k + 1) % handles.len()];
         if cdt.try_add_constraint(from, to).is_empty() {
