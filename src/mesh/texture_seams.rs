@@ -25,7 +25,7 @@ pub enum SeamSource {
     /// seams, as a garment's sewing pattern has them.
     FromUv,
     /// The cut stage makes no crest-line cut: a part that does not flatten within tolerance
-    /// is cut into pieces by plane sections until each does (see `crate::cut::cut_into_pieces`).
+    /// is cut into pieces by plane sections until each does (docs/cutting.md, "Pieces").
     Pieces,
 }
 
