@@ -43,7 +43,9 @@ use super::smooth_cut::{Straightened, smooth_cut};
 use super::state::{CutState, point_key, polyline};
 use super::trials::{is_better, uncuttable};
 use crate::flatten::{Stiffness, flatten, flatten_from};
-use crate::geometry::{barycentric, distance_to_segment, inside, segments_intersect};
+use crate::geometry::{
+    barycentric, distance_to_segment, inside, segment_fraction, segments_intersect,
+};
 use crate::mesh::{FacetModel, NONE, TriangleSoup, validate};
 use crate::progress::Progress;
 
@@ -326,13 +328,7 @@ impl<'a> PatternLocator<'a> {
                 distance(a, b).total_cmp(&distance(c, d))
             })
             .unwrap_or((self.outline[0], self.outline[0]));
-        let (pa, pb) = (self.pattern[a as usize], self.pattern[b as usize]);
-        let length_squared = pa.distance_squared(pb);
-        let t = if length_squared > 0.0 {
-            ((p - pa).dot(pb - pa) / length_squared).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
+        let t = segment_fraction(p, self.pattern[a as usize], self.pattern[b as usize]);
         let positions = self.state.model.positions();
         positions[a as usize].lerp(positions[b as usize], t)
     }

@@ -3,16 +3,22 @@
 
 use glam::{DVec2, DVec3};
 
-/// Distance from `point` to the straight segment from `start` to `end` in the plane. A segment
-/// whose squared length is at most `f64::MIN_POSITIVE` is measured as the point `start`.
-pub fn distance_to_segment(point: DVec2, start: DVec2, end: DVec2) -> f64 {
+/// Where the projection of `point` on the line through `start` and `end` falls, clamped to the
+/// segment: 0 at `start`, 1 at `end`. A segment whose squared length is at most
+/// `f64::MIN_POSITIVE` gives 0.
+pub fn segment_fraction(point: DVec2, start: DVec2, end: DVec2) -> f64 {
     let direction = end - start;
     let length_squared = direction.length_squared();
     if length_squared <= f64::MIN_POSITIVE {
-        return point.distance(start);
+        return 0.0;
     }
-    let t = ((point - start).dot(direction) / length_squared).clamp(0.0, 1.0);
-    point.distance(start + direction * t)
+    ((point - start).dot(direction) / length_squared).clamp(0.0, 1.0)
+}
+
+/// Distance from `point` to the straight segment from `start` to `end` in the plane. A segment
+/// whose squared length is at most `f64::MIN_POSITIVE` is measured as the point `start`.
+pub fn distance_to_segment(point: DVec2, start: DVec2, end: DVec2) -> f64 {
+    point.distance(start.lerp(end, segment_fraction(point, start, end)))
 }
 
 /// Distance from `point` to the straight segment from `start` to `end` in space. Only a segment

@@ -17,6 +17,7 @@ use glam::DVec2;
 
 use super::barrier::Barrier;
 use crate::flatten::springs::SpringSystem;
+use crate::geometry::segment_fraction;
 use crate::mesh::FacetModel;
 
 /// The reach of the boundary barrier, relative to the mean boundary edge length.
@@ -218,12 +219,7 @@ fn overlapping_boxes(first: &[(DVec2, DVec2)], second: &[(DVec2, DVec2)]) -> Vec
 /// The distance from `p` to the segment `ab` and its gradient with respect to `p`, `a` and `b`.
 pub fn point_segment_distance(p: DVec2, a: DVec2, b: DVec2) -> (f64, [DVec2; 3]) {
     let side = b - a;
-    let squared = side.length_squared();
-    let t = if squared > 0.0 {
-        ((p - a).dot(side) / squared).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
+    let t = segment_fraction(p, a, b);
     let offset = p - (a + side * t);
     let distance = offset.length();
     let normal = if distance > 0.0 {
