@@ -16,6 +16,7 @@ use super::seam;
 use super::state::{CutState, PointKey, point_key};
 use crate::flatten::{
     FastOptions, FlattenOptions, Flattened, Stiffness, flatten_from, overlap_free_flatten,
+    with_squeezed_triangles_opened,
 };
 use crate::mesh::FacetModel;
 use crate::progress::Progress;
@@ -90,6 +91,8 @@ pub fn cut_and_flatten(
         let tolerance = Some(flatten_options.tolerance);
         flattened = without_overlap(&state, flattened, flatten_options, tolerance)?;
     }
+    let flattened =
+        with_squeezed_triangles_opened(&state.model, &state.stiffness, flattened, flatten_options);
     let cut_edges = cut_sides(&state, &cuts);
     Ok(CutResult {
         cut_edges,

@@ -37,7 +37,9 @@ use super::piece::{Piece, SideKey, side_length};
 use super::result::{CutResult, CutStop, Seam};
 use super::seam::{SeamKind, angle_deficits, genus};
 use super::state::CutState;
-use crate::flatten::{FlattenOptions, Stiffness, flatten_from, flatten_unrepaired};
+use crate::flatten::{
+    FlattenOptions, Stiffness, flatten_from, flatten_unrepaired, with_squeezed_triangles_opened,
+};
 use crate::mesh::{
     EdgeOrigin, FacetModel, NONE, Plane, SectionPiece, chain_edges, principal_axes, section,
 };
@@ -304,7 +306,12 @@ fn flatten_opened(
             && !converged.stats.accuracy.overlap
             && converged.stats.energy < result.flattened.stats.energy;
         if better {
-            result.flattened = converged;
+            result.flattened = with_squeezed_triangles_opened(
+                &result.model,
+                &result.stiffness,
+                converged,
+                options,
+            );
         }
     }
     Ok(result)

@@ -7,7 +7,7 @@
 //!   length unless bend allowance set another).
 //! - Maximum edge strain `max |L' − L| / L`.
 //! - Flipped triangles: signed flat area not positive (the model's orientation is counter-
-//!   clockwise).
+//!   clockwise), or degenerate: at most [`DEGENERATE_AREA_RATIO`] of the 3D area.
 //! - Self-overlap: a flipped triangle, or two boundary segments that cross.
 //!
 //! All in absolute units: the pattern is never rescaled before measuring.
@@ -40,7 +40,7 @@ pub struct Accuracy {
 impl Accuracy {
     /// Measures a pattern; `pattern[v]` is the flat position of the model's vertex `v`.
     pub fn measure(model: &FacetModel, pattern: &[DVec2]) -> Self {
-        let flipped = flipped_triangles(model, pattern);
+        let flipped = compressed_triangles(model, pattern, DEGENERATE_AREA_RATIO);
         Self {
             area_error: area_error(model, pattern),
             shape_error: shape_error(model, pattern),
@@ -93,6 +93,24 @@ pub fn max_strain(model: &FacetModel, pattern: &[DVec2]) -> f64 {
             (pattern[a as usize].distance(pattern[b as usize]) - rest).abs() / rest
         })
         .fold(0.0, f64::max)
+}
+
+/// A flat triangle whose signed area is at most this fraction of its 3D area is degenerate: a
+/// sliver that no longer has a shape (the independent metrics' definition, `|A'| < 1e-9 A`).
+pub const DEGENERATE_AREA_RATIO: f64 = 1e-9;
+
+/// Number of triangles whose signed flat area is at most `ratio` times their 3D area (with
+/// `ratio` = [`DEGENERATE_AREA_RATIO`]: the flipped and the degenerate ones).
+pub fn compressed_triangles(model: &FacetModel, pattern: &[DVec2], ratio: f64) -> usize {
+    model
+        .triangles()
+        .iter()
+        .enumerate()
+        .filter(|&(f, t)| {
+            let [a, b, c] = t.map(|v| pattern[v as usize]);
+            signed_area(a, b, c) <= ratio * model.triangle_area(f)
+        })
+        .count()
 }
 
 /// Number of triangles with non-positive signed flat area.

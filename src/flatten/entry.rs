@@ -5,13 +5,15 @@ use std::time::Instant;
 
 use glam::DVec2;
 
-use super::accuracy::{Accuracy, flipped_triangles};
+use super::accuracy::{Accuracy, boundary_self_intersects, flipped_triangles, signed_area};
 use super::energy_release::{EnergyRelease, ReleaseOutcome, ReleaseParameters, StopReason};
 use super::errors::FlattenError;
 use super::fast::{FastOptions, fast_solve};
 use super::flattened::{FlattenStats, Flattened};
 use super::init_flatten::{InitRelease, NEIGHBOURHOOD_SWEEPS, init_flatten};
-use super::injective::{Outline, flip_free_flatten};
+use super::injective::{
+    FlipFreeSettings, OPENING_BARRIER, Outline, flip_free_flatten, flip_free_solve_moving,
+};
 use super::options::{FlattenOptions, Solver};
 use super::orient::move_to_origin;
 use super::springs::SpringSystem;
@@ -41,6 +43,12 @@ pub fn flatten_unrepaired(
 ) -> Result<Flattened, FlattenError> {
     flatten_cold(model, stiffness, options, progress, Repair::None)
 }
+
+/// Vertices this many rings around a squeezed triangle move when it is opened
+/// ([`open_squeezed_triangles`]).
+pub const OPENING_RINGS: usize = 3;
+/// Newton iterations at most of opening squeezed triangles ([`open_squeezed_triangles`]).
+pub const OPENING_ITERATIONS: usize = 50;
 
 /// Whether a fast-solver pattern with flipped triangles is made again without any.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -247,13 +255,126 @@ fn minimise(
     )
 }
 
+/// A finished pattern with its squeezed triangles opened ([`open_squeezed_triangles`]), its
+/// figures measured again. The solvers' patterns can hold triangles squeezed to slivers (they
+/// keep triangles from flipping, not from collapsing), which leave a notch in the outline and
+/// are degenerate at worst; the cut stage opens its final patterns. The opened pattern is kept
+/// unless it leaves the tolerance (`options.tolerance`) that the pattern met.
+pub fn with_squeezed_triangles_opened(
+    model: &FacetModel,
+    stiffness: &Stiffness,
+    flattened: Flattened,
+    options: &FlattenOptions,
+) -> Flattened {
+    let springs = SpringSystem::new(model, stiffness.factors(), options.spring_constant);
+    let mut positions = flattened.positions.clone();
+    let iterations = open_squeezed_triangles(model, &springs, &mut positions, options);
+    if iterations == 0 {
+        return flattened;
+    }
+    move_to_origin(&mut positions);
+    let accuracy = Accuracy::measure(model, &positions);
+    if flattened.stats.accuracy.within(options.tolerance) && !accuracy.within(options.tolerance) {
+        return flattened;
+    }
+    let stats = FlattenStats {
+        accuracy,
+        energy: springs.energy(&positions),
+        iterations: flattened.stats.iterations + iterations,
+        ..flattened.stats
+    };
+    Flattened { positions, stats }
+}
+
+/// Opens the triangles of a pattern without flipped triangles that are squeezed below the
+/// [`OPENING_BARRIER`]'s threshold: the fast solver keeps triangles from flipping, not from
+/// collapsing into slivers, which it approaches as closely as rounding allows where the springs
+/// hardly resist (an obtuse boundary triangle whose corner moves onto its opposite side), and the
+/// flip-free flattening's own barrier is weak. The spring energy plus the opening barrier is
+/// minimised by the flip-free solver moving only the vertices within [`OPENING_RINGS`] rings of
+/// the squeezed triangles (the rest of the pattern, which the solvers settled, stays), with the
+/// outline kept from crossing itself when it does not already. Returns the Newton iterations
+/// taken; the pattern is left as it is when it has a flipped triangle or none squeezed, or the
+/// solver cannot run.
+fn open_squeezed_triangles(
+    model: &FacetModel,
+    springs: &SpringSystem,
+    positions: &mut [DVec2],
+    options: &FlattenOptions,
+) -> usize {
+    let squeezed = squeezed_triangles(model, positions, OPENING_BARRIER.threshold);
+    if squeezed.is_empty() || flipped_triangles(model, positions) > 0 {
+        return 0;
+    }
+    let outline = if boundary_self_intersects(model, positions) {
+        Outline::Free
+    } else {
+        Outline::Kept
+    };
+    let moving = near_triangles(model, &squeezed, OPENING_RINGS);
+    let mut opened = positions.to_vec();
+    let settings = FlipFreeSettings {
+        barrier: OPENING_BARRIER,
+        max_iterations: OPENING_ITERATIONS,
+        deadline: options.deadline,
+        outline,
+    };
+    match flip_free_solve_moving(model, springs, &mut opened, &moving, settings) {
+        Ok(outcome) => {
+            positions.copy_from_slice(&opened);
+            outcome.iterations
+        }
+        Err(_) => 0,
+    }
+}
+
+/// The pattern's triangles whose signed area is below `ratio` times their 3D area.
+fn squeezed_triangles(model: &FacetModel, positions: &[DVec2], ratio: f64) -> Vec<usize> {
+    (model.triangles().iter().enumerate())
+        .filter(|&(f, t)| {
+            let [a, b, c] = t.map(|v| positions[v as usize]);
+            signed_area(a, b, c) < ratio * model.triangle_area(f)
+        })
+        .map(|(f, _)| f)
+        .collect()
+}
+
+/// Per vertex, whether it is a corner of one of `triangles` or within `rings` rings of one.
+fn near_triangles(model: &FacetModel, triangles: &[usize], rings: usize) -> Vec<bool> {
+    let mut near = vec![false; model.vertex_count()];
+    let mut front: Vec<u32> = triangles
+        .iter()
+        .flat_map(|&f| model.triangles()[f])
+        .collect();
+    for &v in &front {
+        near[v as usize] = true;
+    }
+    for _ in 0..rings {
+        let mut next = Vec::new();
+        for v in front {
+            for &f in model.vertex_faces(v) {
+                for w in model.triangles()[f as usize] {
+                    if !near[w as usize] {
+                        near[w as usize] = true;
+                        next.push(w);
+                    }
+                }
+            }
+        }
+        front = next;
+    }
+    near
+}
+
 #[cfg(test)]
 mod tests {
     use glam::{DVec2, DVec3};
 
     use crate::cad::TriangleSoup;
-    use crate::flatten::accuracy::Accuracy;
-    use crate::flatten::entry::{flatten, overlap_free_flatten};
+    use crate::flatten::accuracy::{Accuracy, compressed_triangles};
+    use crate::flatten::energy_release::StopReason;
+    use crate::flatten::entry::{flatten, overlap_free_flatten, with_squeezed_triangles_opened};
+    use crate::flatten::flattened::{FlattenStats, Flattened};
     use crate::flatten::options::{FlattenOptions, Solver};
     use crate::flatten::samples::{deep_bowl, sample};
     use crate::flatten::stiffness::Stiffness;
@@ -362,5 +483,81 @@ mod tests {
         let recomputed = Accuracy::measure(&model, &kept.positions);
         assert_eq!(recomputed, kept.stats.accuracy);
         assert!(kept.stats.accuracy.area_error < 0.5, "{:?}", kept.stats);
+    }
+
+    /// A flat 5 × 5 grid of unit squares (each split along its rising diagonal) and its exact
+    /// development, but for the bottom edge's vertex at x = 2, moved up to `1 − squeeze`: its two
+    /// triangles that reach the vertex above are squeezed to `squeeze` of their area, still
+    /// positively oriented.
+    fn grid_with_a_squeezed_corner(squeeze: f64) -> (FacetModel, Vec<DVec2>) {
+        let index = |i: u32, j: u32| j * 6 + i;
+        let positions = (0..6)
+            .flat_map(|j| (0..6).map(move |i| DVec3::new(f64::from(i), f64::from(j), 0.0)))
+            .collect();
+        let triangles = (0..5)
+            .flat_map(|j| {
+                (0..5).flat_map(move |i| {
+                    let [a, b, c, d] = [
+                        index(i, j),
+                        index(i + 1, j),
+                        index(i + 1, j + 1),
+                        index(i, j + 1),
+                    ];
+                    [[a, b, c], [a, c, d]]
+                })
+            })
+            .collect();
+        let model = validate(&TriangleSoup::new(positions, triangles))
+            .expect("valid")
+            .components
+            .remove(0);
+        let mut pattern: Vec<DVec2> = model.positions().iter().map(|p| p.truncate()).collect();
+        let moved = model
+            .positions()
+            .iter()
+            .position(|p| *p == DVec3::new(2.0, 0.0, 0.0))
+            .expect("the vertex");
+        pattern[moved].y = 1.0 - squeeze;
+        (model, pattern)
+    }
+
+    #[test]
+    fn squeezed_triangles_are_opened_back_to_the_development() {
+        let (model, pattern) = grid_with_a_squeezed_corner(1e-7);
+        let stiffness = Stiffness::uniform(&model);
+        let before = Accuracy::measure(&model, &pattern);
+        assert_eq!(before.flipped, 0, "squeezed, not flipped");
+        assert_eq!(compressed_triangles(&model, &pattern, 1e-6), 2);
+        let options = FlattenOptions::default();
+        let squeezed = Flattened {
+            positions: pattern,
+            stats: FlattenStats {
+                accuracy: before,
+                initial_accuracy: before,
+                energy: 0.0,
+                iterations: 0,
+                stop_reason: StopReason::Converged,
+                seconds: 0.0,
+            },
+        };
+        let opened = with_squeezed_triangles_opened(&model, &stiffness, squeezed, &options);
+        assert_eq!(compressed_triangles(&model, &opened.positions, 0.45), 0);
+        let recomputed = Accuracy::measure(&model, &opened.positions);
+        assert_eq!(recomputed, opened.stats.accuracy);
+        assert!(recomputed.area_error < 1e-3, "{recomputed:?}");
+        assert!(
+            recomputed.area_error < before.area_error / 10.0,
+            "{before:?}"
+        );
+    }
+
+    #[test]
+    fn a_degenerate_triangle_counts_as_flipped() {
+        let (model, pattern) = grid_with_a_squeezed_corner(1e-12);
+        let accuracy = Accuracy::measure(&model, &pattern);
+        assert_eq!(accuracy.flipped, 2);
+        assert!(accuracy.overlap && !accuracy.within(0.5));
+        let (model, pattern) = grid_with_a_squeezed_corner(1e-8);
+        assert_eq!(Accuracy::measure(&model, &pattern).flipped, 0);
     }
 }

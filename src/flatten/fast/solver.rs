@@ -45,7 +45,14 @@ pub struct FastSolver<'a> {
     /// spring's second end.
     incident: Vec<u32>,
     mean_rest_length: f64,
+    /// Per triangle, [`SLIVER_RATIO`] times its 3D area.
+    sliver_areas: Vec<f64>,
 }
+
+/// A triangle above this fraction of its 3D area is never squeezed below it: the springs hardly
+/// resist a sliver (an obtuse triangle whose corner moves onto its opposite side stretches one
+/// edge by a few per cent), and one squeezed on toward zero area is degenerate.
+pub const SLIVER_RATIO: f64 = 0.01;
 
 /// Flag in [`FastSolver::incident`] for the spring's second end.
 const SECOND_END: u32 = 1 << 31;
@@ -68,6 +75,9 @@ impl<'a> FastSolver<'a> {
             incident_offsets,
             incident,
             mean_rest_length: total / springs.len().max(1) as f64,
+            sliver_areas: (0..model.triangle_count())
+                .map(|f| SLIVER_RATIO * model.triangle_area(f))
+                .collect(),
         })
     }
 
@@ -81,7 +91,7 @@ impl<'a> FastSolver<'a> {
         let mut targets = vec![DVec2::ZERO; self.springs.len()];
         let mut energy = self.local_step(positions, &mut targets);
         let initial_energy = energy;
-        let mut positive = self.positive_triangles(positions);
+        let mut floors = self.area_floors(positions);
         let mut plain = self.global_step(&targets, positions[HELD_VERTEX]);
         let mut anderson = Anderson::new(self.options.anderson_depth, positions.len());
         anderson.push(positions, &plain);
@@ -100,7 +110,7 @@ impl<'a> FastSolver<'a> {
                 return self.outcome(iteration, StopReason::TimeLimit, initial_energy, energy);
             }
             let extrapolated = anderson.extrapolate(&plain, &mut candidate);
-            let accelerated_energy = (extrapolated && self.admissible(&candidate, &positive))
+            let accelerated_energy = (extrapolated && self.admissible(&candidate, &floors))
                 .then(|| self.local_step(&candidate, &mut candidate_targets));
             let candidate_energy = match accelerated_energy {
                 Some(accelerated) if accelerated < energy => accelerated,
@@ -111,7 +121,7 @@ impl<'a> FastSolver<'a> {
                     let step = PlainStep {
                         positions,
                         plain: &plain,
-                        positive: &positive,
+                        floors: &floors,
                         energy,
                     };
                     match self.plain_step(step, &mut candidate, &mut candidate_targets) {
@@ -126,7 +136,7 @@ impl<'a> FastSolver<'a> {
             std::mem::swap(&mut targets, &mut candidate_targets);
             energy = candidate_energy;
             history.push(energy);
-            positive = self.positive_triangles(positions);
+            floors = self.area_floors(positions);
             plain = self.global_step(&targets, positions[HELD_VERTEX]);
             anderson.push(positions, &plain);
         }
@@ -210,28 +220,39 @@ impl<'a> FastSolver<'a> {
         solved
     }
 
-    /// Whether each triangle is positively oriented at `positions`.
-    fn positive_triangles(&self, positions: &[DVec2]) -> Vec<bool> {
+    /// Each triangle's floor at `positions`: the signed area it must stay above. A triangle
+    /// above [`SLIVER_RATIO`] of its 3D area must stay above that, one positive but below it
+    /// must stay positive, and a flipped one has none (`−∞`).
+    fn area_floors(&self, positions: &[DVec2]) -> Vec<f64> {
         self.model
             .triangles()
             .par_iter()
-            .map(|t| {
+            .zip(self.sliver_areas.par_iter())
+            .map(|(t, &sliver)| {
                 let [a, b, c] = t.map(|v| positions[v as usize]);
-                signed_area(a, b, c) > 0.0
+                let area = signed_area(a, b, c);
+                if area > sliver {
+                    sliver
+                } else if area > 0.0 {
+                    0.0
+                } else {
+                    f64::NEG_INFINITY
+                }
             })
             .collect()
     }
 
-    /// True if no triangle positive in `positive` is non-positive at `positions`.
-    fn admissible(&self, positions: &[DVec2], positive: &[bool]) -> bool {
+    /// True if every triangle is above its floor (`floors`, from [`Self::area_floors`]) at
+    /// `positions`.
+    fn admissible(&self, positions: &[DVec2], floors: &[f64]) -> bool {
         !self
             .model
             .triangles()
             .par_iter()
-            .zip(positive.par_iter())
-            .any(|(t, &was_positive)| {
+            .zip(floors.par_iter())
+            .any(|(t, &floor)| {
                 let [a, b, c] = t.map(|v| positions[v as usize]);
-                was_positive && signed_area(a, b, c) <= 0.0
+                signed_area(a, b, c) <= floor
             })
     }
 
@@ -243,7 +264,7 @@ impl<'a> FastSolver<'a> {
         candidate: &mut [DVec2],
         targets: &mut [DVec2],
     ) -> Result<f64, StopReason> {
-        if !self.shortened_plain_step(step.positions, step.plain, step.positive, candidate) {
+        if !self.shortened_plain_step(step.positions, step.plain, step.floors, candidate) {
             return Err(StopReason::OrientationBlocked);
         }
         let energy = self.local_step(candidate, targets);
@@ -259,7 +280,7 @@ impl<'a> FastSolver<'a> {
         &self,
         positions: &[DVec2],
         plain: &[DVec2],
-        positive: &[bool],
+        floors: &[f64],
         candidate: &mut [DVec2],
     ) -> bool {
         let mut fraction = 1.0;
@@ -268,7 +289,7 @@ impl<'a> FastSolver<'a> {
                 .par_iter_mut()
                 .zip(positions.par_iter().zip(plain.par_iter()))
                 .for_each(|(c, (&p, &g))| *c = p + (g - p) * fraction);
-            if self.admissible(candidate, positive) {
+            if self.admissible(candidate, floors) {
                 return true;
             }
             fraction *= 0.5;
@@ -283,8 +304,8 @@ struct PlainStep<'a> {
     positions: &'a [DVec2],
     /// Its image under the plain iteration `G`.
     plain: &'a [DVec2],
-    /// Which triangles are positively oriented in it.
-    positive: &'a [bool],
+    /// Each triangle's floor in it ([`FastSolver::area_floors`]).
+    floors: &'a [f64],
     /// Its spring energy.
     energy: f64,
 }

@@ -25,6 +25,16 @@ pub const ORIENTATION_BARRIER: Barrier = Barrier {
     weight: 1.0,
 };
 
+/// The opening barrier, for a pattern that has every triangle positively oriented but some
+/// squeezed to slivers: it acts on every triangle below half its rest area, a thousand times as
+/// strongly as the orientation barrier, so such triangles are pushed back to about half their
+/// area (a spring pattern hardly resists a sliver: an obtuse triangle whose corner moves onto its
+/// opposite side stretches one edge by a few per cent) and the rest feel nothing.
+pub const OPENING_BARRIER: Barrier = Barrier {
+    threshold: 0.5,
+    weight: 1000.0,
+};
+
 /// The shaping barrier of the first stage from a Tutte start: it acts on every triangle
 /// compressed below its rest area, strongly, so that the pattern unfolds instead of collapsing
 /// into slivers (the spring energy alone does not mind a triangle of zero area whose sides keep

@@ -30,13 +30,14 @@ mod sparse;
 mod step;
 mod tutte;
 
-pub use barrier::{Barrier, ORIENTATION_BARRIER, SHAPING_BARRIER};
+pub use barrier::{Barrier, OPENING_BARRIER, ORIENTATION_BARRIER, SHAPING_BARRIER};
 pub use boundary::{BOUNDARY_REACH, BoundaryBarrier, Contact, point_segment_distance};
 pub use errors::InjectiveError;
 pub use lscm::conformal_map;
 pub use solver::{
-    FLIP_FREE_FRACTION, InjectiveOutcome, MAX_NEWTON_ITERATIONS, NEWTON_DECREMENT_TOLERANCE,
-    NEWTON_ENERGY_TOLERANCE, NEWTON_WINDOW, Outline, flip_free_flatten, flip_free_solve,
+    FLIP_FREE_FRACTION, FlipFreeSettings, InjectiveOutcome, MAX_NEWTON_ITERATIONS,
+    NEWTON_DECREMENT_TOLERANCE, NEWTON_ENERGY_TOLERANCE, NEWTON_WINDOW, Outline, flip_free_flatten,
+    flip_free_solve, flip_free_solve_moving,
 };
 pub use step::{max_flip_free_step, smallest_positive_root, triangle_flip_step};
 pub use tutte::{SMALLEST_WEIGHT, tutte_embedding};

@@ -160,6 +160,56 @@ pub fn flip_free_solve(
     deadline: Deadline,
     outline: Outline,
 ) -> Result<InjectiveOutcome, InjectiveError> {
+    let mut moving = vec![true; model.vertex_count()];
+    moving[HELD_VERTEX] = false;
+    let settings = FlipFreeSettings {
+        barrier,
+        max_iterations,
+        deadline,
+        outline,
+    };
+    solve(model, springs, positions, &moving, settings)
+}
+
+/// [`flip_free_solve`] moving only the vertices `v` with `moving[v]` (the others stay where they
+/// are: a local repair).
+pub fn flip_free_solve_moving(
+    model: &FacetModel,
+    springs: &SpringSystem,
+    positions: &mut [DVec2],
+    moving: &[bool],
+    settings: FlipFreeSettings,
+) -> Result<InjectiveOutcome, InjectiveError> {
+    solve(model, springs, positions, moving, settings)
+}
+
+/// What a flip-free solve minimises and for how long.
+#[derive(Debug, Clone, Copy)]
+pub struct FlipFreeSettings {
+    /// The barrier on the triangles' area ratios.
+    pub barrier: Barrier,
+    /// Newton iterations at most (and [`MAX_NEWTON_ITERATIONS`]).
+    pub max_iterations: usize,
+    /// No iteration starts after it.
+    pub deadline: Deadline,
+    /// Whether the outline is kept from crossing itself.
+    pub outline: Outline,
+}
+
+/// The flip-free minimiser of [`flip_free_solve`] over the vertices `v` with `moving[v]`.
+fn solve(
+    model: &FacetModel,
+    springs: &SpringSystem,
+    positions: &mut [DVec2],
+    moving: &[bool],
+    settings: FlipFreeSettings,
+) -> Result<InjectiveOutcome, InjectiveError> {
+    let FlipFreeSettings {
+        barrier,
+        max_iterations,
+        deadline,
+        outline,
+    } = settings;
     let max_iterations = max_iterations.min(MAX_NEWTON_ITERATIONS);
     let flipped = flipped_triangles(model, positions);
     if flipped > 0 {
@@ -170,7 +220,16 @@ pub fn flip_free_solve(
         Outline::Kept => BoundaryBarrier::new(model, springs),
     };
     let objective = Objective::new(model, springs, barrier, boundary);
-    let layout = Layout::new(model);
+    let layout = Layout::new(model, moving);
+    if layout.unknowns == 0 {
+        return Ok(InjectiveOutcome {
+            iterations: 0,
+            stop_reason: StopReason::Converged,
+            initial_objective: objective.value(positions),
+            objective: objective.value(positions),
+            energy: springs.energy(positions),
+        });
+    }
     let pattern = SparsePattern::new(layout.unknowns, &layout.positions)?;
     let mut value = objective.value(positions);
     let initial_objective = value;
@@ -190,7 +249,7 @@ pub fn flip_free_solve(
         objective.gradient(positions, &contacts, &mut gradient);
         objective.hessian(positions, &contacts, &layout, &mut hessian);
         let factor = factor_damped(&pattern, &layout, &mut hessian)?;
-        newton_direction(&factor, &gradient, &mut direction);
+        newton_direction(&factor, &layout, &gradient, &mut direction);
         let descent: f64 = gradient
             .iter()
             .zip(&direction)
@@ -270,27 +329,20 @@ fn factor_damped<'a>(
     Err(failure.expect("at least one attempt"))
 }
 
-/// Solves `H D = −∇E` for the unknowns; the held vertex does not move.
-fn newton_direction(factor: &Factor<'_>, gradient: &[DVec2], direction: &mut [DVec2]) {
-    let unknowns = gradient.len() - 1;
-    let mut rhs = Mat::from_fn(2 * unknowns, 1, |i, _| {
-        -gradient[unknown_vertex(i / 2)][i % 2]
-    });
+/// Solves `H D = −∇E` for the unknowns; the held vertices do not move.
+fn newton_direction(
+    factor: &Factor<'_>,
+    layout: &Layout,
+    gradient: &[DVec2],
+    direction: &mut [DVec2],
+) {
+    let vertex = |u: usize| layout.vertex_of[u] as usize;
+    let mut rhs = Mat::from_fn(layout.unknowns, 1, |i, _| -gradient[vertex(i / 2)][i % 2]);
     factor.solve_in_place(rhs.as_mut());
-    direction[HELD_VERTEX] = DVec2::ZERO;
-    for u in 0..unknowns {
-        direction[unknown_vertex(u)] = DVec2::new(rhs[(2 * u, 0)], rhs[(2 * u + 1, 0)]);
+    direction.fill(DVec2::ZERO);
+    for u in 0..layout.unknowns / 2 {
+        direction[vertex(u)] = DVec2::new(rhs[(2 * u, 0)], rhs[(2 * u + 1, 0)]);
     }
-}
-
-/// The model vertex of unknown `u` (every vertex but the held one).
-fn unknown_vertex(u: usize) -> usize {
-    u + 1
-}
-
-/// The unknown of model vertex `v`, `None` for the held vertex.
-fn unknown_of(v: u32) -> Option<usize> {
-    (v as usize).checked_sub(1)
 }
 
 /// The objective: the spring energy plus the orientation barrier of every triangle.
@@ -484,32 +536,43 @@ impl<'a> Objective<'a> {
     }
 }
 
-/// Where the Hessian's values go: the lower triangle of the `2(n − 1)` unknowns (x and y of
-/// every vertex but the held one, interleaved), as a list of positions: per unknown vertex its
-/// 2×2 diagonal block's three lower entries, then per edge between unknown vertices the 2×2
-/// block in the rows of its higher vertex and the columns of its lower one.
+/// Where the Hessian's values go: the lower triangle of the unknowns (x and y of every moving
+/// vertex, interleaved, in vertex order), as a list of positions: per moving vertex its 2×2
+/// diagonal block's three lower entries, then per edge between moving vertices the 2×2 block in
+/// the rows of its higher vertex and the columns of its lower one.
 struct Layout {
+    /// Twice the number of moving vertices.
     unknowns: usize,
     positions: Vec<(u32, u32)>,
-    /// Per edge, the index of its first entry in `positions`, or `None` if it ends at the held
+    /// Per edge, the index of its first entry in `positions`, or `None` if it ends at a held
     /// vertex.
     edge_entries: Vec<Option<usize>>,
+    /// Per vertex, its index among the moving vertices (`None` when it is held).
+    unknown_of: Vec<Option<u32>>,
+    /// Per moving vertex, the vertex.
+    vertex_of: Vec<u32>,
 }
 
 impl Layout {
-    fn new(model: &FacetModel) -> Self {
-        let vertices = model.vertex_count().saturating_sub(1);
-        let unknowns = 2 * vertices;
-        let mut positions = Vec::with_capacity(3 * vertices + 4 * model.edges().len());
-        for u in 0..vertices as u32 {
+    fn new(model: &FacetModel, moving: &[bool]) -> Self {
+        let vertex_of: Vec<u32> = (0..model.vertex_count() as u32)
+            .filter(|&v| moving[v as usize])
+            .collect();
+        let mut unknown_of = vec![None; model.vertex_count()];
+        for (u, &v) in vertex_of.iter().enumerate() {
+            unknown_of[v as usize] = Some(u as u32);
+        }
+        let vertices = vertex_of.len() as u32;
+        let mut positions = Vec::with_capacity(3 * vertices as usize + 4 * model.edges().len());
+        for u in 0..vertices {
             positions.extend([(2 * u, 2 * u), (2 * u + 1, 2 * u), (2 * u + 1, 2 * u + 1)]);
         }
         let edge_entries = model
             .edges()
             .iter()
             .map(|&[a, b]| {
-                let (low, high) = (unknown_of(a)?, unknown_of(b)?);
-                let (low, high) = (low.min(high) as u32, low.max(high) as u32);
+                let (low, high) = (unknown_of[a as usize]?, unknown_of[b as usize]?);
+                let (low, high) = (low.min(high), low.max(high));
                 let first = positions.len();
                 for (row, col) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
                     positions.push((2 * high + row, 2 * low + col));
@@ -518,15 +581,18 @@ impl Layout {
             })
             .collect();
         Self {
-            unknowns,
+            unknowns: 2 * vertex_of.len(),
             positions,
             edge_entries,
+            unknown_of,
+            vertex_of,
         }
     }
 
     /// Adds the symmetric block `block` to vertex `v`'s diagonal block.
     fn add_diagonal(&self, values: &mut [f64], v: u32, block: [[f64; 2]; 2]) {
-        if let Some(u) = unknown_of(v) {
+        if let Some(u) = self.unknown_of[v as usize] {
+            let u = u as usize;
             values[3 * u] += block[0][0];
             values[3 * u + 1] += block[1][0];
             values[3 * u + 2] += block[1][1];
