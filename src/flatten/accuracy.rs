@@ -7,7 +7,7 @@
 //!   length unless bend allowance set another).
 //! - Maximum edge strain `max |L' − L| / L`.
 //! - Flipped triangles: signed flat area not positive (the model's orientation is counter-
-//!   clockwise), or degenerate: at most [`DEGENERATE_AREA_RATIO`] of the 3D area.
+//!   clockwise).
 //! - Self-overlap: a flipped triangle, or two boundary segments that cross.
 //!
 //! All in absolute units: the pattern is never rescaled before measuring.
@@ -40,7 +40,7 @@ pub struct Accuracy {
 impl Accuracy {
     /// Measures a pattern; `pattern[v]` is the flat position of the model's vertex `v`.
     pub fn measure(model: &FacetModel, pattern: &[DVec2]) -> Self {
-        let flipped = compressed_triangles(model, pattern, DEGENERATE_AREA_RATIO);
+        let flipped = flipped_triangles(model, pattern);
         Self {
             area_error: area_error(model, pattern),
             shape_error: shape_error(model, pattern),

@@ -21,15 +21,12 @@
 //! (2018): an accelerated iterate is kept only if its energy is below the current one and it
 //! flips no triangle; otherwise the plain step is taken and the history is cleared.
 //!
-//! Orientation: a candidate pattern that makes a positively oriented triangle non-positive, or
-//! squeezes one above [`SLIVER_RATIO`] of its 3D area to that or less, is never accepted (the
-//! springs hardly resist a sliver, which would otherwise be squeezed on toward zero area). The
-//! plain step is then shortened (halved, toward the current pattern) until it is accepted; the
-//! spring energy along that segment stays at or below the current energy (it is bounded by the
-//! global step's convex quadratic, which equals the energy at the current pattern), so the guard
-//! never raises the energy. Triangles already flipped in the initial pattern are allowed to unflip
-//! but are not forced to: a triangle, once positive, stays positive, and once above the sliver
-//! ratio, stays above it.
+//! Orientation: a candidate pattern that makes a positively oriented triangle non-positive is
+//! never accepted. The plain step is then shortened (halved, toward the current pattern) until no
+//! triangle flips; the spring energy along that segment stays at or below the current energy (it is
+//! bounded by the global step's convex quadratic, which equals the energy at the current pattern),
+//! so the guard never raises the energy. Triangles already flipped in the initial pattern are
+//! allowed to unflip but are not forced to: a triangle, once positive, stays positive.
 //!
 //! Convergence: the solver stops ([`StopReason::Converged`](crate::flatten::StopReason::Converged)) when the energy fell by at most
 //! [`FastOptions::energy_tolerance`] (relative, default 1e-4) over the last [`ENERGY_WINDOW`]
@@ -61,4 +58,4 @@ pub use options::{
     DEFAULT_ANDERSON_DEPTH, DEFAULT_ENERGY_TOLERANCE, DEFAULT_MAX_ITERATIONS,
     DEFAULT_STEP_TOLERANCE, ENERGY_WINDOW, FastOptions,
 };
-pub use solver::{FastOutcome, FastSolver, SLIVER_RATIO, fast_solve};
+pub use solver::{FastOutcome, FastSolver, fast_solve};

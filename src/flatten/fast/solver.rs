@@ -45,14 +45,7 @@ pub struct FastSolver<'a> {
     /// spring's second end.
     incident: Vec<u32>,
     mean_rest_length: f64,
-    /// Per triangle, [`SLIVER_RATIO`] times its 3D area.
-    sliver_areas: Vec<f64>,
 }
-
-/// A triangle above this fraction of its 3D area is never squeezed below it: the springs hardly
-/// resist a sliver (an obtuse triangle whose corner moves onto its opposite side stretches one
-/// edge by a few per cent), and one squeezed on toward zero area is degenerate.
-pub const SLIVER_RATIO: f64 = 0.01;
 
 /// Flag in [`FastSolver::incident`] for the spring's second end.
 const SECOND_END: u32 = 1 << 31;
@@ -75,9 +68,6 @@ impl<'a> FastSolver<'a> {
             incident_offsets,
             incident,
             mean_rest_length: total / springs.len().max(1) as f64,
-            sliver_areas: (0..model.triangle_count())
-                .map(|f| SLIVER_RATIO * model.triangle_area(f))
-                .collect(),
         })
     }
 
@@ -91,7 +81,7 @@ impl<'a> FastSolver<'a> {
         let mut targets = vec![DVec2::ZERO; self.springs.len()];
         let mut energy = self.local_step(positions, &mut targets);
         let initial_energy = energy;
-        let mut floors = self.area_floors(positions);
+        let mut positive = self.positive_triangles(positions);
         let mut plain = self.global_step(&targets, positions[HELD_VERTEX]);
         let mut anderson = Anderson::new(self.options.anderson_depth, positions.len());
         anderson.push(positions, &plain);
@@ -110,7 +100,7 @@ impl<'a> FastSolver<'a> {
                 return self.outcome(iteration, StopReason::TimeLimit, initial_energy, energy);
             }
             let extrapolated = anderson.extrapolate(&plain, &mut candidate);
-            let accelerated_energy = (extrapolated && self.admissible(&candidate, &floors))
+            let accelerated_energy = (extrapolated && self.admissible(&candidate, &positive))
                 .then(|| self.local_step(&candidate, &mut candidate_targets));
             let candidate_energy = match accelerated_energy {
                 Some(accelerated) if accelerated < energy => accelerated,
@@ -121,7 +111,7 @@ impl<'a> FastSolver<'a> {
                     let step = PlainStep {
                         positions,
                         plain: &plain,
-                        floors: &floors,
+                        positive: &positive,
                         energy,
                     };
                     match self.plain_step(step, &mut candidate, &mut candidate_targets) {
@@ -136,7 +126,7 @@ impl<'a> FastSolver<'a> {
             std::mem::swap(&mut targets, &mut candidate_targets);
             energy = candidate_energy;
             history.push(energy);
-            floors = self.area_floors(positions);
+            positive = self.positive_triangles(positions);
             plain = self.global_step(&targets, positions[HELD_VERTEX]);
             anderson.push(positions, &plain);
         }
@@ -220,39 +210,28 @@ impl<'a> FastSolver<'a> {
         solved
     }
 
-    /// Each triangle's floor at `positions`: the signed area it must stay above. A triangle
-    /// above [`SLIVER_RATIO`] of its 3D area must stay above that, one positive but below it
-    /// must stay positive, and a flipped one has none (`−∞`).
-    fn area_floors(&self, positions: &[DVec2]) -> Vec<f64> {
+    /// Whether each triangle is positively oriented at `positions`.
+    fn positive_triangles(&self, positions: &[DVec2]) -> Vec<bool> {
         self.model
             .triangles()
             .par_iter()
-            .zip(self.sliver_areas.par_iter())
-            .map(|(t, &sliver)| {
+            .map(|t| {
                 let [a, b, c] = t.map(|v| positions[v as usize]);
-                let area = signed_area(a, b, c);
-                if area > sliver {
-                    sliver
-                } else if area > 0.0 {
-                    0.0
-                } else {
-                    f64::NEG_INFINITY
-                }
+                signed_area(a, b, c) > 0.0
             })
             .collect()
     }
 
-    /// True if every triangle is above its floor (`floors`, from [`Self::area_floors`]) at
-    /// `positions`.
-    fn admissible(&self, positions: &[DVec2], floors: &[f64]) -> bool {
+    /// True if no triangle positive in `positive` is non-positive at `positions`.
+    fn admissible(&self, positions: &[DVec2], positive: &[bool]) -> bool {
         !self
             .model
             .triangles()
             .par_iter()
-            .zip(floors.par_iter())
-            .any(|(t, &floor)| {
+            .zip(positive.par_iter())
+            .any(|(t, &was_positive)| {
                 let [a, b, c] = t.map(|v| positions[v as usize]);
-                signed_area(a, b, c) <= floor
+                was_positive && signed_area(a, b, c) <= 0.0
             })
     }
 
@@ -264,7 +243,7 @@ impl<'a> FastSolver<'a> {
         candidate: &mut [DVec2],
         targets: &mut [DVec2],
     ) -> Result<f64, StopReason> {
-        if !self.shortened_plain_step(step.positions, step.plain, step.floors, candidate) {
+        if !self.shortened_plain_step(step.positions, step.plain, step.positive, candidate) {
             return Err(StopReason::OrientationBlocked);
         }
         let energy = self.local_step(candidate, targets);
@@ -280,7 +259,7 @@ impl<'a> FastSolver<'a> {
         &self,
         positions: &[DVec2],
         plain: &[DVec2],
-        floors: &[f64],
+        positive: &[bool],
         candidate: &mut [DVec2],
     ) -> bool {
         let mut fraction = 1.0;
@@ -289,7 +268,7 @@ impl<'a> FastSolver<'a> {
                 .par_iter_mut()
                 .zip(positions.par_iter().zip(plain.par_iter()))
                 .for_each(|(c, (&p, &g))| *c = p + (g - p) * fraction);
-            if self.admissible(candidate, floors) {
+            if self.admissible(candidate, positive) {
                 return true;
             }
             fraction *= 0.5;
@@ -304,8 +283,8 @@ struct PlainStep<'a> {
     positions: &'a [DVec2],
     /// Its image under the plain iteration `G`.
     plain: &'a [DVec2],
-    /// Each triangle's floor in it ([`FastSolver::area_floors`]).
-    floors: &'a [f64],
+    /// Which triangles are positively oriented in it.
+    positive: &'a [bool],
     /// Its spring energy.
     energy: f64,
 }

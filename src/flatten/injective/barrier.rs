@@ -35,6 +35,13 @@ pub const OPENING_BARRIER: Barrier = Barrier {
     weight: 1000.0,
 };
 
+/// The sliver barrier: the opening barrier's strength below a hundredth of the rest area only,
+/// for a pattern that opening triangles up to half their area would take out of its tolerance.
+pub const SLIVER_BARRIER: Barrier = Barrier {
+    threshold: 0.01,
+    weight: 1000.0,
+};
+
 /// The shaping barrier of the first stage from a Tutte start: it acts on every triangle
 /// compressed below its rest area, strongly, so that the pattern unfolds instead of collapsing
 /// into slivers (the spring energy alone does not mind a triangle of zero area whose sides keep

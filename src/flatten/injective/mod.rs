@@ -30,7 +30,7 @@ mod sparse;
 mod step;
 mod tutte;
 
-pub use barrier::{Barrier, OPENING_BARRIER, ORIENTATION_BARRIER, SHAPING_BARRIER};
+pub use barrier::{Barrier, OPENING_BARRIER, ORIENTATION_BARRIER, SHAPING_BARRIER, SLIVER_BARRIER};
 pub use boundary::{BOUNDARY_REACH, BoundaryBarrier, Contact, point_segment_distance};
 pub use errors::InjectiveError;
 pub use lscm::conformal_map;
