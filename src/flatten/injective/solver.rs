@@ -168,19 +168,7 @@ pub fn flip_free_solve(
         deadline,
         outline,
     };
-    solve(model, springs, positions, &moving, settings)
-}
-
-/// [`flip_free_solve`] moving only the vertices `v` with `moving[v]` (the others stay where they
-/// are: a local repair).
-pub fn flip_free_solve_moving(
-    model: &FacetModel,
-    springs: &SpringSystem,
-    positions: &mut [DVec2],
-    moving: &[bool],
-    settings: FlipFreeSettings,
-) -> Result<InjectiveOutcome, InjectiveError> {
-    solve(model, springs, positions, moving, settings)
+    flip_free_solve_moving(model, springs, positions, &moving, settings)
 }
 
 /// What a flip-free solve minimises and for how long.
@@ -196,8 +184,9 @@ pub struct FlipFreeSettings {
     pub outline: Outline,
 }
 
-/// The flip-free minimiser of [`flip_free_solve`] over the vertices `v` with `moving[v]`.
-fn solve(
+/// [`flip_free_solve`] moving only the vertices `v` with `moving[v]` (the others stay where they
+/// are: a local repair).
+pub fn flip_free_solve_moving(
     model: &FacetModel,
     springs: &SpringSystem,
     positions: &mut [DVec2],
