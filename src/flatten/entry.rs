@@ -338,13 +338,13 @@ struct Opening {
     rings: usize,
 }
 
-/// Opens the triangles of a pattern without flipped triangles that are squeezed below
-/// `opening`'s barrier's threshold: the fast solver keeps triangles from flipping, not from collapsing into
-/// slivers, which it approaches as closely as rounding allows where the springs hardly resist (an
-/// obtuse boundary triangle whose corner moves onto its opposite side), and the flip-free
-/// flattening's own barrier is weak. The spring energy plus `barrier` is minimised by the
-/// flip-free solver moving only the vertices within `opening`'s rings of the squeezed triangles
-/// (the rest of the pattern, which the solvers settled, stays), with the outline kept
+/// Opens the triangles of a pattern without flipped triangles that are squeezed below the
+/// threshold of `opening`'s barrier: the fast solver keeps triangles from flipping, not from
+/// collapsing into slivers, which it approaches as closely as rounding allows where the springs
+/// hardly resist (an obtuse boundary triangle whose corner moves onto its opposite side), and the
+/// flip-free flattening's own barrier is weak. The spring energy plus the barrier is minimised by
+/// the flip-free solver moving only the vertices within `opening`'s rings of the squeezed
+/// triangles (the rest of the pattern, which the solvers settled, stays), with the outline kept
 /// from crossing itself when it does not already. Returns the Newton iterations taken; the
 /// pattern is left as it is when it has a flipped triangle or none squeezed, or the solver cannot
 /// run.
