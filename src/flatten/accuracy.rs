@@ -99,18 +99,16 @@ pub fn max_strain(model: &FacetModel, pattern: &[DVec2]) -> f64 {
 /// sliver that no longer has a shape (the independent metrics' definition, `|A'| < 1e-9 A`).
 pub const DEGENERATE_AREA_RATIO: f64 = 1e-9;
 
-/// Number of triangles whose signed flat area is at most `ratio` times their 3D area (with
-/// `ratio` = [`DEGENERATE_AREA_RATIO`]: the flipped and the degenerate ones).
-pub fn compressed_triangles(model: &FacetModel, pattern: &[DVec2], ratio: f64) -> usize {
-    model
-        .triangles()
-        .iter()
-        .enumerate()
+/// The triangles whose signed flat area is at most `ratio` times their 3D area (with `ratio` =
+/// [`DEGENERATE_AREA_RATIO`]: the flipped and the degenerate ones).
+pub fn squeezed_triangles(model: &FacetModel, pattern: &[DVec2], ratio: f64) -> Vec<usize> {
+    (model.triangles().iter().enumerate())
         .filter(|&(f, t)| {
             let [a, b, c] = t.map(|v| pattern[v as usize]);
             signed_area(a, b, c) <= ratio * model.triangle_area(f)
         })
-        .count()
+        .map(|(f, _)| f)
+        .collect()
 }
 
 /// Number of triangles with non-positive signed flat area.

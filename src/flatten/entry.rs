@@ -6,8 +6,8 @@ use std::time::Instant;
 use glam::DVec2;
 
 use super::accuracy::{
-    Accuracy, DEGENERATE_AREA_RATIO, boundary_self_intersects, compressed_triangles,
-    flipped_triangles, signed_area,
+    Accuracy, DEGENERATE_AREA_RATIO, boundary_self_intersects, flipped_triangles,
+    squeezed_triangles,
 };
 use super::energy_release::{EnergyRelease, ReleaseOutcome, ReleaseParameters, StopReason};
 use super::errors::FlattenError;
@@ -273,6 +273,10 @@ pub fn with_squeezed_triangles_opened(
     flattened: Flattened,
     options: &FlattenOptions,
 ) -> Flattened {
+    // The opening barrier acts above the sliver barrier: nothing squeezed for it, nothing to do.
+    if squeezed_triangles(model, &flattened.positions, OPENING_BARRIER.threshold).is_empty() {
+        return flattened;
+    }
     let springs = SpringSystem::new(model, stiffness.factors(), options.spring_constant);
     let before = Squeezed::measure(model, &flattened.positions);
     for (barrier, rings) in [(OPENING_BARRIER, OPENING_RINGS), (SLIVER_BARRIER, 0)] {
@@ -321,7 +325,7 @@ struct Squeezed {
 
 impl Squeezed {
     fn measure(model: &FacetModel, positions: &[DVec2]) -> Self {
-        let degenerate = compressed_triangles(model, positions, DEGENERATE_AREA_RATIO)
+        let degenerate = squeezed_triangles(model, positions, DEGENERATE_AREA_RATIO).len()
             - flipped_triangles(model, positions);
         Self {
             accuracy: Accuracy::measure(model, positions),
@@ -382,17 +386,6 @@ fn open_squeezed_triangles(
     }
 }
 
-/// The pattern's triangles whose signed area is below `ratio` times their 3D area.
-fn squeezed_triangles(model: &FacetModel, positions: &[DVec2], ratio: f64) -> Vec<usize> {
-    (model.triangles().iter().enumerate())
-        .filter(|&(f, t)| {
-            let [a, b, c] = t.map(|v| positions[v as usize]);
-            signed_area(a, b, c) < ratio * model.triangle_area(f)
-        })
-        .map(|(f, _)| f)
-        .collect()
-}
-
 /// Per vertex, whether it is a corner of one of `triangles` or within `rings` rings of one.
 fn near_triangles(model: &FacetModel, triangles: &[usize], rings: usize) -> Vec<bool> {
     let mut near = vec![false; model.vertex_count()];
@@ -425,7 +418,7 @@ mod tests {
     use glam::{DVec2, DVec3};
 
     use crate::cad::TriangleSoup;
-    use crate::flatten::accuracy::{Accuracy, DEGENERATE_AREA_RATIO, compressed_triangles};
+    use crate::flatten::accuracy::{Accuracy, DEGENERATE_AREA_RATIO, squeezed_triangles};
     use crate::flatten::energy_release::StopReason;
     use crate::flatten::entry::{flatten, overlap_free_flatten, with_squeezed_triangles_opened};
     use crate::flatten::flattened::{FlattenStats, Flattened};
@@ -596,11 +589,11 @@ mod tests {
         let stiffness = Stiffness::uniform(&model);
         let before = Accuracy::measure(&model, &pattern);
         assert_eq!(before.flipped, 0, "squeezed, not flipped");
-        assert_eq!(compressed_triangles(&model, &pattern, 1e-6), 2);
+        assert_eq!(squeezed_triangles(&model, &pattern, 1e-6).len(), 2);
         let options = FlattenOptions::default();
         let squeezed = squeezed_flattening(pattern, before);
         let opened = with_squeezed_triangles_opened(&model, &stiffness, squeezed, &options);
-        assert_eq!(compressed_triangles(&model, &opened.positions, 0.45), 0);
+        assert_eq!(squeezed_triangles(&model, &opened.positions, 0.45).len(), 0);
         let recomputed = Accuracy::measure(&model, &opened.positions);
         assert_eq!(recomputed, opened.stats.accuracy);
         assert!(recomputed.area_error < 1e-3, "{recomputed:?}");
@@ -614,7 +607,7 @@ mod tests {
     fn a_degenerate_triangle_is_opened_even_out_of_tolerance() {
         let (model, pattern) = grid_with_a_squeezed_corner(1e-12);
         assert_eq!(
-            compressed_triangles(&model, &pattern, DEGENERATE_AREA_RATIO),
+            squeezed_triangles(&model, &pattern, DEGENERATE_AREA_RATIO).len(),
             2
         );
         let stiffness = Stiffness::uniform(&model);
@@ -629,6 +622,6 @@ mod tests {
             squeezed_flattening(pattern, accuracy),
             &options,
         );
-        assert_eq!(compressed_triangles(&model, &opened.positions, 1e-3), 0);
+        assert_eq!(squeezed_triangles(&model, &opened.positions, 1e-3).len(), 0);
     }
 }
