@@ -55,8 +55,8 @@ pub use options::{
     PIECES_CURVATURE, SCREEN_ITERATIONS, TRIAL_BUDGET, TRIAL_STEP_TOLERANCE, WIDER_SEARCH,
 };
 pub use pieces::{
-    FLAT_DEFICIT, GLUE_SCREEN_FACTOR, MAX_SECTIONS, MIN_BALANCE, MIN_PIECE_TRIANGLES,
-    SCREEN_FACTOR, SHIFT, SMALLEST_PIECE, cut_into_pieces,
+    GLUE_SCREEN_FACTOR, MAX_SECTIONS, MIN_BALANCE, MIN_PIECE_TRIANGLES, SCREEN_FACTOR, SHIFT,
+    SMALLEST_PIECE, cut_into_pieces,
 };
 pub use result::{Cut, CutFigures, CutResult, CutStop, Seam, UncutPattern};
-pub use seam::SeamKind;
+pub use seam::{FLAT_DEFICIT, SeamKind};

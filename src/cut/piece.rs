@@ -5,6 +5,7 @@ use std::collections::BTreeMap;
 
 use glam::DVec3;
 
+use super::seam::{FLAT_DEFICIT, angle_deficits};
 use super::state::{PointKey, point_key};
 use crate::cad::{FoldEdge, TriangleSoup};
 use crate::flatten::Stiffness;
@@ -66,12 +67,72 @@ impl Piece {
     /// The shared edges are no longer section edges; stiffness, fold lines and the part's
     /// vertices carry over.
     pub fn glued(&self, other: &Piece) -> Option<Piece> {
-        let mine = self.section_sides();
-        let theirs = other.section_sides();
-        let shared: Vec<(usize, usize)> = (mine.iter())
-            .filter_map(|(key, &e)| theirs.get(key).map(|&f| (e, f)))
+        self.glued_along(other, &self.shared_sides(other))
+    }
+
+    /// The piece and `other` glued as by [`Piece::glued`], but with a slit: the shared curve's
+    /// vertex of largest absolute angle deficit in `union` (their union by [`Piece::glued`];
+    /// a point where the union's surface closes around a cone, which a flattening must stretch
+    /// open) stays on the boundary, and the shorter of the curve's two runs from it to an end
+    /// stays unglued, a section on both of its sides, as a dart ending in that point. `None`
+    /// when no such vertex is more than flat ([`FLAT_DEFICIT`]), when both runs end where the
+    /// curve branches or closes, or when `union` or the slit one is not bounded by one loop (a
+    /// slit in a union with holes can leave a hole of no area).
+    pub fn slit_glued(&self, other: &Piece, union: &Piece) -> Option<Piece> {
+        if union.model.boundary_loops().len() != 1 {
+            return None;
+        }
+        let shared = self.shared_sides(other);
+        let ends = |&(e, _): &(usize, usize)| self.model.edges()[e];
+        let mut degree: BTreeMap<u32, usize> = BTreeMap::new();
+        for pair in &shared {
+            for v in ends(pair) {
+                *degree.entry(v).or_default() += 1;
+            }
+        }
+        // The union keeps the piece's vertex numbers (its own vertices come first).
+        let deficits = angle_deficits(&union.model);
+        let (&tip, _) = (degree.iter())
+            .filter(|&(&v, &count)| count == 2 && deficits[v as usize].abs() > FLAT_DEFICIT)
+            .max_by(|a, b| {
+                let (da, db) = (deficits[*a.0 as usize].abs(), deficits[*b.0 as usize].abs());
+                da.total_cmp(&db).then(b.0.cmp(a.0))
+            })?;
+        let positions = self.model.positions();
+        let mut runs: Vec<(Vec<usize>, f64)> = (0..shared.len())
+            .filter(|&i| ends(&shared[i]).contains(&tip))
+            .filter_map(|first| run_to_end(&shared, first, tip, &degree, &|i| ends(&shared[i])))
+            .map(|run| {
+                let length = (run.iter())
+                    .map(|&i| {
+                        let [a, b] = ends(&shared[i]);
+                        positions[a as usize].distance(positions[b as usize])
+                    })
+                    .sum();
+                (run, length)
+            })
             .collect();
-        let welds = welds(self, other, &shared)?;
+        runs.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let slit = &runs.first()?.0;
+        let kept: Vec<(usize, usize)> = (0..shared.len())
+            .filter(|i| !slit.contains(i))
+            .map(|i| shared[i])
+            .collect();
+        self.glued_along(other, &kept)
+            .filter(|slit_union| slit_union.model.boundary_loops().len() == 1)
+    }
+
+    /// The section edges this piece shares with `other`, as (this piece's edge, theirs) pairs.
+    fn shared_sides(&self, other: &Piece) -> Vec<(usize, usize)> {
+        let theirs = other.section_sides();
+        (self.section_sides().iter())
+            .filter_map(|(key, &e)| theirs.get(key).map(|&f| (e, f)))
+            .collect()
+    }
+
+    /// The piece and `other` glued along the `shared` (this piece's edge, theirs) pairs.
+    fn glued_along(&self, other: &Piece, shared: &[(usize, usize)]) -> Option<Piece> {
+        let welds = welds(self, other, shared)?;
         let count = self.model.vertex_count() as u32;
         let mut next = count;
         let their_vertex: Vec<u32> = (0..other.model.vertex_count() as u32)
@@ -141,6 +202,33 @@ fn welds(piece: &Piece, other: &Piece, shared: &[(usize, usize)]) -> Option<BTre
     Some(welds)
 }
 
+/// The shared edges (indices into the shared list, whose ends `ends` gives) from `first`, an
+/// edge at `tip`, along the curve away from `tip` to its end: `None` when the curve branches
+/// (a vertex on more than two shared edges) or comes back to `tip` before it ends.
+fn run_to_end(
+    shared: &[(usize, usize)],
+    first: usize,
+    tip: u32,
+    degree: &BTreeMap<u32, usize>,
+    ends: &dyn Fn(usize) -> [u32; 2],
+) -> Option<Vec<usize>> {
+    let mut run = vec![first];
+    let mut at = tip;
+    loop {
+        let [a, b] = ends(*run.last()?);
+        at = if a == at { b } else { a };
+        match degree.get(&at) {
+            Some(1) => return Some(run),
+            Some(2) if at != tip => {
+                let last = *run.last()?;
+                let next = (0..shared.len()).find(|&i| i != last && ends(i).contains(&at))?;
+                run.push(next);
+            }
+            _ => return None,
+        }
+    }
+}
+
 /// The fold-line edges of the pieces, each piece's vertices renumbered by its map.
 fn fold_edges(sides: &[(&Piece, &[u32])]) -> Vec<FoldEdge> {
     let mut folds = BTreeMap::new();
@@ -205,15 +293,21 @@ mod tests {
     /// The grid's two halves across `x = 10`, as pieces.
     fn halves() -> (FacetModel, Vec<Piece>) {
         let model = grid(20, 4);
-        let mut stiffness = Stiffness::uniform(&model);
-        stiffness.raise_where(2.0, |_| true);
-        let whole = Piece::whole(&model, &stiffness);
         let plane = Plane::through(DVec3::new(10.0, 2.0, 0.0), DVec3::X);
-        let sides = section(&model, plane).expect("two sides");
-        let pieces = (sides.into_iter())
+        let pieces = sides(&model, plane);
+        (model, pieces)
+    }
+
+    /// The model's sides of the plane, as pieces of stiffness 2.
+    fn sides(model: &FacetModel, plane: Plane) -> Vec<Piece> {
+        let mut stiffness = Stiffness::uniform(model);
+        stiffness.raise_where(2.0, |_| true);
+        let whole = Piece::whole(model, &stiffness);
+        let sides = section(model, plane).expect("two sides");
+        (sides.into_iter())
             .map(|side| {
                 let part_vertex = (side.vertex_origins.iter())
-                    .map(|origin| origin.nearer_vertex(&model))
+                    .map(|origin| origin.nearer_vertex(model))
                     .collect();
                 Piece {
                     stiffness: Stiffness::from_factors(vec![2.0; side.model.edges().len()]),
@@ -223,8 +317,51 @@ mod tests {
                     depth: whole.depth + 1,
                 }
             })
-            .collect();
-        (model, pieces)
+            .collect()
+    }
+
+    #[test]
+    fn a_cone_point_on_the_shared_curve_stays_open_as_a_slit() {
+        let flat = grid(4, 4);
+        let apex = DVec3::new(2.0, 2.0, 1.5);
+        let mut positions = flat.positions().to_vec();
+        positions[12] = apex;
+        let model = rebuild(TriangleSoup::new(positions, flat.triangles().to_vec())).unwrap();
+        let normal = DVec3::new(1.0, 0.3, 0.0).normalize();
+        let pieces = sides(&model, Plane::through(apex, normal));
+        assert_eq!(pieces.len(), 2);
+        let at_apex = |piece: &Piece| {
+            (piece.model.positions().iter())
+                .position(|&p| p == apex)
+                .expect("the apex")
+        };
+        let union = pieces[0].glued(&pieces[1]).expect("they share the section");
+        let deficit = angle_deficits(&union.model)[at_apex(&union)];
+        assert!(deficit > 0.5, "the union closes around the cone: {deficit}");
+
+        let slit = (pieces[0].slit_glued(&pieces[1], &union)).expect("a slit from the apex");
+        assert_eq!(slit.model.triangle_count(), union.model.triangle_count());
+        assert_eq!(slit.model.boundary_loops().len(), 1);
+        assert!(
+            slit.model.vertex_count() > union.model.vertex_count(),
+            "the slit's side is two curves"
+        );
+        let apex_vertex = at_apex(&slit) as u32;
+        let rim = &slit.model.boundary_loops()[0];
+        assert!(rim.contains(&apex_vertex), "the apex is the slit's end");
+        assert!(
+            !slit.section_sides().is_empty(),
+            "the slit is still a section"
+        );
+
+        let flat_halves = halves().1;
+        let flat_union = flat_halves[0].glued(&flat_halves[1]).unwrap();
+        assert!(
+            flat_halves[0]
+                .slit_glued(&flat_halves[1], &flat_union)
+                .is_none(),
+            "no slit where the union is flat"
+        );
     }
 
     #[test]

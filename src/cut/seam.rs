@@ -114,6 +114,10 @@ fn angle_sums(model: &FacetModel) -> Vec<f64> {
     sums
 }
 
+/// An angle deficit (radians) at most this is flat: no plane of a section is laid through its
+/// vertex, and no slit is left open at it when pieces are glued.
+pub const FLAT_DEFICIT: f64 = 1e-6;
+
 /// Angle deficit `2π − Σθ` of every interior vertex (0 on the boundary).
 pub fn angle_deficits(model: &FacetModel) -> Vec<f64> {
     let on_boundary = boundary_flags(model);
@@ -140,9 +144,26 @@ fn loop_needing_seam(model: &FacetModel) -> Option<usize> {
         return None;
     }
     let turnings = loop_turnings(model);
-    let outer =
-        (0..turnings.len()).max_by(|&a, &b| turnings[a].total_cmp(&turnings[b]).then(b.cmp(&a)))?;
+    let outer = outer_loop(&turnings)?;
     (0..turnings.len()).find(|&i| i != outer && (turnings[i] + TAU).abs() > HOLE_TURNING_TOLERANCE)
+}
+
+/// The loops that stay holes when the model is opened to a disk: every loop, other than the one
+/// that turns most, whose geodesic turning is −2π (a hole in a flat region).
+pub fn hole_loops(model: &FacetModel) -> Vec<usize> {
+    if model.boundary_loops().len() < 2 {
+        return Vec::new();
+    }
+    let turnings = loop_turnings(model);
+    let outer = outer_loop(&turnings);
+    (0..turnings.len())
+        .filter(|&i| Some(i) != outer && (turnings[i] + TAU).abs() <= HOLE_TURNING_TOLERANCE)
+        .collect()
+}
+
+/// The loop that turns most (the first of equals).
+fn outer_loop(turnings: &[f64]) -> Option<usize> {
+    (0..turnings.len()).max_by(|&a, &b| turnings[a].total_cmp(&turnings[b]).then(b.cmp(&a)))
 }
 
 /// Shortest path from loop `loop_index` to any other loop through interior, unblocked vertices.
