@@ -30,6 +30,13 @@ pub(super) struct Piece {
 /// An edge by its ends' [`PointKey`]s, in order.
 pub(super) type SideKey = [PointKey; 2];
 
+/// The key of the edge from vertex `a` to vertex `b` of a model with these `positions`.
+pub(super) fn side_key(positions: &[DVec3], a: u32, b: u32) -> SideKey {
+    let mut key = [a, b].map(|v| point_key(positions[v as usize]));
+    key.sort();
+    key
+}
+
 /// The length of the edge of `key`.
 pub(super) fn side_length(key: &SideKey) -> f64 {
     let [a, b] = key.map(|p| DVec3::from_array(p.map(f64::from_bits)));
@@ -53,11 +60,7 @@ impl Piece {
         let positions = self.model.positions();
         (self.model.edges().iter().enumerate())
             .filter(|&(e, _)| self.section_edges[e] && self.model.is_boundary_edge(e))
-            .map(|(e, &[a, b])| {
-                let mut key = [a, b].map(|v| point_key(positions[v as usize]));
-                key.sort();
-                (key, e)
-            })
+            .map(|(e, &[a, b])| (side_key(positions, a, b), e))
             .collect()
     }
 

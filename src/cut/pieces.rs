@@ -37,10 +37,10 @@ use super::cut_loop::{converged_options, cut_and_flatten};
 use super::errors::CutError;
 use super::opening::open_to_disk;
 use super::options::{CutConstraints, CutOptions};
-use super::piece::{Piece, SideKey, side_length};
+use super::piece::{Piece, SideKey, side_key, side_length};
 use super::result::{CutResult, CutStop, Seam};
 use super::seam::{FLAT_DEFICIT, SeamKind, angle_deficits, genus, hole_loops};
-use super::state::{CutState, point_key};
+use super::state::CutState;
 use crate::flatten::{
     FlattenOptions, Stiffness, flatten_from, flatten_unrepaired, with_squeezed_triangles_opened,
 };
@@ -138,11 +138,7 @@ fn can_be_one_piece(union: &Piece) -> bool {
     }
     let sections = union.section_sides();
     let positions = union.model.positions();
-    let on_section = |a: u32, b: u32| {
-        let mut key = [a, b].map(|v| point_key(positions[v as usize]));
-        key.sort();
-        sections.contains_key(&key)
-    };
+    let on_section = |a: u32, b: u32| sections.contains_key(&side_key(positions, a, b));
     !(hole_loops(&union.model).into_iter()).any(|index| {
         let ring = &union.model.boundary_loops()[index];
         (0..ring.len()).all(|k| on_section(ring[k], ring[(k + 1) % ring.len()]))
