@@ -4,7 +4,7 @@
 
 use crate::cut::{Cut, CutStop, Seam, UncutPattern};
 use crate::flatten::Flattened;
-use crate::pattern::{Pattern, PatternFile, PatternOptions};
+use crate::pattern::{Pattern, PatternFile, PatternOptions, part_contours};
 
 use super::load::PartJob;
 use super::rejection::rejection_reasons;
@@ -36,7 +36,7 @@ pub struct PartResult {
 impl PartResult {
     /// The part's pattern file (`<part>.pattern.json`): its drawing and grain direction, its
     /// thickness in mm, the pattern `options` its cut contours are made with, and whether it is
-    /// rejected at `tolerance` ([`rejection_reasons`]).
+    /// rejected at `tolerance` ([`Self::rejection_reasons`]).
     pub fn pattern_file(&self, options: &PatternOptions, tolerance: f64) -> PatternFile {
         let job = &self.job;
         PatternFile {
@@ -47,15 +47,18 @@ impl PartResult {
                 .thickness
                 .map(|thickness| thickness * job.units.millimetres()),
             options: *options,
-            rejected: !self.rejection_reasons(tolerance).is_empty(),
+            rejected: !self.rejection_reasons(tolerance, options).is_empty(),
         }
     }
 
-    /// Every reason to reject this part at `tolerance` ([`rejection_reasons`]), and the time
-    /// limit if it ended the cut loop ([`CutStop::TimeLimit`]). A sheet-metal
-    /// part's E_S and E_C compare its flat pattern with its skin, whose bends differ from the
-    /// flat by their allowance by design: only flipped triangles and overlap reject it.
-    pub fn rejection_reasons(&self, tolerance: f64) -> Vec<String> {
+    /// Every reason to reject this part at `tolerance` ([`rejection_reasons`]), the time
+    /// limit if it ended the cut loop ([`CutStop::TimeLimit`]), and a cut contour that cannot
+    /// be drawn with the pattern `options` (a hole collapsed below the chord tolerance, a seam
+    /// allowance that closes a hole): such a part gets no cut file, the others are written. A
+    /// sheet-metal part's E_S and E_C compare its flat pattern with its skin, whose bends
+    /// differ from the flat by their allowance by design: only flipped triangles and overlap
+    /// reject it.
+    pub fn rejection_reasons(&self, tolerance: f64, options: &PatternOptions) -> Vec<String> {
         let tolerance = if self.job.sheet.is_some() {
             f64::INFINITY
         } else {
@@ -67,6 +70,9 @@ impl PartResult {
                 "the time limit was reached after {:.0} s (--time-limit)",
                 self.flattened.stats.seconds
             ));
+        }
+        if let Err(error) = part_contours(&self.pattern.drawing, options) {
+            reasons.push(format!("its cut contour cannot be drawn: {error}"));
         }
         reasons
     }

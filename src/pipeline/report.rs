@@ -96,7 +96,7 @@ pub fn part_report(result: &PartResult, config: &RunConfig) -> PartReport {
             minimum_angle: figures.minimum_angle,
         }),
         warnings: job.warnings.clone(),
-        rejected: result.rejection_reasons(flatten.tolerance),
+        rejected: result.rejection_reasons(flatten.tolerance, &config.pattern),
         sheet_metal: sheet_metal_report(result),
     }
 }

@@ -29,7 +29,8 @@ pub struct RunOutput {
     pub patterns: Vec<PatternFile>,
     /// The nested layout, when the run had stock.
     pub nesting: Option<NestedLayout>,
-    /// The parts on the stock, in the layout's item order ([`nestable_parts`]).
+    /// The parts on the stock, in the layout's item order ([`nestable_parts`]); none without
+    /// stock.
     pub nested_parts: Vec<usize>,
 }
 
@@ -131,13 +132,14 @@ pub fn run_loaded(
         .iter()
         .map(|part| part.pattern_file(&config.pattern, tolerance))
         .collect();
-    let nested_parts = nestable_parts(&patterns, progress);
-    let nesting = match config.stock {
+    let (nested_parts, nesting) = match config.stock {
         Some(stock) => {
+            let nested_parts = nestable_parts(&patterns, progress);
             let nested = nested_parts.iter().map(|&part| &patterns[part]);
-            Some(nest_checked(nested, stock, &config.nesting, progress)?)
+            let layout = nest_checked(nested, stock, &config.nesting, progress)?;
+            (nested_parts, Some(layout))
         }
-        None => None,
+        None => (Vec::new(), None),
     };
     Ok(RunOutput {
         parts,

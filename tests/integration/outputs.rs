@@ -200,6 +200,56 @@ fn a_rejected_part_is_marked_and_says_why() {
     );
 }
 
+/// A flat 100 mm plate of 10 mm squares with the middle square left out: a 10 mm hole.
+fn plate_with_hole(path: &Path) {
+    let vertices: Vec<[f64; 3]> = (0..11)
+        .flat_map(|j| (0..11).map(move |i| [f64::from(i) * 10.0, f64::from(j) * 10.0, 0.0]))
+        .collect();
+    let faces: Vec<[usize; 3]> = (0..10)
+        .flat_map(|j| (0..10).map(move |i| (i, j)))
+        .filter(|&cell| cell != (5, 5))
+        .flat_map(|(i, j)| {
+            let a = j * 11 + i;
+            [[a, a + 1, a + 12], [a, a + 12, a + 11]]
+        })
+        .collect();
+    crate::util::write_obj(path, &vertices, &faces);
+}
+
+/// A part whose cut contour cannot be drawn (here a seam allowance that closes its hole) is
+/// rejected with the reason and gets no cut file; the run's other parts are written as usual
+/// and the run exits with 3, not stopped whole.
+#[test]
+fn a_part_that_cannot_be_drawn_is_rejected_and_the_others_written() {
+    let directory = tempfile::tempdir().expect("temporary directory");
+    let plate = directory.path().join("plate.obj");
+    plate_with_hole(&plate);
+    let folder = directory.path().join("out");
+    let cone = sample("cone_frustum.obj");
+    let arguments = ["run", path(&plate), path(&cone), "-o", path(&folder)];
+    let output = flatcut(&[&arguments[..], &["--seam-allowance", "10", "--no-timings"]].concat());
+    let message = stderr(&output);
+    assert_eq!(output.status.code(), Some(3), "{message}");
+    assert!(message.contains("closes hole 1"), "{message}");
+    assert!(
+        !message.contains("not nested"),
+        "nothing is nested: {message}"
+    );
+    assert!(!folder.join("plate.dxf").exists());
+    assert!(!folder.join("plate.REJECTED.dxf").exists());
+    assert!(folder.join("plate.pattern.json").exists());
+    assert!(folder.join("cone_frustum.dxf").exists());
+    let report = crate::util::read_report(&folder);
+    let reasons = report["parts"][0]["rejected"].as_array().expect("reasons");
+    assert!(
+        (reasons.iter()).any(|reason| reason
+            .as_str()
+            .is_some_and(|text| text.starts_with("its cut contour cannot be drawn"))),
+        "{reasons:?}"
+    );
+    assert!(report["parts"][1].get("rejected").is_none());
+}
+
 /// A part that runs past its `--time-limit` ends there: rejected with the reason, its files
 /// written, exit 3.
 #[test]
