@@ -45,16 +45,18 @@ pub fn encode_indexed_png(pixmap: &Pixmap) -> Result<Vec<u8>, png::EncodingError
         })
         .collect();
     let runs = runs(&packed);
-    let histogram = histogram(&runs);
+    let (histogram, entry_of_run) = histogram(&runs);
     let palette = palette(&histogram);
     let nearest: Vec<u8> = histogram
         .iter()
         .map(|entry| nearest_index(entry.rgb, &palette))
         .collect();
     let mut indices = Vec::with_capacity(packed.len());
-    for &(colour, length) in &runs {
-        let position = histogram.partition_point(|entry| pack(entry.rgb) < colour);
-        indices.extend(std::iter::repeat_n(nearest[position], length as usize));
+    for (&(_, length), &entry) in runs.iter().zip(&entry_of_run) {
+        indices.extend(std::iter::repeat_n(
+            nearest[entry as usize],
+            length as usize,
+        ));
     }
     let mut bytes = Vec::new();
     let mut encoder = png::Encoder::new(&mut bytes, pixmap.width(), pixmap.height());
@@ -87,21 +89,31 @@ fn runs(packed: &[u32]) -> Vec<(u32, u32)> {
     runs
 }
 
-/// The distinct colours of the picture with their pixel counts, sorted by packed colour.
-fn histogram(runs: &[(u32, u32)]) -> Vec<Entry> {
-    let mut sorted = runs.to_vec();
-    sorted.sort_unstable();
+/// The distinct colours of the picture with their pixel counts, sorted by packed colour, and
+/// for each run the index of its colour's entry.
+fn histogram(runs: &[(u32, u32)]) -> (Vec<Entry>, Vec<u32>) {
+    // Each run keyed by its colour above its index: one sort orders the colours and keeps
+    // which run each came from.
+    let mut keyed: Vec<u64> = (runs.iter().enumerate())
+        .map(|(run, &(colour, _))| (u64::from(colour) << 32) | run as u64)
+        .collect();
+    keyed.sort_unstable();
     let mut entries: Vec<Entry> = Vec::new();
-    for (colour, length) in sorted {
-        match entries.last_mut() {
-            Some(last) if pack(last.rgb) == colour => last.count += u64::from(length),
-            _ => entries.push(Entry {
+    let mut entry_of_run = vec![0; runs.len()];
+    for key in keyed {
+        let (colour, run) = ((key >> 32) as u32, key as u32 as usize);
+        if entries.last().is_none_or(|last| pack(last.rgb) != colour) {
+            entries.push(Entry {
                 rgb: [(colour >> 16) as u8, (colour >> 8) as u8, colour as u8],
-                count: u64::from(length),
-            }),
+                count: 0,
+            });
         }
+        if let Some(last) = entries.last_mut() {
+            last.count += u64::from(runs[run].1);
+        }
+        entry_of_run[run] = (entries.len() - 1) as u32;
     }
-    entries
+    (entries, entry_of_run)
 }
 
 /// At most [`PALETTE_SIZE`] colours for `histogram`: its own colours when they fit, else the
@@ -111,19 +123,14 @@ fn palette(histogram: &[Entry]) -> Vec<[u8; 3]> {
         return histogram.iter().map(|entry| entry.rgb).collect();
     }
     let mut entries = histogram.to_vec();
+    let error_of = |entries: &[Entry]| Moments::of(entries, WEIGHT_CAP).squared_error();
     let mut boxes = Vec::with_capacity(PALETTE_SIZE);
+    let mut errors = Vec::with_capacity(PALETTE_SIZE);
     boxes.push(0..entries.len());
+    errors.push(error_of(&entries));
     while boxes.len() < PALETTE_SIZE {
-        let (worst, error) = boxes
-            .iter()
-            .enumerate()
-            .map(|(k, range)| {
-                (
-                    k,
-                    Moments::of(&entries[range.clone()], WEIGHT_CAP).squared_error(),
-                )
-            })
-            .fold((0, f64::NEG_INFINITY), |best, candidate| {
+        let (worst, error) =
+            (errors.iter().copied().enumerate()).fold((0, f64::NEG_INFINITY), |best, candidate| {
                 if candidate.1 > best.1 {
                     candidate
                 } else {
@@ -136,7 +143,9 @@ fn palette(histogram: &[Entry]) -> Vec<[u8; 3]> {
         let range = boxes[worst].clone();
         let cut = range.start + best_cut(&mut entries[range.clone()]);
         boxes[worst] = range.start..cut;
+        errors[worst] = error_of(&entries[range.start..cut]);
         boxes.push(cut..range.end);
+        errors.push(error_of(&entries[cut..range.end]));
     }
     boxes
         .iter()
