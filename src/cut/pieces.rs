@@ -27,10 +27,15 @@
 //! keeps within tolerance), they are glued with a slit instead: the shorter run of the curve from
 //! that point stays open, a dart ending in it. A union that would enclose other pieces in a hole
 //! is not made.
+//!
+//! Both stages use the threads without changing the result: the pieces of one depth are cut in
+//! parallel and kept in depth-first order, and the gluing tries pairs in parallel batches whose
+//! results it takes in order, as one by one.
 
 use std::collections::{BTreeMap, BTreeSet};
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use super::cut_graph::RegionSigns;
 use super::cut_loop::{converged_options, cut_and_flatten};
@@ -77,6 +82,8 @@ pub const MIN_BALANCE: f64 = 0.25;
 
 /// Cuts the part into pieces by plane sections until each flattens within tolerance; see the
 /// module documentation. The pieces come depth first, the positive side of each section first.
+/// The pieces of one depth are handled in parallel (each on its own, so the result does not
+/// depend on the threads).
 pub fn cut_into_pieces(
     model: &FacetModel,
     stiffness: &Stiffness,
@@ -84,43 +91,85 @@ pub fn cut_into_pieces(
     progress: &dyn Progress,
 ) -> Result<Vec<CutResult>, CutError> {
     let smallest_cut = SMALLEST_PIECE * model.area() / model.triangle_count() as f64;
-    let mut stack = vec![Piece::whole(model, stiffness)];
-    let mut done = Vec::new();
-    while let Some(piece) = stack.pop() {
+    // Each piece with its path from the whole part: the side taken at each section. Pieces in
+    // the order of their paths are in depth-first order.
+    let mut frontier: Vec<(Vec<u32>, Piece)> = vec![(Vec::new(), Piece::whole(model, stiffness))];
+    let mut done: Vec<(Vec<u32>, Piece, CutResult)> = Vec::new();
+    while !frontier.is_empty() {
         progress.status(&format!(
             "pieces: {} made, {} to go",
             done.len(),
-            stack.len() + 1
+            frontier.len()
         ));
-        let flattened = if must_cut(&piece) {
-            None
-        } else {
-            screened_flattening(&piece, SCREEN_FACTOR, true, flatten_options, progress).transpose()
-        };
-        if let Some(Ok(result)) = &flattened
-            && is_within(result, flatten_options.tolerance)
-        {
-            done.push((piece, result.clone()));
-            continue;
+        let steps: Vec<(Vec<u32>, Result<Step, CutError>)> = (frontier.into_par_iter())
+            .map(|(path, piece)| (path, step(piece, smallest_cut, flatten_options, progress)))
+            .collect();
+        frontier = Vec::new();
+        for (path, step) in steps {
+            match step? {
+                Step::Kept(kept) => {
+                    let (piece, result) = *kept;
+                    done.push((path, piece, result));
+                }
+                Step::Halved(sides) => {
+                    frontier.extend((sides.into_iter().enumerate()).map(|(side, piece)| {
+                        let mut path = path.clone();
+                        path.push(side as u32);
+                        (path, piece)
+                    }));
+                }
+            }
         }
-        let cuttable = piece.model.triangle_count() >= MIN_PIECE_TRIANGLES
-            && piece.model.area() >= smallest_cut
-            && piece.depth < MAX_SECTIONS
-            && !flatten_options.deadline.passed();
-        if let Some(sides) = cuttable.then(|| halves(&piece)).flatten() {
-            stack.extend(sides.into_iter().rev());
-            continue;
-        }
-        let result = match flattened {
-            Some(result) => result?,
-            None => flatten_piece(&piece, flatten_options, progress)?,
-        };
-        done.push((piece, result));
     }
+    done.sort_by(|a, b| a.0.cmp(&b.0));
+    let done = (done.into_iter())
+        .map(|(_, piece, result)| (piece, result))
+        .collect();
     let merged = merge_neighbours(done, flatten_options, progress);
     Ok((merged.into_iter())
         .map(|(piece, result)| finished(&piece, result, flatten_options))
         .collect())
+}
+
+/// What one step of [`cut_into_pieces`] made of a piece.
+enum Step {
+    /// The piece is kept, with its pattern: within tolerance, or not to be cut again.
+    Kept(Box<(Piece, CutResult)>),
+    /// The piece is cut by a section into these sides, positive first.
+    Halved(Vec<Piece>),
+}
+
+/// One step of [`cut_into_pieces`] on `piece`: kept when it flattens within tolerance, else cut
+/// in two by a section unless it is too small (`smallest_cut`, an area), too deep or out of
+/// time, then kept as it is.
+fn step(
+    piece: Piece,
+    smallest_cut: f64,
+    flatten_options: &FlattenOptions,
+    progress: &dyn Progress,
+) -> Result<Step, CutError> {
+    let flattened = if must_cut(&piece) {
+        None
+    } else {
+        screened_flattening(&piece, SCREEN_FACTOR, true, flatten_options, progress).transpose()
+    };
+    if let Some(Ok(result)) = &flattened
+        && is_within(result, flatten_options.tolerance)
+    {
+        return Ok(Step::Kept(Box::new((piece, result.clone()))));
+    }
+    let cuttable = piece.model.triangle_count() >= MIN_PIECE_TRIANGLES
+        && piece.model.area() >= smallest_cut
+        && piece.depth < MAX_SECTIONS
+        && !flatten_options.deadline.passed();
+    if let Some(sides) = cuttable.then(|| halves(&piece)).flatten() {
+        return Ok(Step::Halved(sides));
+    }
+    let result = match flattened {
+        Some(result) => result?,
+        None => flatten_piece(&piece, flatten_options, progress)?,
+    };
+    Ok(Step::Kept(Box::new((piece, result))))
 }
 
 /// True for a piece that is cut without being flattened: one with handles (a closed piece
@@ -166,41 +215,47 @@ fn merge_neighbours(
     options: &FlattenOptions,
     progress: &dyn Progress,
 ) -> Vec<(Piece, CutResult)> {
-    let mut slots: Vec<Option<(usize, Piece, CutResult)>> = (pieces.into_iter().enumerate())
+    let mut slots: Vec<Slot> = (pieces.into_iter().enumerate())
         .map(|(id, (piece, result))| Some((id, piece, result)))
         .collect();
     let mut next_id = slots.len();
     let mut tried = BTreeSet::new();
+    let batch_size = 2 * rayon::current_num_threads();
     loop {
         let mut busy = vec![false; slots.len()];
         let mut glued_any = false;
-        for (i, j) in neighbour_pairs(&slots, options.tolerance) {
-            if options.deadline.passed() {
+        let mut pairs = neighbour_pairs(&slots, options.tolerance).into_iter();
+        while !options.deadline.passed() {
+            // The next pairs, tried in parallel, then taken in order as one by one: a pair
+            // whose piece an earlier pair of the batch glued is not taken (nor marked tried).
+            let untried = |&(i, j): &(usize, usize)| {
+                !busy[i] && !busy[j] && ids(&slots, i, j).is_some_and(|ids| !tried.contains(&ids))
+            };
+            let batch: Vec<(usize, usize)> =
+                pairs.by_ref().filter(untried).take(batch_size).collect();
+            if batch.is_empty() {
                 break;
             }
-            let (Some(a), Some(b)) = (&slots[i], &slots[j]) else {
-                continue;
-            };
-            if busy[i] || busy[j] || !tried.insert((a.0, b.0)) {
-                continue;
-            }
             progress.status(&format!("pieces: gluing neighbours, {} left", slots.len()));
-            let Some(union) = a.1.glued(&b.1).filter(can_be_one_piece) else {
-                continue;
-            };
-            let glued = match flattened_within(&union, options, progress) {
-                Some(result) => Some((union, result)),
-                None => (a.1.slit_glued(&b.1, &union))
-                    .filter(can_be_one_piece)
-                    .and_then(|slit| {
-                        flattened_within(&slit, options, progress).map(|result| (slit, result))
-                    }),
-            };
-            if let Some((union, result)) = glued {
-                (busy[i], busy[j], glued_any) = (true, true, true);
-                slots[i] = Some((next_id, union, result));
-                slots[j] = None;
-                next_id += 1;
+            let glued: Vec<Option<(Piece, CutResult)>> = (batch.par_iter())
+                .map(|&(i, j)| match (&slots[i], &slots[j]) {
+                    (Some(a), Some(b)) => glued_within(&a.1, &b.1, options, progress),
+                    _ => None,
+                })
+                .collect();
+            for (&(i, j), glued) in batch.iter().zip(glued) {
+                let Some(pair) = ids(&slots, i, j) else {
+                    continue;
+                };
+                if busy[i] || busy[j] || !tried.insert(pair) {
+                    continue;
+                }
+                if let Some((union, result)) = glued {
+                    (busy[i], busy[j], glued_any) = (true, true, true);
+                    slots[i] = Some((next_id, union, result));
+                    slots[j] = None;
+                    next_id += 1;
+                }
             }
         }
         slots.retain(Option::is_some);
@@ -213,6 +268,36 @@ fn merge_neighbours(
         .flatten()
         .map(|(_, piece, result)| (piece, result))
         .collect()
+}
+
+/// A place in the list of pieces being glued: a piece under its id, or none once glued into
+/// another.
+type Slot = Option<(usize, Piece, CutResult)>;
+
+/// The ids of the pieces in slots `i` and `j`, when both hold one.
+fn ids(slots: &[Slot], i: usize, j: usize) -> Option<(usize, usize)> {
+    Some((slots[i].as_ref()?.0, slots[j].as_ref()?.0))
+}
+
+/// Pieces `a` and `b` glued into one ([`Piece::glued`]), or with a slit where that is not
+/// within tolerance ([`Piece::slit_glued`]), with its valid flattening when it is within
+/// tolerance ([`flattened_within`]); `None` when neither is, or when the union is not to be one
+/// piece ([`can_be_one_piece`]).
+fn glued_within(
+    a: &Piece,
+    b: &Piece,
+    options: &FlattenOptions,
+    progress: &dyn Progress,
+) -> Option<(Piece, CutResult)> {
+    let union = a.glued(b).filter(can_be_one_piece)?;
+    match flattened_within(&union, options, progress) {
+        Some(result) => Some((union, result)),
+        None => (a.slit_glued(b, &union))
+            .filter(can_be_one_piece)
+            .and_then(|slit| {
+                flattened_within(&slit, options, progress).map(|result| (slit, result))
+            }),
+    }
 }
 
 /// The valid flattening of a union of pieces when a quick one is within the tolerance and it is
@@ -230,10 +315,7 @@ fn flattened_within(
 
 /// The pairs of pieces within `tolerance` that share section edges, by the slots they are in,
 /// longest shared curve first.
-fn neighbour_pairs(
-    slots: &[Option<(usize, Piece, CutResult)>],
-    tolerance: f64,
-) -> Vec<(usize, usize)> {
+fn neighbour_pairs(slots: &[Slot], tolerance: f64) -> Vec<(usize, usize)> {
     let mut owners: BTreeMap<SideKey, Vec<usize>> = BTreeMap::new();
     for (i, slot) in slots.iter().enumerate() {
         if let Some((_, piece, result)) = slot
