@@ -104,7 +104,8 @@ fn a_nested_run_from_the_library_places_every_part() {
         );
     }
     let directory = tempfile::tempdir().expect("temporary directory");
-    let report = write_outputs(&output, &config, directory.path()).expect("outputs written");
+    let report =
+        write_outputs(&output, &config, directory.path(), &NoProgress).expect("outputs written");
     assert_eq!(report.sheets.len(), nested.layout.sheets.len());
     assert!(report.parts.iter().all(|part| part.tolerance_met));
     for part in &output.parts {

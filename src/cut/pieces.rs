@@ -95,14 +95,18 @@ pub fn cut_into_pieces(
     // the order of their paths are in depth-first order.
     let mut frontier: Vec<(Vec<u32>, Piece)> = vec![(Vec::new(), Piece::whole(model, stiffness))];
     let mut done: Vec<(Vec<u32>, Piece, CutResult)> = Vec::new();
+    // One stage for the whole: each piece's own flattening is quick, and pieces run in parallel,
+    // so the stage shows the pieces made and to go instead of their flattenings.
+    progress.start("cutting into pieces", 0);
     while !frontier.is_empty() {
-        progress.status(&format!(
-            "pieces: {} made, {} to go",
-            done.len(),
-            frontier.len()
-        ));
+        progress.status(&format!("{} made, {} to go", done.len(), frontier.len()));
         let steps: Vec<(Vec<u32>, Result<Step, CutError>)> = (frontier.into_par_iter())
-            .map(|(path, piece)| (path, step(piece, smallest_cut, flatten_options, progress)))
+            .map(|(path, piece)| {
+                (
+                    path,
+                    step(piece, smallest_cut, flatten_options, &NoProgress),
+                )
+            })
             .collect();
         frontier = Vec::new();
         for (path, step) in steps {
@@ -126,6 +130,7 @@ pub fn cut_into_pieces(
         .map(|(_, piece, result)| (piece, result))
         .collect();
     let merged = merge_neighbours(done, flatten_options, progress);
+    progress.finish();
     Ok((merged.into_iter())
         .map(|(piece, result)| finished(&piece, result, flatten_options))
         .collect())
@@ -236,10 +241,10 @@ fn merge_neighbours(
             if batch.is_empty() {
                 break;
             }
-            progress.status(&format!("pieces: gluing neighbours, {} left", slots.len()));
+            progress.status(&format!("gluing neighbours, {} left", slots.len()));
             let glued: Vec<Option<(Piece, CutResult)>> = (batch.par_iter())
                 .map(|&(i, j)| match (&slots[i], &slots[j]) {
-                    (Some(a), Some(b)) => glued_within(&a.1, &b.1, options, progress),
+                    (Some(a), Some(b)) => glued_within(&a.1, &b.1, options, &NoProgress),
                     _ => None,
                 })
                 .collect();

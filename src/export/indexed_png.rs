@@ -36,22 +36,18 @@ struct Entry {
 /// Encodes an opaque pixmap as an indexed PNG (see the module documentation). Alpha is dropped,
 /// which is exact for an opaque image.
 pub fn encode_indexed_png(pixmap: &Pixmap) -> Result<Vec<u8>, png::EncodingError> {
-    let packed: Vec<u32> = pixmap
-        .pixels()
-        .iter()
-        .map(|pixel| {
-            let colour = pixel.demultiply();
-            pack([colour.red(), colour.green(), colour.blue()])
-        })
-        .collect();
-    let runs = runs(&packed);
+    let packed = pixmap.pixels().iter().map(|pixel| {
+        let colour = pixel.demultiply();
+        pack([colour.red(), colour.green(), colour.blue()])
+    });
+    let runs = runs(packed);
     let (histogram, entry_of_run) = histogram(&runs);
     let palette = palette(&histogram);
     let nearest: Vec<u8> = histogram
         .iter()
         .map(|entry| nearest_index(entry.rgb, &palette))
         .collect();
-    let mut indices = Vec::with_capacity(packed.len());
+    let mut indices = Vec::with_capacity(pixmap.pixels().len());
     for (&(_, length), &entry) in runs.iter().zip(&entry_of_run) {
         indices.extend(std::iter::repeat_n(
             nearest[entry as usize],
@@ -78,9 +74,9 @@ fn pack([red, green, blue]: [u8; 3]) -> u32 {
 /// Runs of equal colours in pixel order: `(packed colour, length)`. A picture of large flat and
 /// smooth areas has far fewer runs than pixels, so the histogram and the indices are made from
 /// runs.
-fn runs(packed: &[u32]) -> Vec<(u32, u32)> {
+fn runs(packed: impl IntoIterator<Item = u32>) -> Vec<(u32, u32)> {
     let mut runs: Vec<(u32, u32)> = Vec::new();
-    for &colour in packed {
+    for colour in packed {
         match runs.last_mut() {
             Some((last, length)) if *last == colour => *length += 1,
             _ => runs.push((colour, 1)),

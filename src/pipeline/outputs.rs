@@ -3,6 +3,7 @@
 //! and `report.json`.
 
 use std::path::Path;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use rayon::prelude::*;
 
@@ -40,7 +41,7 @@ pub fn run_into(
     let folder = OutputFolder::prepare(directory)?;
     on_staging(folder.interrupt_handle());
     let written = run_loaded(jobs, config, progress).and_then(|output| {
-        let report = write_outputs(&output, config, folder.staging())?;
+        let report = write_outputs(&output, config, folder.staging(), progress)?;
         Ok((output, report))
     });
     // A signal that abandoned the staging folder makes the writes fail: that is no input's fault.
@@ -55,11 +56,12 @@ pub fn run_into(
 }
 
 /// Writes the output folder of a run into `directory` (created if missing) and returns the
-/// report written to `report.json`.
+/// report written to `report.json`; `progress` counts the parts written.
 pub fn write_outputs(
     output: &RunOutput,
     config: &RunConfig,
     directory: &Path,
+    progress: &dyn Progress,
 ) -> Result<Report, Error> {
     std::fs::create_dir_all(directory).map_err(|source| Error::CreateDirectory {
         path: directory.to_path_buf(),
@@ -75,6 +77,8 @@ pub fn write_outputs(
     };
     // Each part's files are made and written on their own, so parts go in parallel: a part cut
     // into hundreds of pieces writes hundreds of sets, each with its energy picture to render.
+    progress.start("writing", output.parts.len() as u64);
+    let written = AtomicU64::new(0);
     (output.parts.par_iter().zip(&output.patterns)).try_for_each(|(part, pattern_file)| {
         let files = PartFiles {
             source: &part.job.source,
@@ -86,8 +90,11 @@ pub fn write_outputs(
             cuts: part.cuts.len(),
             spring_constant: config.options.flatten.spring_constant,
         };
-        write_part_files(directory, &files, &file_options)
+        write_part_files(directory, &files, &file_options)?;
+        progress.advance(written.fetch_add(1, Ordering::Relaxed) + 1);
+        Ok::<(), Error>(())
     })?;
+    progress.finish();
     let sheets = match &output.nesting {
         Some(nested) => {
             let drawings: Vec<PartDrawing> = output
