@@ -101,12 +101,7 @@ pub fn cut_into_pieces(
     while !frontier.is_empty() {
         progress.status(&format!("{} made, {} to go", done.len(), frontier.len()));
         let steps: Vec<(Vec<u32>, Result<Step, CutError>)> = (frontier.into_par_iter())
-            .map(|(path, piece)| {
-                (
-                    path,
-                    step(piece, smallest_cut, flatten_options, &NoProgress),
-                )
-            })
+            .map(|(path, piece)| (path, step(piece, smallest_cut, flatten_options)))
             .collect();
         frontier = Vec::new();
         for (path, step) in steps {
@@ -146,13 +141,13 @@ enum Step {
 
 /// One step of [`cut_into_pieces`] on `piece`: kept when it flattens within tolerance, else cut
 /// in two by a section unless it is too small (`smallest_cut`, an area), too deep or out of
-/// time, then kept as it is.
+/// time, then kept as it is. Its flattenings report no progress (the stage reports the pieces).
 fn step(
     piece: Piece,
     smallest_cut: f64,
     flatten_options: &FlattenOptions,
-    progress: &dyn Progress,
 ) -> Result<Step, CutError> {
+    let progress = &NoProgress;
     let flattened = if must_cut(&piece) {
         None
     } else {
@@ -244,7 +239,7 @@ fn merge_neighbours(
             progress.status(&format!("gluing neighbours, {} left", slots.len()));
             let glued: Vec<Option<(Piece, CutResult)>> = (batch.par_iter())
                 .map(|&(i, j)| match (&slots[i], &slots[j]) {
-                    (Some(a), Some(b)) => glued_within(&a.1, &b.1, options, &NoProgress),
+                    (Some(a), Some(b)) => glued_within(&a.1, &b.1, options),
                     _ => None,
                 })
                 .collect();
@@ -288,31 +283,20 @@ fn ids(slots: &[Slot], i: usize, j: usize) -> Option<(usize, usize)> {
 /// within tolerance ([`Piece::slit_glued`]), with its valid flattening when it is within
 /// tolerance ([`flattened_within`]); `None` when neither is, or when the union is not to be one
 /// piece ([`can_be_one_piece`]).
-fn glued_within(
-    a: &Piece,
-    b: &Piece,
-    options: &FlattenOptions,
-    progress: &dyn Progress,
-) -> Option<(Piece, CutResult)> {
+fn glued_within(a: &Piece, b: &Piece, options: &FlattenOptions) -> Option<(Piece, CutResult)> {
     let union = a.glued(b).filter(can_be_one_piece)?;
-    match flattened_within(&union, options, progress) {
+    match flattened_within(&union, options) {
         Some(result) => Some((union, result)),
         None => (a.slit_glued(b, &union))
             .filter(can_be_one_piece)
-            .and_then(|slit| {
-                flattened_within(&slit, options, progress).map(|result| (slit, result))
-            }),
+            .and_then(|slit| flattened_within(&slit, options).map(|result| (slit, result))),
     }
 }
 
 /// The valid flattening of a union of pieces when a quick one is within the tolerance and it is
-/// within it too (see `merge_neighbours`).
-fn flattened_within(
-    union: &Piece,
-    options: &FlattenOptions,
-    progress: &dyn Progress,
-) -> Option<CutResult> {
-    screened_flattening(union, GLUE_SCREEN_FACTOR, false, options, progress)
+/// within it too (see `merge_neighbours`), reporting no progress (the stage reports the gluing).
+fn flattened_within(union: &Piece, options: &FlattenOptions) -> Option<CutResult> {
+    screened_flattening(union, GLUE_SCREEN_FACTOR, false, options, &NoProgress)
         .ok()
         .flatten()
         .filter(|result| is_within(result, options.tolerance))
