@@ -43,6 +43,7 @@ mod smooth_cut;
 pub mod split;
 mod state;
 pub mod straighten;
+mod t_junctions;
 mod trials;
 
 pub use coarse::{PLAN_ABOVE_TRIANGLES, PLAN_TRIANGLES};

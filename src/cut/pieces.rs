@@ -46,6 +46,7 @@ use super::piece::{Piece, SideKey, side_key, side_length};
 use super::result::{CutResult, CutStop, Seam};
 use super::seam::{FLAT_DEFICIT, SeamKind, angle_deficits, genus, hole_loops};
 use super::state::CutState;
+use super::t_junctions::conformed_pair;
 use crate::flatten::{
     FlattenOptions, Stiffness, flatten_from, flatten_unrepaired, with_squeezed_triangles_opened,
 };
@@ -279,15 +280,17 @@ fn ids(slots: &[Slot], i: usize, j: usize) -> Option<(usize, usize)> {
     Some((slots[i].as_ref()?.0, slots[j].as_ref()?.0))
 }
 
-/// Pieces `a` and `b` glued into one ([`Piece::glued`]), or with a slit where that is not
+/// Pieces `a` and `b`, their shared curve first given the same points on both sides
+/// ([`conformed_pair`]), glued into one ([`Piece::glued`]), or with a slit where that is not
 /// within tolerance ([`Piece::slit_glued`]), with its valid flattening when it is within
 /// tolerance ([`flattened_within`]); `None` when neither is, or when the union is not to be one
 /// piece ([`can_be_one_piece`]).
 fn glued_within(a: &Piece, b: &Piece, options: &FlattenOptions) -> Option<(Piece, CutResult)> {
-    let union = a.glued(b).filter(can_be_one_piece)?;
+    let (a, b) = conformed_pair(a, b);
+    let union = a.glued(&b).filter(can_be_one_piece)?;
     match flattened_within(&union, options) {
         Some(result) => Some((union, result)),
-        None => (a.slit_glued(b, &union))
+        None => (a.slit_glued(&b, &union))
             .filter(can_be_one_piece)
             .and_then(|slit| flattened_within(&slit, options).map(|result| (slit, result))),
     }
@@ -617,6 +620,7 @@ fn child(parent: &Piece, side: SectionPiece) -> Piece {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::Plane;
     use crate::mesh::test_grid as grid;
     use crate::mesh::{TriangleSoup, validate};
 
@@ -674,6 +678,54 @@ mod tests {
         assert!(pieces[0].seams.is_empty());
         let identity: Vec<u32> = (0..model.vertex_count() as u32).collect();
         assert_eq!(pieces[0].original_vertex, identity);
+    }
+
+    #[test]
+    fn a_section_crossing_the_shared_curve_on_one_side_still_glues_whole() {
+        let model = grid(20, 4);
+        let across = |piece: &Piece, point: DVec3, normal: DVec3| -> Vec<Piece> {
+            (section(&piece.model, Plane::through(point, normal)).expect("two sides"))
+                .into_iter()
+                .map(|side| child(piece, side))
+                .collect()
+        };
+        let whole = Piece::whole(&model, &Stiffness::uniform(&model));
+        let [right, left] =
+            <[Piece; 2]>::try_from(across(&whole, DVec3::new(10.0, 0.0, 0.0), DVec3::X))
+                .expect("two halves");
+        // The right half alone is cut across the shared curve, inside its edge (10, 1)-(10, 2).
+        let [upper, lower] =
+            <[Piece; 2]>::try_from(across(&right, DVec3::new(0.0, 1.5, 0.0), DVec3::Y))
+                .expect("two quarters");
+        let perimeter = |piece: &Piece| -> f64 {
+            let positions = piece.model.positions();
+            (piece.model.boundary_sides())
+                .map(|[a, b]| positions[a as usize].distance(positions[b as usize]))
+                .sum()
+        };
+        let cracked = left.glued(&lower).expect("they share (10, 0)-(10, 1)");
+        assert!(
+            (perimeter(&cracked) - 49.0).abs() < 1e-9,
+            "a crack: {}",
+            perimeter(&cracked)
+        );
+
+        let (left_conformed, lower_conformed) = conformed_pair(&left, &lower);
+        let union = left_conformed.glued(&lower_conformed).expect("glued");
+        assert!(
+            (perimeter(&union) - 48.0).abs() < 1e-9,
+            "no crack: {}",
+            perimeter(&union)
+        );
+        assert_eq!(union.model.boundary_loops().len(), 1);
+        assert!((union.model.area() - 55.0).abs() < 1e-9);
+        let (union, upper) = conformed_pair(&union, &upper);
+        let all = union
+            .glued(&upper)
+            .expect("the rest of the curve matches the upper quarter");
+        assert!(all.section_sides().is_empty(), "no section left");
+        assert!((all.model.area() - 80.0).abs() < 1e-9);
+        assert!((perimeter(&all) - 48.0).abs() < 1e-9);
     }
 
     #[test]
