@@ -22,7 +22,9 @@
 //! Halving overshoots: the halves of a piece just over tolerance are often far within it. So
 //! once every piece is made, neighbouring pieces are glued back together along the section they
 //! share wherever a quick flattening of their union is valid and within the tolerance and its
-//! valid flattening is within it too (`merge_neighbours`). Where the union closes around a cone
+//! valid flattening is within it too (`merge_neighbours`), each side's section edges first split
+//! at the other side's points inside them (a later section crossed the curve on one side only:
+//! [`super::t_junctions`]) so that the curve glues whole. Where the union closes around a cone
 //! point of the shared curve (a spike of a noisy scan, which no flattening of the closed union
 //! keeps within tolerance), they are glued with a slit instead: the shorter run of the curve from
 //! that point stays open, a dart ending in it. A union that would enclose other pieces in a hole
