@@ -11,7 +11,7 @@ use super::options::{
     CAP_CURVATURE, CUT_LOOP_ENERGY_TOLERANCE, CUTS_PER_CAP, CutConstraints, CutOptions,
     DEFAULT_MAX_CUTS,
 };
-use super::result::{Cut, CutResult};
+use super::result::{Cut, CutResult, Seam};
 use super::seam;
 use super::state::{CutState, PointKey, point_key};
 use crate::flatten::{
@@ -53,8 +53,31 @@ pub fn cut_and_flatten(
     };
     let mut user_seams = Vec::new();
     lay_user_seams(&mut state, constraints, &mut user_seams)?;
-    let (state, seams, mut flattened) =
+    let (state, seams, flattened) =
         open_and_flatten(&state, constraints, user_seams, flatten_options, progress)?;
+    cut_opened(
+        state,
+        seams,
+        flattened,
+        constraints,
+        flatten_options,
+        options,
+        progress,
+    )
+}
+
+/// [`cut_and_flatten`] from the part opened to a disk by its `seams` (`state`) and flattened
+/// (`flattened`, as [`crate::flatten::flatten`] makes it): the cuts along crest lines, the
+/// overlap removed and the squeezed triangles opened.
+pub(super) fn cut_opened(
+    state: CutState,
+    seams: Vec<Seam>,
+    mut flattened: Flattened,
+    constraints: &CutConstraints,
+    flatten_options: &FlattenOptions,
+    options: &CutOptions,
+    progress: &dyn Progress,
+) -> Result<CutResult, CutError> {
     let max_cuts = options
         .max_cuts
         .unwrap_or_else(|| default_cut_budget(&state.model));

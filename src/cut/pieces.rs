@@ -40,7 +40,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::cut_graph::RegionSigns;
-use super::cut_loop::{converged_options, cut_and_flatten};
+use super::cut_loop::{converged_options, cut_opened};
 use super::errors::CutError;
 use super::opening::open_to_disk;
 use super::options::{CutConstraints, CutOptions};
@@ -50,7 +50,8 @@ use super::seam::{FLAT_DEFICIT, SeamKind, angle_deficits, genus, hole_loops};
 use super::state::CutState;
 use super::t_junctions::conformed_pair;
 use crate::flatten::{
-    FlattenOptions, Stiffness, flatten_from, flatten_unrepaired, with_squeezed_triangles_opened,
+    FlattenOptions, Flattened, Stiffness, flatten, flatten_from, flatten_unrepaired,
+    with_squeezed_triangles_opened,
 };
 use crate::mesh::{
     EdgeOrigin, FacetModel, NONE, Plane, SectionPiece, chain_edges, principal_axes, section,
@@ -350,7 +351,10 @@ fn screened_flattening(
     if accuracy.area_error > limit || accuracy.shape_error > limit || (invalid && !repair) {
         return Ok(None);
     }
-    flatten_opened(opened, seams, options, progress).map(Some)
+    // Without a flipped triangle the quick pattern is the valid flattening's first pattern
+    // itself: the flip-free repair is all that tells them apart.
+    let first = (accuracy.flipped == 0).then_some(quick);
+    flatten_opened(opened, seams, first, options, progress).map(Some)
 }
 
 /// The piece opened to a disk and flattened validly ([`flatten_opened`]).
@@ -360,7 +364,7 @@ fn flatten_piece(
     progress: &dyn Progress,
 ) -> Result<CutResult, CutError> {
     let (opened, seams) = opened(piece)?;
-    flatten_opened(opened, seams, options, progress)
+    flatten_opened(opened, seams, None, options, progress)
 }
 
 /// The piece opened to a disk by seams, one per extra boundary loop (as in
@@ -381,12 +385,13 @@ fn opened(piece: &Piece) -> Result<(CutState, Vec<Seam>), CutError> {
     Ok((opened, seams))
 }
 
-/// The opened piece flattened validly with no crest-line cut, on to the cut loop's
-/// convergence when the first flattening is over tolerance; its vertices numbered by the piece's
-/// and its opening seams first.
+/// The opened piece flattened validly with no crest-line cut, from `first`, its first pattern
+/// as [`flatten`] makes it, when given (else made here), on to the cut loop's convergence when
+/// that is over tolerance; its vertices numbered by the piece's and its opening seams first.
 fn flatten_opened(
     opened: CutState,
     mut seams: Vec<Seam>,
+    first: Option<Flattened>,
     options: &FlattenOptions,
     progress: &dyn Progress,
 ) -> Result<CutResult, CutError> {
@@ -394,10 +399,22 @@ fn flatten_opened(
         max_cuts: Some(0),
         ..CutOptions::default()
     };
-    let mut result = cut_and_flatten(
-        &opened.model,
-        &opened.stiffness,
-        &CutConstraints::default(),
+    let first = match first {
+        Some(first) => first,
+        None => flatten(&opened.model, &opened.stiffness, options, progress)?,
+    };
+    // The cut loop numbers the vertices of the opened model as they are.
+    let disk = CutState {
+        model: opened.model.clone(),
+        stiffness: opened.stiffness.clone(),
+        original_vertex: (0..opened.model.vertex_count() as u32).collect(),
+    };
+    let constraints = CutConstraints::default();
+    let mut result = cut_opened(
+        disk,
+        Vec::new(),
+        first,
+        &constraints,
         options,
         &no_cuts,
         progress,
