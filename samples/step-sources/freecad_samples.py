@@ -40,6 +40,9 @@ Run from the repository root, headless:
   sheet_readme_case_freecad.step: bent sheet-metal solids (see sheet_profile and the functions
   after it for their legs, radii and thicknesses); FLATCUT_SAMPLE_SET=sheet writes only these.
 
+- sheet_two_bodies_freecad.step: a multi-body part, the U and the L with a hole beside a cube,
+  three solids in one file (FLATCUT_SAMPLE_SET=two_bodies writes only it).
+
 It prints each shape's area (OpenCASCADE's own integration) in mm^2: flatcut's tests compare
 its tessellated areas with these figures.
 """
@@ -436,6 +439,15 @@ def boxes_touching():
     return Part.makeCompound(solids)
 
 
+def sheet_two_bodies():
+    # A multi-body part: the U and the L with a hole (sheet_u, sheet_l_hole) 200 mm apart, and a
+    # 20 mm cube, three solids in one file. Each sheet unfolds on its own; the cube is a block.
+    vector = FreeCAD.Vector
+    bent_l = sheet_l_hole()
+    bent_l.translate(vector(200.0, 0.0, 0.0))
+    return Part.makeCompound([sheet_u(), bent_l, Part.makeBox(20.0, 20.0, 20.0, vector(-100.0, 0.0, 0.0))])
+
+
 def sheet_samples():
     export(sheet_l_hole(), "sheet_l_hole_freecad.step")
     export(sheet_u(), "sheet_u_freecad.step")
@@ -465,6 +477,8 @@ def main():
         export(sheet_dimple(8.0), "sheet_edge_dimple_freecad.step")
     elif SAMPLE_SET == "perforated":
         export(sheet_perforated(), "sheet_perforated_freecad.step")
+    elif SAMPLE_SET == "two_bodies":
+        export(sheet_two_bodies(), "sheet_two_bodies_freecad.step")
     elif UNIT == "mm":
         export(cone_frustum_side(), "cone_frustum_freecad.step")
         export(bspline_loft(), "bspline_loft_freecad.step")

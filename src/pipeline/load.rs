@@ -117,30 +117,76 @@ fn read_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> 
                      from the cut stage"
                 .into(),
         }),
-        Input::Step(brep) => {
-            let not_a_sheet = match sheet_metal_part(path, &brep, options)? {
-                Ok(jobs) => return Ok(jobs),
-                Err(reason) => reason,
-            };
-            let tessellation = tessellate_step(path, &brep, &options.tessellate)?;
-            let mut template = template(brep.name.clone(), Units::Millimetres);
-            template.tessellation = Some(tessellation.figures);
-            let mut jobs = split_parts(path, tessellation.soup(), template, |_, _, _| {})
-                .map_err(|error| with_step_faces(error, &brep, tessellation.soup()))?;
-            if let Some(reason) = not_a_sheet {
-                for job in &mut jobs {
-                    job.warnings.push(format!(
-                        "not unfolded as sheet metal ({reason}): flattened as a surface"
-                    ));
-                }
-            }
-            Ok(jobs)
+        Input::Step(brep) if brep.shells.len() > 1 && brep.shells.iter().any(may_be_sheet) => {
+            shell_by_shell_parts(path, &brep, options)
         }
+        Input::Step(brep) => step_parts(path, &brep, options),
         Input::Part(part) if part.fold_bends.iter().any(Option::is_some) => {
             folded_part(path, &part, options)
         }
         Input::Part(part) => load_part_file(path, &part, &options.tessellate),
     }
+}
+
+/// The parts of a STEP file: its solid unfolded when it is sheet metal ([`sheet_metal_part`]),
+/// else its shells tessellated and flattened as surfaces, one part per connected piece, with a
+/// warning when a thin solid is not unfolded.
+fn step_parts(path: &Path, brep: &Brep, options: &RunOptions) -> Result<Vec<PartJob>, Error> {
+    let not_a_sheet = match sheet_metal_part(path, brep, options)? {
+        Ok(jobs) => return Ok(jobs),
+        Err(reason) => reason,
+    };
+    let tessellation = tessellate_step(path, brep, &options.tessellate)?;
+    let mut template = template(brep.name.clone(), Units::Millimetres);
+    template.tessellation = Some(tessellation.figures);
+    let mut jobs = split_parts(path, tessellation.soup(), template, |_, _, _| {})
+        .map_err(|error| with_step_faces(error, brep, tessellation.soup()))?;
+    if let Some(reason) = not_a_sheet {
+        for job in &mut jobs {
+            job.warnings.push(format!(
+                "not unfolded as sheet metal ({reason}): flattened as a surface"
+            ));
+        }
+    }
+    Ok(jobs)
+}
+
+/// The parts of a STEP file of several solids (a multi-body part), one of which may be sheet
+/// metal: each shell handled as a file of that solid alone ([`step_parts`]: a sheet-metal solid
+/// unfolded, any other flattened as a surface), its parts named `<file>-<k>` for the `k`-th
+/// shell. A `--base-face` applies to the shell holding that face (an error when none does); the
+/// others unfold from their own largest planar face. Seams and no-cut regions (the file's cut
+/// sidecar) need a file per part, as for a mesh of several parts.
+fn shell_by_shell_parts(
+    path: &Path,
+    brep: &Brep,
+    options: &RunOptions,
+) -> Result<Vec<PartJob>, Error> {
+    read_cut_sidecar(path, brep.shells.len())?;
+    let holds = |shell: &BrepShell, id: u64| shell.faces.iter().any(|face| face.id == id);
+    if let Some(id) = options.sheet.base_face
+        && !brep.shells.iter().any(|shell| holds(shell, id))
+    {
+        return Err(Error::SheetMetal {
+            path: path.to_path_buf(),
+            reason: format!("--base-face #{id}: no solid of the file has an ADVANCED_FACE #{id}"),
+        });
+    }
+    let mut others = options.clone();
+    others.sheet.base_face = None;
+    let mut jobs = Vec::new();
+    for (k, shell) in brep.shells.iter().enumerate() {
+        let single = Brep {
+            name: format!("{}-{}", brep.name, k + 1),
+            shells: vec![shell.clone()],
+            loose: Vec::new(),
+            unsupported: brep.unsupported.clone(),
+        };
+        let holds_base = options.sheet.base_face.is_some_and(|id| holds(shell, id));
+        let shell_options = if holds_base { options } else { &others };
+        jobs.extend(step_parts(path, &single, shell_options)?);
+    }
+    Ok(jobs)
 }
 
 /// A mesh file's soup as the options want it: duplicates welded (`--repair`), cut into its

@@ -2,7 +2,7 @@
 //! reliefs and holes across a flange (flat = Σ flanges + Σ BA within 0.001 mm); bend rules
 //! (a bend table of K, BA or BD interpolated, DIN 6935) against hand-computed allowances;
 //! `--base-face`; `--bend-zones`; the label kept off the bend lines; part files whose folds
-//! have a bend radius.
+//! have a bend radius; a multi-body file, each solid unfolded on its own.
 
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::Path;
@@ -326,6 +326,69 @@ fn any_flange_face_can_be_the_base_face_and_the_others_are_refused() {
     assert_eq!(accepted, ["down", "down", "up", "up"]);
     let error = refused(&step, &["--base-face", "999999"]);
     assert!(error.contains("no ADVANCED_FACE #999999"), "{error}");
+}
+
+/// The report's parts of `input` flattened with `extra` arguments, expecting success.
+fn report_parts(input: &Path, extra: &[&str]) -> Vec<serde_json::Value> {
+    let directory = tempfile::tempdir().expect("a temporary directory");
+    let output = flatten_into(input, directory.path(), extra);
+    assert!(output.status.success(), "{input:?}: {}", stderr(&output));
+    read_report(directory.path())["parts"]
+        .as_array()
+        .expect("parts")
+        .clone()
+}
+
+#[test]
+fn each_solid_of_a_multi_body_file_unfolds_on_its_own() {
+    let step = sample("sheet_two_bodies_freecad.step");
+    let parts = report_parts(&step, &[]);
+    let names: Vec<&str> = parts
+        .iter()
+        .map(|part| part["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "sheet_two_bodies_freecad-1",
+            "sheet_two_bodies_freecad-2",
+            "sheet_two_bodies_freecad-3"
+        ]
+    );
+    // The U and the L unfold as they do from files of their own; the L's size is also known.
+    let alone = |name: &str| report_parts(&sample(name), &[])[0].clone();
+    assert_size(&parts[0], flat_size(&alone("sheet_u_freecad.step")));
+    assert_eq!(directions(&parts[0]).len(), 2);
+    assert_size(&parts[1], l_size(quarter(2.0, 2.0, K)));
+    assert_size(&parts[1], flat_size(&alone("sheet_l_hole_freecad.step")));
+    // The cube is a block: flattened as a surface, saying why it is not unfolded.
+    assert!(parts[2]["sheet_metal"].is_null(), "{}", parts[2]);
+    let warnings = parts[2]["warnings"].to_string();
+    assert!(
+        warnings.contains("not unfolded as sheet metal"),
+        "{warnings}"
+    );
+
+    // A base face applies to the solid holding it; the others unfold from their largest face.
+    let (l_face, _) = (faces(&step).into_iter())
+        .filter(|&(_, planar)| planar)
+        .find(|&(id, _)| {
+            let id = id.to_string();
+            let directory = tempfile::tempdir().expect("a temporary directory");
+            let output = flatten_into(&step, directory.path(), &["--base-face", &id]);
+            output.status.success()
+                && (read_report(directory.path())["parts"][1]["sheet_metal"]["base_face"].as_str())
+                    .is_some_and(|base| base.starts_with(&format!("ADVANCED_FACE #{id} ")))
+        })
+        .expect("a face of the L that can be its base face");
+    let parts = report_parts(&step, &["--base-face", &l_face.to_string()]);
+    assert_size(&parts[0], flat_size(&alone("sheet_u_freecad.step")));
+    assert_size(&parts[1], l_size(quarter(2.0, 2.0, K)));
+    let error = refused(&step, &["--base-face", "999999"]);
+    assert!(
+        error.contains("no solid of the file has an ADVANCED_FACE #999999"),
+        "{error}"
+    );
 }
 
 #[test]
