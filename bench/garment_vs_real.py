@@ -2,7 +2,7 @@
 """A garment's flatcut pattern against its real sewing pattern, on the same three figures.
 
 USAGE
-    python3 bench/garment_vs_real.py GARMENT.obj [OUT ...]
+    python3 bench/garment_vs_real.py [--panels] GARMENT.obj [OUT ...]
 
 GARMENT.obj is the draped mesh carrying its real sewing pattern in `vt` (the charts of the
 texture layout are the panels; the layout may be scaled, so the real pattern is measured at the
@@ -19,6 +19,15 @@ For the real pattern and for each OUT, printed as one JSON line:
                length minus the garment's own boundary length), in the mesh's units; a seam
                between two pieces bounds both and a slit cut has two sides, so each is counted
                once
+
+With --panels (for OUT folders of `flatcut flatten --seams from-uv`), each flatcut piece is
+also matched to the real panel holding most of its vertices (by their 3D positions) and printed
+as one JSON line: the piece, its panel, its vertices and those the panel holds (a vertex a cut
+inserted has no texture point), and its match: the RMS distance between those vertices' flat
+points and their texture points after a rigid motion of each piece and one scale common to all
+(the least-squares fit), in per cent of the piece's bounding-box diagonal, whether the best
+fit mirrors the panel, and the panel's own E_S against the drape (at the real pattern's scale):
+a panel far from its drape's developed shape cannot be matched by a flattening that is not.
 
 Nothing here is flatcut's own code: the figures are recomputed from the OBJ files.
 """
@@ -201,7 +210,73 @@ def summary(name, pieces, boundary, garment_boundary, scale):
     }
 
 
+def corner_key(point):
+    return tuple(round(x, 6) for x in point)
+
+
+def panel_points(panels):
+    """For each real panel, its texture point at each 3D corner."""
+    return [{corner_key(p): q for t3, t2 in zip(panel.triangles_3d, panel.triangles_2d)
+             for p, q in zip(t3, t2)} for panel in panels]
+
+
+def rigid_fit(pairs):
+    """For (texture, flat) point pairs, centred: the best rotation's (or mirror's) sum of
+    singular values, the texture points' and the flat points' squared norms, and whether the
+    mirror fits better."""
+    n = len(pairs)
+    mean_u = [sum(u[i] for u, _ in pairs) / n for i in range(2)]
+    mean_p = [sum(p[i] for _, p in pairs) / n for i in range(2)]
+    c = [[0.0, 0.0], [0.0, 0.0]]
+    norm_u = norm_p = 0.0
+    for u, p in pairs:
+        du = (u[0] - mean_u[0], u[1] - mean_u[1])
+        dp = (p[0] - mean_p[0], p[1] - mean_p[1])
+        for i in range(2):
+            for j in range(2):
+                c[i][j] += du[i] * dp[j]
+        norm_u += du[0] ** 2 + du[1] ** 2
+        norm_p += dp[0] ** 2 + dp[1] ** 2
+    rotation = math.hypot(c[0][0] + c[1][1], c[0][1] - c[1][0])
+    mirror = math.hypot(c[0][0] - c[1][1], c[0][1] + c[1][0])
+    return max(rotation, mirror), norm_u, norm_p, mirror > rotation
+
+
+def panel_matches(folder, panels):
+    """One line per flatcut piece of `folder`: the real panel holding most of its vertices and
+    the match over the vertices the panel holds (a vertex a cut inserted has no texture point)."""
+    points_of = panel_points(panels)
+    rows = []
+    for mesh_path in sorted(glob.glob(os.path.join(folder, "*.mesh.obj"))):
+        pattern_path = mesh_path[: -len(".mesh.obj")] + ".pattern.obj"
+        points_3d, _, _ = read_obj(mesh_path)
+        points_2d, _, _ = read_obj(pattern_path)
+        keys = [corner_key(p) for p in points_3d]
+        held = [sum(key in points for key in keys) for points in points_of]
+        panel = max(range(len(panels)), key=lambda index: held[index])
+        name = os.path.basename(mesh_path)[: -len(".mesh.obj")]
+        pairs = [(points_of[panel][key], flat[:2])
+                 for key, flat in zip(keys, points_2d) if key in points_of[panel]]
+        flat = [p[:2] for p in points_2d]
+        diagonal = math.hypot(max(p[0] for p in flat) - min(p[0] for p in flat),
+                              max(p[1] for p in flat) - min(p[1] for p in flat))
+        rows.append({"piece": name, "panel": panel, "vertices": len(points_3d),
+                     "matched": len(pairs), "fit": rigid_fit(pairs), "diagonal": diagonal})
+    scale = sum(row["fit"][0] for row in rows) / sum(row["fit"][1] for row in rows)
+    real_scale = best_scale(panels)
+    for row in rows:
+        row["panel_E_S"] = round(100 * errors([panels[row["panel"]]], real_scale)[0], 3)
+        sigma, norm_u, norm_p, mirrored = row.pop("fit")
+        residual = max(scale * scale * norm_u - 2 * scale * sigma + norm_p, 0.0)
+        rms = math.sqrt(residual / row["matched"])
+        row["rms_percent"] = round(100 * rms / row.pop("diagonal"), 3)
+        row["mirrored"] = mirrored
+        print(json.dumps(row))
+
+
 def main(argv):
+    panels_wanted = "--panels" in argv
+    argv = [arg for arg in argv if arg != "--panels"]
     if len(argv) < 2:
         sys.exit(__doc__)
     vertices, texture, faces = read_obj(argv[1])
@@ -213,6 +288,8 @@ def main(argv):
     for folder in argv[2:]:
         pieces, boundary = flatcut_pieces(folder)
         print(json.dumps(summary(folder, pieces, boundary, garment_boundary, 1.0)))
+        if panels_wanted:
+            panel_matches(folder, panels)
 
 
 if __name__ == "__main__":
