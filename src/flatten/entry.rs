@@ -259,11 +259,11 @@ fn minimise(
     )
 }
 
-/// A finished pattern with its squeezed triangles opened ([`open_squeezed_triangles`]), its
+/// A finished pattern with its squeezed triangles opened (`open_squeezed_triangles`), its
 /// figures measured again. The solvers' patterns can hold triangles squeezed to slivers (they
 /// keep triangles from flipping, not from collapsing), which leave a notch in the outline and are
 /// degenerate at worst; the cut stage opens its final patterns. Triangles below half their area
-/// are opened first ([`OPENING_BARRIER`]); when that does not pay ([`opening_pays`]: it would
+/// are opened first ([`OPENING_BARRIER`]); when that does not pay (`opening_pays`: it would
 /// leave the tolerance, `options.tolerance`, that the pattern met, or raise its errors), only
 /// slivers below a hundredth of their area are ([`SLIVER_BARRIER`], moving their corners only),
 /// and when that does not pay either, the pattern stays as it is.

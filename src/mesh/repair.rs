@@ -42,7 +42,7 @@ pub fn weld_duplicates(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
 
 /// The soup with its non-manifold edges and vertices split: triangles stop being neighbours
 /// across an edge that more than two of them share, and each vertex gets one copy per fan of
-/// triangles that meet there ([`corner_fans`]; fans ordered by their lowest triangle, the first
+/// triangles that meet there (`corner_fans`; fans ordered by their lowest triangle, the first
 /// keeping the vertex). Copies keep their vertex's position and file line. A triangle that
 /// repeats a vertex or names a missing one is left as it is, for validation. Returns the
 /// warnings, one [`Defect::SplitEdge`] per edge and one [`Defect::SplitVertex`] per vertex split.

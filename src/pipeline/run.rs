@@ -29,7 +29,7 @@ pub struct RunOutput {
     pub patterns: Vec<PatternFile>,
     /// The nested layout, when the run had stock.
     pub nesting: Option<NestedLayout>,
-    /// The parts on the stock, in the layout's item order ([`nestable_parts`]); none without
+    /// The parts on the stock, in the layout's item order (`nestable_parts`); none without
     /// stock.
     pub nested_parts: Vec<usize>,
 }

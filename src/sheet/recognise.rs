@@ -61,7 +61,7 @@ impl NotASheet {
 /// Recognises a shell as a thin solid; `face_areas` are the faces' areas (mm²), in the shell's
 /// face order; the unfold starts from `base_face` (a planar face) when given, else from the
 /// largest planar face. A sheet with a cone that is not a bend between flanges is refused with
-/// that reason, a solid with cones that is no sheet without a warning ([`cone_refusal`]).
+/// that reason, a solid with cones that is no sheet without a warning (`cone_refusal`).
 pub fn recognise(
     shell: &BrepShell,
     face_areas: &[f64],

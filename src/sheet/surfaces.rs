@@ -144,7 +144,7 @@ impl SheetSurface {
     /// The thickness between this surface and `other` when they can be the two sides of a sheet:
     /// parallel planes (their distance), coaxial cylinders (the difference of their radii) or
     /// coaxial cones of one half-angle opening the same way (their distance along the normal,
-    /// [`cone_offset`]).
+    /// `cone_offset`).
     pub fn opposite_distance(&self, other: &Self) -> Option<f64> {
         match (*self, *other) {
             (

@@ -28,7 +28,7 @@ pub fn tessellate_brep(
 /// position and needs only the faces' boundaries and points on their surfaces: the chord is at
 /// most `largest_chord` (mm), edges are sampled to the chord only (a straight edge is one piece),
 /// and faces are triangulated from their boundary samples, refined to the chord but not to a
-/// mesh size or angle ([`Refinement::ChordOnly`]). A plate with many small holes meshes to a
+/// mesh size or angle (`Refinement::ChordOnly`). A plate with many small holes meshes to a
 /// few triangles per boundary point instead of graded triangles round every hole. Loose
 /// surfaces are meshed as by [`tessellate_brep`].
 pub fn tessellate_brep_for_unfold(
