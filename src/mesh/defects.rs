@@ -101,6 +101,34 @@ pub enum Defect {
         /// Number of copies (fans).
         copies: usize,
     },
+    /// A triangle with the same three vertices as an earlier one, dropped (`--repair`).
+    DuplicateTriangle {
+        /// Triangle index.
+        triangle: usize,
+        /// The earlier triangle.
+        of: usize,
+    },
+    /// A zero-area triangle whose third vertex lies on its longest edge, that edge flipped with
+    /// the triangle across it (`--repair`).
+    FlippedEdge {
+        /// Triangle index.
+        triangle: usize,
+        /// The edge's vertices.
+        vertices: [u32; 2],
+    },
+    /// A zero-area triangle whose longest edge is on the boundary, dropped (`--repair`).
+    DroppedSliver {
+        /// Triangle index.
+        triangle: usize,
+    },
+    /// A zero-area triangle whose shortest edge was collapsed into its lower-numbered end
+    /// (`--repair`).
+    CollapsedEdge {
+        /// Triangle index.
+        triangle: usize,
+        /// The edge's vertices.
+        vertices: [u32; 2],
+    },
 }
 
 impl Defect {
@@ -114,6 +142,10 @@ impl Defect {
                 | Defect::WeldedVertex { .. }
                 | Defect::SplitEdge { .. }
                 | Defect::SplitVertex { .. }
+                | Defect::DuplicateTriangle { .. }
+                | Defect::FlippedEdge { .. }
+                | Defect::DroppedSliver { .. }
+                | Defect::CollapsedEdge { .. }
         )
     }
 }
@@ -138,7 +170,11 @@ impl Defect {
             Defect::WeldedVertex { vertex, into } => vertex_lines(&[vertex, into]),
             Defect::IndexOutOfRange { triangle, .. }
             | Defect::RepeatedVertex { triangle }
-            | Defect::ZeroArea { triangle, .. } => {
+            | Defect::ZeroArea { triangle, .. }
+            | Defect::DuplicateTriangle { triangle, .. }
+            | Defect::FlippedEdge { triangle, .. }
+            | Defect::DroppedSliver { triangle }
+            | Defect::CollapsedEdge { triangle, .. } => {
                 lines.triangle(triangle).map(|line| line.to_string())
             }
             Defect::NonManifoldEdge {
@@ -194,7 +230,7 @@ impl fmt::Display for Defect {
             Defect::ZeroArea { triangle, area } => write!(
                 f,
                 "triangle {} has zero area ({area:.3e}): its vertices are collinear; \
-                 remove it or collapse its shortest edge",
+                 --repair flips or collapses it where it can",
                 n(*triangle)
             ),
             Defect::NonManifoldEdge {
@@ -250,6 +286,38 @@ impl fmt::Display for Defect {
                 "vertex {} joined {copies} separate fans of triangles: one copy per fan \
                  (--repair)",
                 n(*vertex)
+            ),
+            Defect::DuplicateTriangle { triangle, of } => write!(
+                f,
+                "triangle {} repeats triangle {}: dropped (--repair)",
+                n(*triangle),
+                n(*of)
+            ),
+            Defect::FlippedEdge {
+                triangle,
+                vertices: [a, b],
+            } => write!(
+                f,
+                "triangle {} had zero area (its third vertex on its edge {}-{}): that edge \
+                 flipped (--repair)",
+                n(*triangle),
+                n(*a as usize),
+                n(*b as usize)
+            ),
+            Defect::DroppedSliver { triangle } => write!(
+                f,
+                "triangle {} had zero area along the boundary: dropped (--repair)",
+                n(*triangle)
+            ),
+            Defect::CollapsedEdge {
+                triangle,
+                vertices: [a, b],
+            } => write!(
+                f,
+                "triangle {} had zero area: its shortest edge {}-{} collapsed (--repair)",
+                n(*triangle),
+                n(*a as usize),
+                n(*b as usize)
             ),
         }
     }

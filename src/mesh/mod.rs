@@ -8,6 +8,7 @@ mod rebuild;
 mod repair;
 mod rows;
 mod section;
+mod slivers;
 mod texture_seams;
 mod validate;
 
@@ -24,5 +25,6 @@ pub(crate) use section::tests::grid as test_grid;
 pub use section::{
     EdgeOrigin, Plane, SECTION_SNAP, SectionPiece, VertexOrigin, principal_axes, section,
 };
+pub use slivers::repair_degenerate_triangles;
 pub use texture_seams::{SeamSource, split_at_texture_seams};
 pub use validate::{ValidatedMesh, validate};

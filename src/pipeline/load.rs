@@ -16,8 +16,8 @@ use crate::error::Error;
 use crate::flatten::Stiffness;
 use crate::ingest::{CutSidecar, Input, read_cut_sidecar, read_input};
 use crate::mesh::{
-    Defect, FacetModel, SeamSource, split_at_texture_seams, split_non_manifold, validate,
-    weld_duplicates,
+    Defect, FacetModel, SeamSource, repair_degenerate_triangles, split_at_texture_seams,
+    split_non_manifold, validate, weld_duplicates,
 };
 use crate::sheet::{
     BendLine, BendRule, FoldedPart, NotASheet, SHEET_CHORD_MM, SheetOptions, SheetUnfold,
@@ -190,8 +190,8 @@ fn shell_by_shell_parts(
 }
 
 /// A mesh file's soup as the options want it: duplicates welded (`--repair`), cut into its
-/// texture charts (`--seams from-uv`), non-manifold edges and vertices split (`--repair`); with
-/// the repairs made, as warnings.
+/// texture charts (`--seams from-uv`), duplicate and zero-area triangles mended and non-manifold
+/// edges and vertices split (`--repair`); with the repairs made, as warnings.
 fn prepared_soup(
     path: &Path,
     mut soup: TriangleSoup,
@@ -213,6 +213,9 @@ fn prepared_soup(
         })?;
     }
     if options.repair {
+        let (mended, repairs) = repair_degenerate_triangles(&soup);
+        note(&soup, repairs);
+        soup = mended;
         let (split, repairs) = split_non_manifold(&soup);
         note(&soup, repairs);
         soup = split;

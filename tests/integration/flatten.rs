@@ -373,6 +373,44 @@ fn seams_from_uv_refuse_a_mesh_without_texture_points() {
 }
 
 #[test]
+fn repair_mends_a_zero_area_triangle_and_drops_a_repeated_one() {
+    let folder = tempfile::tempdir().expect("temporary directory");
+    let input = folder.path().join("cap.obj");
+    // Two unit squares side by side; vertex 7 halfway up their shared edge 2-5 belongs to the
+    // left square only, and the cap 2-5-7 (zero area) fills the gap to the right square's edge
+    // 2-5. The last face repeats the right square's second triangle.
+    let text = "v 0 0 0\nv 10 0 0\nv 20 0 0\nv 0 10 0\nv 10 10 0\nv 20 10 0\nv 10 5 0\n\
+                f 1 2 7\nf 1 7 5\nf 1 5 4\nf 2 5 7\nf 2 3 6\nf 2 6 5\nf 6 5 2\n";
+    std::fs::write(&input, text).expect("write input");
+    let refused = flatten_into(&input, &folder.path().join("refused"), &[]);
+    assert_eq!(refused.status.code(), Some(1), "{}", stderr(&refused));
+    let message = stderr(&refused);
+    assert!(
+        message.contains("triangle 4 has zero area") && message.contains("--repair"),
+        "{message}"
+    );
+    let repaired_folder = folder.path().join("repaired");
+    let repaired = flatten_into(&input, &repaired_folder, &["--repair"]);
+    assert_eq!(repaired.status.code(), Some(0), "{}", stderr(&repaired));
+    let message = stderr(&repaired);
+    assert!(
+        message.contains("triangle 7 repeats triangle 6: dropped (--repair) [line 14]"),
+        "{message}"
+    );
+    assert!(
+        message.contains("triangle 4 had zero area (its third vertex on its edge 2-5): that edge flipped (--repair) [line 11]"),
+        "{message}"
+    );
+    let report = read_report(&repaired_folder);
+    let parts = report["parts"].as_array().expect("parts");
+    assert_eq!(parts.len(), 1);
+    assert_eq!(parts[0]["triangles"], 6);
+    let figures = recompute(&repaired_folder, "cap");
+    assert!(figures.area_error <= DEVELOPABLE_ERROR, "{figures:?}");
+    assert_eq!(figures.flipped, 0);
+}
+
+#[test]
 fn repair_splits_a_non_manifold_edge_that_stops_the_mesh_otherwise() {
     let folder = tempfile::tempdir().expect("temporary directory");
     let input = folder.path().join("three_panels.obj");
