@@ -296,6 +296,23 @@ mod tests {
         TriangleSoup::new(positions, triangles)
     }
 
+    /// The strip ([`strip`]) with vertex 6 at `extra` on the left square's right edge 1-4,
+    /// belonging to the left square only: triangles `0 1 6`, `0 6 4`, `0 4 3`, then the zero-area
+    /// triangle `1 4 6` (triangle 3) filling the gap to the right square (`1 2 5`, `1 5 4`).
+    fn strip_with_a_sliver_at(extra: DVec3) -> TriangleSoup {
+        let mut positions = strip();
+        positions.push(extra);
+        let triangles = vec![
+            [0, 1, 6],
+            [0, 6, 4],
+            [0, 4, 3],
+            [1, 4, 6],
+            [1, 2, 5],
+            [1, 5, 4],
+        ];
+        soup(positions, triangles)
+    }
+
     /// The corners of a 2 x 1 strip of two unit squares, bottom row first.
     fn strip() -> Vec<DVec3> {
         vec![
@@ -310,19 +327,9 @@ mod tests {
 
     #[test]
     fn a_cap_between_two_triangles_is_flipped_away() {
-        // Left square split by its diagonal 0-4; vertex 6 in the middle of edge 1-4 belongs to
-        // the left half only, so the cap 1-6-4 fills the gap to the right square's edge 1-4.
-        let mut positions = strip();
-        positions.push(DVec3::new(1.0, 0.5, 0.0));
-        let triangles = vec![
-            [0, 1, 6],
-            [0, 6, 4],
-            [0, 4, 3],
-            [1, 4, 6],
-            [1, 2, 5],
-            [1, 5, 4],
-        ];
-        let input = soup(positions, triangles);
+        // Vertex 6 in the middle of edge 1-4: the cap 1-4-6 is flipped with the right square's
+        // triangle across 1-4.
+        let input = strip_with_a_sliver_at(DVec3::new(1.0, 0.5, 0.0));
         assert!(validate(&input).is_err(), "the cap has zero area");
         let (mended, warnings) = repair_degenerate_triangles(&input);
         assert_eq!(
@@ -369,17 +376,8 @@ mod tests {
     fn a_needle_has_its_shortest_edge_collapsed() {
         // Vertex 6 a hair below vertex 4: the cap 1-4-6 and the sliver 0-6-4 would stay
         // degenerate if flipped, so their short edge 4-6 is collapsed into vertex 4.
-        let mut positions = strip();
-        positions.push(DVec3::new(1.0, 1.0 - 1e-13, 0.0));
-        let triangles = vec![
-            [0, 1, 6],
-            [0, 6, 4],
-            [0, 4, 3],
-            [1, 4, 6],
-            [1, 2, 5],
-            [1, 5, 4],
-        ];
-        let (mended, warnings) = repair_degenerate_triangles(&soup(positions, triangles));
+        let input = strip_with_a_sliver_at(DVec3::new(1.0, 1.0 - 1e-13, 0.0));
+        let (mended, warnings) = repair_degenerate_triangles(&input);
         assert_eq!(warnings.len(), 2, "{warnings:?}");
         for (warning, at) in warnings.iter().zip([1, 3]) {
             let Defect::CollapsedEdge {
