@@ -108,6 +108,14 @@ fn read_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> 
             let mut jobs = split_parts(path, &soup, template, |_, _, _| {})?;
             for job in &mut jobs {
                 job.warnings.splice(0..0, repairs.iter().cloned());
+                if let Some(thickness) = thin_solid_thickness(&job.model) {
+                    job.warnings.push(format!(
+                        "the mesh is a closed thin solid, about {thickness:.3} {} thick: it is \
+                         flattened as a closed surface, both skins and the edges between them; \
+                         for a sheet-metal unfold give its STEP file, or a mesh of one skin",
+                        job.units.symbol()
+                    ));
+                }
             }
             Ok(jobs)
         }
@@ -126,6 +134,30 @@ fn read_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> 
         }
         Input::Part(part) => load_part_file(path, &part, &options.tessellate),
     }
+}
+
+/// A closed solid's thickness `t` is at most this fraction of its size `√(A / 2)` (A its area,
+/// both skins) for it to be a thin solid, a sheet or a plate: 0.02 for a bent 1.5 mm sheet of
+/// 150 by 30 mm, 0.19 for a cube, 0.27 for a sphere.
+pub const THIN_SOLID_RATIO: f64 = 0.05;
+
+/// The thickness of a closed mesh that is a thin solid (a sheet-metal part exported as a mesh):
+/// twice its enclosed volume over its area ([`THIN_SOLID_RATIO`]); `None` for an open surface or
+/// a thick solid.
+fn thin_solid_thickness(model: &FacetModel) -> Option<f64> {
+    if !model.is_closed() {
+        return None;
+    }
+    let positions = model.positions();
+    let volume: f64 = (model.triangles().iter())
+        .map(|t| {
+            let [a, b, c] = t.map(|v| positions[v as usize]);
+            a.dot(b.cross(c)) / 6.0
+        })
+        .sum();
+    let area = model.area();
+    let thickness = 2.0 * volume.abs() / area;
+    (area > 0.0 && thickness <= THIN_SOLID_RATIO * (area / 2.0).sqrt()).then_some(thickness)
 }
 
 /// The parts of a STEP file: its solid unfolded when it is sheet metal ([`sheet_metal_part`]),

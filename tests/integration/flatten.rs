@@ -372,6 +372,48 @@ fn seams_from_uv_refuse_a_mesh_without_texture_points() {
     );
 }
 
+/// An OBJ box of these sizes, its faces facing out.
+fn box_obj([x, y, z]: [f64; 3]) -> String {
+    let mut text = String::new();
+    for k in 0..8 {
+        let corner = [k & 1, (k >> 1) & 1, (k >> 2) & 1].map(|bit| bit as f64);
+        text += &format!("v {} {} {}\n", corner[0] * x, corner[1] * y, corner[2] * z);
+    }
+    // Each side as a quad of corner numbers (1-based), counter-clockwise seen from outside.
+    for quad in [
+        [1, 3, 4, 2],
+        [5, 6, 8, 7],
+        [1, 2, 6, 5],
+        [3, 7, 8, 4],
+        [1, 5, 7, 3],
+        [2, 4, 8, 6],
+    ] {
+        text += &format!("f {} {} {} {}\n", quad[0], quad[1], quad[2], quad[3]);
+    }
+    text
+}
+
+#[test]
+fn a_closed_thin_solid_mesh_is_flattened_with_a_warning_that_it_is_no_sheet_metal_unfold() {
+    let folder = tempfile::tempdir().expect("temporary directory");
+    let said = |name: &str, sizes: [f64; 3]| {
+        let input = folder.path().join(format!("{name}.obj"));
+        std::fs::write(&input, box_obj(sizes)).expect("write input");
+        let output = flatten_into(&input, &folder.path().join(name), &[]);
+        assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+        stderr(&output)
+    };
+    // A 100 x 80 x 2 plate: 2 V / A = 2 * 16000 / 16720 = 1.914 mm.
+    let plate = said("plate", [100.0, 80.0, 2.0]);
+    assert!(
+        plate.contains("the mesh is a closed thin solid, about 1.914 mm thick")
+            && plate.contains("STEP file"),
+        "{plate}"
+    );
+    let block = said("block", [60.0, 40.0, 30.0]);
+    assert!(!block.contains("thin solid"), "{block}");
+}
+
 #[test]
 fn repair_mends_a_zero_area_triangle_and_drops_a_repeated_one() {
     let folder = tempfile::tempdir().expect("temporary directory");
