@@ -232,24 +232,67 @@ fn run_to_end(
     }
 }
 
-/// The fold-line edges of the pieces, each piece's vertices renumbered by its map.
-fn fold_edges(sides: &[(&Piece, &[u32])]) -> Vec<FoldEdge> {
-    let mut folds = BTreeMap::new();
-    for &(piece, number) in sides {
-        let lines = piece.model.edge_fold_lines();
-        for (e, &[a, b]) in piece.model.edges().iter().enumerate() {
-            if lines[e] != NONE {
-                let [a, b] = [number[a as usize], number[b as usize]];
-                folds.insert([a.min(b), a.max(b)], lines[e]);
-            }
-        }
-    }
+/// An edge's stiffness factor and whether it lies on a section, by its ends in increasing order.
+pub(super) type EdgeAttributes = BTreeMap<[u32; 2], (f64, bool)>;
+
+/// The fold line of each fold-line edge, by its ends in increasing order.
+pub(super) type FoldLines = BTreeMap<[u32; 2], u32>;
+
+/// The ends of an edge in increasing order.
+pub(super) fn ordered([a, b]: [u32; 2]) -> [u32; 2] {
+    [a.min(b), a.max(b)]
+}
+
+/// Each edge of the piece with its ends renumbered by `number` (in increasing order), its
+/// stiffness factor and section flag, and its fold line ([`NONE`] for none).
+pub(super) fn edge_records<'a>(
+    piece: &'a Piece,
+    number: impl Fn(u32) -> u32 + 'a,
+) -> impl Iterator<Item = ([u32; 2], (f64, bool), u32)> + 'a {
+    let factors = piece.stiffness.factors();
+    let lines = piece.model.edge_fold_lines();
+    (piece.model.edges().iter().enumerate()).map(move |(e, &[a, b])| {
+        let factor = factors.get(e).copied().unwrap_or(1.0);
+        let ends = ordered([number(a), number(b)]);
+        (ends, (factor, piece.section_edges[e]), lines[e])
+    })
+}
+
+/// The fold-line edges of a soup, from their fold lines.
+pub(super) fn fold_edge_list(folds: FoldLines) -> Vec<FoldEdge> {
     (folds.into_iter())
         .map(|(vertices, fold_line)| FoldEdge {
             vertices,
             fold_line,
         })
         .collect()
+}
+
+/// The stiffness and section flags of `model`'s edges from `attributes` (an edge not there:
+/// factor 1, no section).
+pub(super) fn attributes_of(
+    model: &FacetModel,
+    attributes: &EdgeAttributes,
+) -> (Stiffness, Vec<bool>) {
+    let (factors, sections) = (model.edges().iter())
+        .map(|&edge| {
+            attributes
+                .get(&ordered(edge))
+                .copied()
+                .unwrap_or((1.0, false))
+        })
+        .unzip();
+    (Stiffness::from_factors(factors), sections)
+}
+
+/// The fold-line edges of the pieces, each piece's vertices renumbered by its map.
+fn fold_edges(sides: &[(&Piece, &[u32])]) -> Vec<FoldEdge> {
+    let folds = (sides.iter())
+        .flat_map(|&(piece, number)| edge_records(piece, |v| number[v as usize]))
+        .filter(|&(_, _, line)| line != NONE)
+        .map(|(ends, _, line)| (ends, line))
+        .collect();
+    fold_edge_list(folds)
 }
 
 /// The glued model's stiffness and section flags, from the pieces' edges (each piece's vertices
@@ -260,16 +303,12 @@ fn edge_attributes(
     sides: &[(&Piece, &[u32])],
     glued: &[[u32; 2]],
 ) -> (Stiffness, Vec<bool>) {
-    let ordered = |[a, b]: [u32; 2]| [a.min(b), a.max(b)];
-    let mut attributes: BTreeMap<[u32; 2], (f64, bool)> = BTreeMap::new();
+    let mut attributes = EdgeAttributes::new();
     for &(piece, number) in sides {
-        let factors = piece.stiffness.factors();
-        for (e, &[a, b]) in piece.model.edges().iter().enumerate() {
-            let key = ordered([number[a as usize], number[b as usize]]);
-            let factor = factors.get(e).copied().unwrap_or(1.0);
-            let entry = attributes.entry(key).or_insert((factor, false));
+        for (ends, (factor, on_section), _) in edge_records(piece, |v| number[v as usize]) {
+            let entry = attributes.entry(ends).or_insert((factor, false));
             entry.0 = entry.0.max(factor);
-            entry.1 |= piece.section_edges[e];
+            entry.1 |= on_section;
         }
     }
     for &edge in glued {
@@ -277,15 +316,7 @@ fn edge_attributes(
             entry.1 = false;
         }
     }
-    let (factors, sections) = (model.edges().iter())
-        .map(|&edge| {
-            attributes
-                .get(&ordered(edge))
-                .copied()
-                .unwrap_or((1.0, false))
-        })
-        .unzip();
-    (Stiffness::from_factors(factors), sections)
+    attributes_of(model, &attributes)
 }
 
 #[cfg(test)]

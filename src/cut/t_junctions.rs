@@ -10,10 +10,11 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use glam::DVec3;
 
-use super::piece::Piece;
+use super::piece::{
+    EdgeAttributes, FoldLines, Piece, attributes_of, edge_records, fold_edge_list, ordered,
+};
 use super::state::point_key;
-use crate::cad::{FoldEdge, TriangleSoup};
-use crate::flatten::Stiffness;
+use crate::cad::TriangleSoup;
 use crate::mesh::{NONE, rebuild};
 
 /// How close to an edge, as a fraction of its length (and of the point's distance from the
@@ -141,90 +142,96 @@ fn split_edges(
     splits: &BTreeMap<usize, Vec<(f64, u32)>>,
 ) -> Option<Piece> {
     let model = &piece.model;
-    let mut positions = model.positions().to_vec();
-    let mut part_vertex = piece.part_vertex.clone();
-    let mut triangles = model.triangles().to_vec();
-    let mut face_sources = model.face_sources().to_vec();
-    let factors = piece.stiffness.factors();
-    let ordered = |[a, b]: [u32; 2]| [a.min(b), a.max(b)];
-    // Stiffness and section flag by vertex pair; fold lines likewise.
-    let mut attributes: BTreeMap<[u32; 2], (f64, bool)> = (model.edges().iter().enumerate())
-        .map(|(e, &edge)| {
-            (
-                edge,
-                (
-                    factors.get(e).copied().unwrap_or(1.0),
-                    piece.section_edges[e],
-                ),
-            )
-        })
-        .collect();
-    let lines = model.edge_fold_lines();
-    let mut folds: BTreeMap<[u32; 2], u32> = (model.edges().iter().enumerate())
-        .filter(|&(e, _)| lines[e] != NONE)
-        .map(|(e, &edge)| (edge, lines[e]))
-        .collect();
-    // The triangles each face has become, as splits of its edges fan it.
-    let mut face_parts: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
-    for (&e, points) in splits {
-        let edge = model.edges()[e];
-        let mut chain = vec![edge[0]];
-        for &(_, v) in points {
-            chain.push(positions.len() as u32);
-            positions.push(other.model.positions()[v as usize]);
-            part_vertex.push(other.part_vertex[v as usize]);
+    let mut splitting = Splitting {
+        positions: model.positions().to_vec(),
+        part_vertex: piece.part_vertex.clone(),
+        triangles: model.triangles().to_vec(),
+        face_sources: model.face_sources().to_vec(),
+        attributes: EdgeAttributes::new(),
+        folds: FoldLines::new(),
+        face_parts: BTreeMap::new(),
+    };
+    for (ends, attribute, line) in edge_records(piece, |v| v) {
+        splitting.attributes.insert(ends, attribute);
+        if line != NONE {
+            splitting.folds.insert(ends, line);
         }
-        chain.push(edge[1]);
-        let face = model.edge_faces()[e][0] as usize;
-        let parts = face_parts.entry(face).or_insert_with(|| vec![face]);
-        let (slot, corner) = (parts.iter().enumerate())
-            .find_map(|(slot, &t)| directed_edge_corner(triangles[t], edge).map(|k| (slot, k)))?;
-        let t = parts[slot];
-        let triangle = triangles[t];
-        let (from, apex) = (triangle[corner], triangle[(corner + 2) % 3]);
-        if from != chain[0] {
-            chain.reverse();
-        }
-        let attribute = attributes[&edge];
-        for (k, pair) in chain.windows(2).enumerate() {
-            let fan = [pair[0], pair[1], apex];
-            attributes.insert(ordered([pair[0], pair[1]]), attribute);
-            if let Some(&line) = folds.get(&edge) {
-                folds.insert(ordered([pair[0], pair[1]]), line);
-            }
-            if k > 0 {
-                attributes.insert(ordered([pair[0], apex]), (attribute.0, false));
-            }
-            if k == 0 {
-                triangles[t] = fan;
-            } else {
-                parts.push(triangles.len());
-                triangles.push(fan);
-                face_sources.push(model.face_sources()[face]);
-            }
-        }
-        attributes.remove(&edge);
-        folds.remove(&edge);
     }
-    let mut soup = TriangleSoup::new(positions, triangles);
-    soup.face_sources = face_sources;
-    soup.fold_edges = (folds.into_iter())
-        .map(|(vertices, fold_line)| FoldEdge {
-            vertices,
-            fold_line,
-        })
-        .collect();
+    for (&e, points) in splits {
+        let chain: Vec<u32> = (points.iter())
+            .map(|&(_, v)| splitting.add_vertex(other, v))
+            .collect();
+        splitting.split(piece, e, chain)?;
+    }
+    let mut soup = TriangleSoup::new(splitting.positions, splitting.triangles);
+    soup.face_sources = splitting.face_sources;
+    soup.fold_edges = fold_edge_list(splitting.folds);
     let model = rebuild(soup).ok()?;
-    let (factors, section_edges) = (model.edges().iter())
-        .map(|edge| attributes.get(edge).copied().unwrap_or((1.0, false)))
-        .unzip();
+    let (stiffness, section_edges) = attributes_of(&model, &splitting.attributes);
     Some(Piece {
         model,
-        stiffness: Stiffness::from_factors(factors),
-        part_vertex,
+        stiffness,
+        part_vertex: splitting.part_vertex,
         section_edges,
         depth: piece.depth,
     })
+}
+
+/// A piece's soup and edge attributes while its edges are split.
+struct Splitting {
+    positions: Vec<DVec3>,
+    part_vertex: Vec<u32>,
+    triangles: Vec<[u32; 3]>,
+    face_sources: Vec<u32>,
+    attributes: EdgeAttributes,
+    folds: FoldLines,
+    /// The triangles each face split so far has become.
+    face_parts: BTreeMap<usize, Vec<usize>>,
+}
+
+impl Splitting {
+    /// A new vertex at `other`'s vertex `v`.
+    fn add_vertex(&mut self, other: &Piece, v: u32) -> u32 {
+        self.positions.push(other.model.positions()[v as usize]);
+        self.part_vertex.push(other.part_vertex[v as usize]);
+        (self.positions.len() - 1) as u32
+    }
+
+    /// Splits the piece's edge `e` at the `inner` vertices (in order from its lower-numbered
+    /// end): the triangle now holding the edge is fanned from its opposite corner. `None` when
+    /// no triangle holds it.
+    fn split(&mut self, piece: &Piece, e: usize, inner: Vec<u32>) -> Option<()> {
+        let edge = piece.model.edges()[e];
+        let face = piece.model.edge_faces()[e][0] as usize;
+        let parts = self.face_parts.entry(face).or_insert_with(|| vec![face]);
+        let (t, corner) = (parts.iter())
+            .find_map(|&t| directed_edge_corner(self.triangles[t], edge).map(|k| (t, k)))?;
+        let triangle = self.triangles[t];
+        let apex = triangle[(corner + 2) % 3];
+        let mut chain = [vec![edge[0]], inner, vec![edge[1]]].concat();
+        if triangle[corner] != chain[0] {
+            chain.reverse();
+        }
+        let attribute = self.attributes.remove(&edge)?;
+        let line = self.folds.remove(&edge);
+        for (k, pair) in chain.windows(2).enumerate() {
+            let (from, to) = (pair[0], pair[1]);
+            self.attributes.insert(ordered([from, to]), attribute);
+            if let Some(line) = line {
+                self.folds.insert(ordered([from, to]), line);
+            }
+            if k == 0 {
+                self.triangles[t] = [from, to, apex];
+            } else {
+                self.attributes
+                    .insert(ordered([from, apex]), (attribute.0, false));
+                parts.push(self.triangles.len());
+                self.triangles.push([from, to, apex]);
+                self.face_sources.push(piece.model.face_sources()[face]);
+            }
+        }
+        Some(())
+    }
 }
 
 /// The corner of `triangle` where it runs along `edge` (either way round), if it has that edge.

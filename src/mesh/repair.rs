@@ -40,6 +40,12 @@ pub fn weld_duplicates(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
     (welded, warnings)
 }
 
+/// True for a triangle of three distinct vertices, each one of the `vertex_count` there are: one
+/// the repairs work on (validation drops or refuses the others).
+pub(super) fn is_usable([a, b, c]: [u32; 3], vertex_count: usize) -> bool {
+    a != b && b != c && a != c && [a, b, c].iter().all(|&v| (v as usize) < vertex_count)
+}
+
 /// The soup with its non-manifold edges and vertices split: triangles stop being neighbours
 /// across an edge that more than two of them share, and each vertex gets one copy per fan of
 /// triangles that meet there (`corner_fans`; fans ordered by their lowest triangle, the first
@@ -49,10 +55,7 @@ pub fn weld_duplicates(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
 pub fn split_non_manifold(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
     let vertex_count = soup.positions.len();
     let usable: Vec<usize> = (0..soup.triangles.len())
-        .filter(|&t| {
-            let [a, b, c] = soup.triangles[t];
-            a != b && b != c && a != c && [a, b, c].iter().all(|&v| (v as usize) < vertex_count)
-        })
+        .filter(|&t| is_usable(soup.triangles[t], vertex_count))
         .collect();
     let triangles: Vec<[u32; 3]> = usable.iter().map(|&t| soup.triangles[t]).collect();
     let half_edges = sorted_half_edges(&triangles);

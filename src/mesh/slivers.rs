@@ -14,6 +14,7 @@ use std::collections::BTreeMap;
 use glam::DVec3;
 
 use super::defects::Defect;
+use super::repair::is_usable;
 use crate::cad::TriangleSoup;
 use crate::geometry::tolerance::has_zero_area;
 
@@ -23,10 +24,7 @@ use crate::geometry::tolerance::has_zero_area;
 pub fn repair_degenerate_triangles(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
     let mended = soup.clone();
     let mut warnings = Vec::new();
-    let usable = |t: [u32; 3]| {
-        let [a, b, c] = t;
-        a != b && b != c && a != c && t.iter().all(|&v| (v as usize) < soup.positions.len())
-    };
+    let usable = |t: [u32; 3]| is_usable(t, soup.positions.len());
     let mut dropped = vec![false; soup.triangles.len()];
     let mut first_of: BTreeMap<[u32; 3], usize> = BTreeMap::new();
     for (triangle, &corners) in soup.triangles.iter().enumerate() {
@@ -106,7 +104,11 @@ impl Mending {
             }
             _ => {
                 let [u, v] = shortest_edge(&self.soup, corners);
-                self.collapse_into.insert(u.max(v), u.min(v));
+                let [u_end, v_end] = [u, v].map(|w| collapsed(&self.collapse_into, w));
+                if u_end != v_end {
+                    self.collapse_into
+                        .insert(u_end.max(v_end), u_end.min(v_end));
+                }
                 self.warnings.push(Defect::CollapsedEdge {
                     triangle,
                     vertices: [u, v],
@@ -180,20 +182,23 @@ fn flip(soup: &mut TriangleSoup, edges: &mut EdgeFaces, triangle: usize, neighbo
     true
 }
 
-/// Every vertex of `into`'s keys replaced by its value (followed to the end) in the triangles
-/// and fold edges.
+/// The vertex `v` is collapsed into: `into`'s value for it, followed to the end (each maps a
+/// vertex to a lower-numbered one, so the chain ends).
+fn collapsed(into: &BTreeMap<u32, u32>, mut v: u32) -> u32 {
+    while let Some(&next) = into.get(&v) {
+        v = next;
+    }
+    v
+}
+
+/// Every vertex of `into`'s keys replaced by the vertex it is collapsed into ([`collapsed`]) in
+/// the triangles and fold edges.
 fn collapse(soup: &mut TriangleSoup, into: &BTreeMap<u32, u32>) {
-    let target = |mut v: u32| {
-        while let Some(&next) = into.get(&v) {
-            v = next;
-        }
-        v
-    };
     for triangle in &mut soup.triangles {
-        *triangle = triangle.map(target);
+        *triangle = triangle.map(|v| collapsed(into, v));
     }
     for edge in &mut soup.fold_edges {
-        edge.vertices = edge.vertices.map(target);
+        edge.vertices = edge.vertices.map(|v| collapsed(into, v));
     }
     soup.fold_edges
         .retain(|edge| edge.vertices[0] != edge.vertices[1]);
