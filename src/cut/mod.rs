@@ -45,6 +45,7 @@ mod state;
 pub mod straighten;
 mod t_junctions;
 mod trials;
+mod union_start;
 
 pub use coarse::{PLAN_ABOVE_TRIANGLES, PLAN_TRIANGLES};
 pub use crest::{DEFAULT_CANDIDATES, DEFAULT_DART_FLOOR};

@@ -13,7 +13,10 @@
 //! other piece is opened to a disk by seams (one per extra boundary loop, as in
 //! [`super::cut_and_flatten`]) and flattened quickly (the fast solver's pattern, flips allowed);
 //! over [`SCREEN_FACTOR`] times the tolerance it is cut without its valid flattening, which costs
-//! far more. Otherwise it is flattened validly (no crest-line cut) and kept when it is within
+//! far more. Its sides' errors are estimated at [`SECTION_ERROR_RATIO`] of its own; a side of
+//! [`SKIP_MIN_TRIANGLES`] or more estimated over [`SKIP_FACTOR`] times the tolerance is cut
+//! without being flattened at all (on a 320k-triangle scan, the quick flattenings of the first
+//! few levels of halves took 10 s and kept nothing). Otherwise it is flattened validly (no crest-line cut) and kept when it is within
 //! tolerance. A piece of fewer than [`MIN_PIECE_TRIANGLES`] triangles or smaller than
 //! [`SMALLEST_PIECE`] of the part's mean triangle, or one past
 //! [`MAX_SECTIONS`] sections deep, or one whose part ran out of time, is kept as it is
@@ -24,19 +27,21 @@
 //! share wherever a quick flattening of their union is valid and within the tolerance and its
 //! valid flattening is within it too (`merge_neighbours`), each side's section edges first split
 //! at the other side's points inside them (a later section crossed the curve on one side only:
-//! [`super::t_junctions`]) so that the curve glues whole. Where the union closes around a cone
+//! [`super::t_junctions`]) so that the curve glues whole. The quick flattening of a union starts
+//! from the two pieces' patterns, fitted together along the curve ([`super::union_start`]). Where the union closes around a cone
 //! point of the shared curve (a spike of a noisy scan, which no flattening of the closed union
 //! keeps within tolerance), they are glued with a slit instead: the shorter run of the curve from
 //! that point stays open, a dart ending in it. A union that would enclose other pieces in a hole
 //! is not made.
 //!
 //! Both stages use the threads without changing the result: the pieces of one depth are cut in
-//! parallel and kept in depth-first order, and the gluing tries pairs in parallel batches whose
-//! results it takes in order, as one by one.
+//! parallel and kept in depth-first order, and the gluing tries pairs in parallel batches of
+//! pairs that share no piece with each other nor with a pair before them still to be tried,
+//! which gives what trying them one by one in order gives.
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 use super::cut_graph::RegionSigns;
@@ -49,9 +54,10 @@ use super::result::{CutResult, CutStop, Seam};
 use super::seam::{FLAT_DEFICIT, SeamKind, angle_deficits, genus, hole_loops};
 use super::state::CutState;
 use super::t_junctions::conformed_pair;
+use super::union_start::UnionStart;
 use crate::flatten::{
     FlattenOptions, Flattened, Stiffness, flatten, flatten_from, flatten_unrepaired,
-    with_squeezed_triangles_opened,
+    flatten_unrepaired_from, with_squeezed_triangles_opened,
 };
 use crate::mesh::{
     EdgeOrigin, FacetModel, NONE, Plane, SectionPiece, chain_edges, principal_axes, section,
@@ -80,6 +86,23 @@ pub const SHIFT: f64 = 0.37;
 /// A piece this many sections deep is not cut again.
 pub const MAX_SECTIONS: usize = 64;
 
+/// A union of pieces of at least this many triangles starts its quick flattening from the
+/// pieces' patterns ([`UnionStart`]); a smaller one grows its start, which costs little there
+/// and more often ends without a fold (on the octopus, 230 pieces against 254).
+pub const WARM_START_MIN_TRIANGLES: usize = 1_000;
+
+/// A piece of at least [`SKIP_MIN_TRIANGLES`] triangles whose quick flattening's error is
+/// estimated over this many times the tolerance is cut without being flattened (see
+/// `is_far_over`).
+pub const SKIP_FACTOR: f64 = 4.0 * SCREEN_FACTOR;
+
+/// The smallest piece that may be cut without being flattened (see `is_far_over`).
+pub const SKIP_MIN_TRIANGLES: usize = 10_000;
+
+/// The estimate of a side's quick flattening error, as a fraction of its piece's: a section
+/// halves the area, and roughly halves the curvature a side must flatten.
+pub const SECTION_ERROR_RATIO: f64 = 0.5;
+
 /// The smallest share of a piece's area a section leaves on either side, unless no candidate
 /// plane does.
 pub const MIN_BALANCE: f64 = 0.25;
@@ -95,9 +118,11 @@ pub fn cut_into_pieces(
     progress: &dyn Progress,
 ) -> Result<Vec<CutResult>, CutError> {
     let smallest_cut = SMALLEST_PIECE * model.area() / model.triangle_count() as f64;
-    // Each piece with its path from the whole part: the side taken at each section. Pieces in
-    // the order of their paths are in depth-first order.
-    let mut frontier: Vec<(Vec<u32>, Piece)> = vec![(Vec::new(), Piece::whole(model, stiffness))];
+    // Each piece with its path from the whole part (the side taken at each section: pieces in
+    // the order of their paths are in depth-first order)
+    // and the estimate of its quick flattening's error (none for the whole).
+    let whole = Piece::whole(model, stiffness);
+    let mut frontier: Vec<(Vec<u32>, Piece, f64)> = vec![(Vec::new(), whole, 0.0)];
     let mut done: Vec<(Vec<u32>, Piece, CutResult)> = Vec::new();
     // One stage for the whole: each piece's own flattening is quick, and pieces run in parallel,
     // so the stage shows the pieces made and to go instead of their flattenings.
@@ -105,7 +130,9 @@ pub fn cut_into_pieces(
     while !frontier.is_empty() {
         progress.status(&format!("{} made, {} to go", done.len(), frontier.len()));
         let steps: Vec<(Vec<u32>, Result<Step, CutError>)> = (frontier.into_par_iter())
-            .map(|(path, piece)| (path, step(piece, smallest_cut, flatten_options)))
+            .map(|(path, piece, estimate)| {
+                (path, step(piece, estimate, smallest_cut, flatten_options))
+            })
             .collect();
         frontier = Vec::new();
         for (path, step) in steps {
@@ -114,11 +141,11 @@ pub fn cut_into_pieces(
                     let (piece, result) = *kept;
                     done.push((path, piece, result));
                 }
-                Step::Halved(sides) => {
+                Step::Halved(sides, estimate) => {
                     frontier.extend((sides.into_iter().enumerate()).map(|(side, piece)| {
                         let mut path = path.clone();
                         path.push(side as u32);
-                        (path, piece)
+                        (path, piece, estimate)
                     }));
                 }
             }
@@ -139,23 +166,41 @@ pub fn cut_into_pieces(
 enum Step {
     /// The piece is kept, with its pattern: within tolerance, or not to be cut again.
     Kept(Box<(Piece, CutResult)>),
-    /// The piece is cut by a section into these sides, positive first.
-    Halved(Vec<Piece>),
+    /// The piece is cut by a section into these sides, positive first, with the estimate of their
+    /// quick flattenings' error.
+    Halved(Vec<Piece>, f64),
 }
 
 /// One step of [`cut_into_pieces`] on `piece`: kept when it flattens within tolerance, else cut
 /// in two by a section unless it is too small (`smallest_cut`, an area), too deep or out of
-/// time, then kept as it is. Its flattenings report no progress (the stage reports the pieces).
+/// time, then kept as it is. A large piece whose quick flattening's error is `estimate`d far over
+/// the tolerance ([`is_far_over`]) is cut without being flattened. Its flattenings report no
+/// progress (the stage reports the pieces).
 fn step(
     piece: Piece,
+    estimate: f64,
     smallest_cut: f64,
     flatten_options: &FlattenOptions,
 ) -> Result<Step, CutError> {
     let progress = &NoProgress;
-    let flattened = if must_cut(&piece) {
-        None
+    let (flattened, error) = if must_cut(&piece) || is_far_over(&piece, estimate, flatten_options) {
+        (None, estimate)
     } else {
-        screened_flattening(&piece, SCREEN_FACTOR, true, flatten_options, progress).transpose()
+        let screen = Screen {
+            factor: SCREEN_FACTOR,
+            repair: true,
+            start: None,
+        };
+        match screened_flattening(&piece, screen, flatten_options, progress) {
+            Ok(Screened::Flattened(result)) => {
+                let result = *result;
+                let accuracy = result.flattened.stats.accuracy;
+                let error = accuracy.area_error.max(accuracy.shape_error);
+                (Some(Ok(result)), error)
+            }
+            Ok(Screened::Over { error }) => (None, error),
+            Err(error) => (Some(Err(error)), 0.0),
+        }
     };
     if let Some(Ok(result)) = &flattened
         && is_within(result, flatten_options.tolerance)
@@ -167,13 +212,20 @@ fn step(
         && piece.depth < MAX_SECTIONS
         && !flatten_options.deadline.passed();
     if let Some(sides) = cuttable.then(|| halves(&piece)).flatten() {
-        return Ok(Step::Halved(sides));
+        return Ok(Step::Halved(sides, error * SECTION_ERROR_RATIO));
     }
     let result = match flattened {
         Some(result) => result?,
         None => flatten_piece(&piece, flatten_options, progress)?,
     };
     Ok(Step::Kept(Box::new((piece, result))))
+}
+
+/// True for a piece of at least [`SKIP_MIN_TRIANGLES`] triangles whose quick flattening's error
+/// is `estimate`d over [`SKIP_FACTOR`] times the tolerance: so far over that it is cut without
+/// being flattened (a quick flattening of a large piece costs much, and would not keep it).
+fn is_far_over(piece: &Piece, estimate: f64, options: &FlattenOptions) -> bool {
+    piece.model.triangle_count() >= SKIP_MIN_TRIANGLES && estimate > SKIP_FACTOR * options.tolerance
 }
 
 /// True for a piece that is cut without being flattened: one with handles (a closed piece
@@ -224,35 +276,29 @@ fn merge_neighbours(
         .collect();
     let mut next_id = slots.len();
     let mut tried = BTreeSet::new();
-    let batch_size = 2 * rayon::current_num_threads();
+    let batch_size = BATCH_PER_THREAD * rayon::current_num_threads();
     loop {
         let mut busy = vec![false; slots.len()];
         let mut glued_any = false;
-        let mut pairs = neighbour_pairs(&slots, options.tolerance).into_iter();
+        let mut pairs = PairQueue::new(neighbour_pairs(&slots, options.tolerance));
         while !options.deadline.passed() {
-            // The next pairs, tried in parallel, then taken in order as one by one: a pair
-            // whose piece an earlier pair of the batch glued is not taken (nor marked tried).
-            let untried = |&(i, j): &(usize, usize)| {
+            let untried = |(i, j): (usize, usize)| {
                 !busy[i] && !busy[j] && ids(&slots, i, j).is_some_and(|ids| !tried.contains(&ids))
             };
-            let batch: Vec<(usize, usize)> =
-                pairs.by_ref().filter(untried).take(batch_size).collect();
+            let batch = pairs.next_batch(batch_size, untried);
             if batch.is_empty() {
                 break;
             }
             progress.status(&format!("gluing neighbours, {} left", slots.len()));
             let glued: Vec<Option<(Piece, CutResult)>> = (batch.par_iter())
                 .map(|&(i, j)| match (&slots[i], &slots[j]) {
-                    (Some(a), Some(b)) => glued_within(&a.1, &b.1, options),
+                    (Some(a), Some(b)) => glued_within((&a.1, &a.2), (&b.1, &b.2), options),
                     _ => None,
                 })
                 .collect();
             for (&(i, j), glued) in batch.iter().zip(glued) {
-                let Some(pair) = ids(&slots, i, j) else {
-                    continue;
-                };
-                if busy[i] || busy[j] || !tried.insert(pair) {
-                    continue;
+                if let Some(pair) = ids(&slots, i, j) {
+                    tried.insert(pair);
                 }
                 if let Some((union, result)) = glued {
                     (busy[i], busy[j], glued_any) = (true, true, true);
@@ -274,6 +320,61 @@ fn merge_neighbours(
         .collect()
 }
 
+/// Pairs of pieces tried at once per thread when gluing (see [`PairQueue::next_batch`]).
+const BATCH_PER_THREAD: usize = 4;
+
+/// The pairs of pieces a gluing round has yet to try, in order (longest shared curve first).
+struct PairQueue {
+    /// Pairs passed over by an earlier batch, in order; they come before `rest`.
+    deferred: Vec<(usize, usize)>,
+    /// The pairs not looked at yet, in order.
+    rest: std::vec::IntoIter<(usize, usize)>,
+}
+
+impl PairQueue {
+    fn new(pairs: Vec<(usize, usize)>) -> Self {
+        Self {
+            deferred: Vec::new(),
+            rest: pairs.into_iter(),
+        }
+    }
+
+    /// Up to `size` of the next pairs that are still to be tried (`untried`; the others are
+    /// dropped), no two sharing a piece, none sharing a piece with a pair before it that is
+    /// passed over: whether a pair glues never depends on another of its batch or on a pair
+    /// still waiting, so trying a batch in parallel and taking its results in any order gives
+    /// what trying every pair one by one in order gives. A passed-over pair waits for a later
+    /// batch, in its place.
+    fn next_batch(
+        &mut self,
+        size: usize,
+        untried: impl Fn((usize, usize)) -> bool,
+    ) -> Vec<(usize, usize)> {
+        let mut batch = Vec::with_capacity(size);
+        let mut claimed = BTreeSet::new();
+        let mut waiting = Vec::new();
+        let mut deferred = std::mem::take(&mut self.deferred).into_iter();
+        while batch.len() < size {
+            let Some(pair) = deferred.next().or_else(|| self.rest.next()) else {
+                break;
+            };
+            if !untried(pair) {
+                continue;
+            }
+            let free = !claimed.contains(&pair.0) && !claimed.contains(&pair.1);
+            claimed.extend([pair.0, pair.1]);
+            if free {
+                batch.push(pair);
+            } else {
+                waiting.push(pair);
+            }
+        }
+        waiting.extend(deferred);
+        self.deferred = waiting;
+        batch
+    }
+}
+
 /// A place in the list of pieces being glued: a piece under its id, or none once glued into
 /// another.
 type Slot = Option<(usize, Piece, CutResult)>;
@@ -283,29 +384,54 @@ fn ids(slots: &[Slot], i: usize, j: usize) -> Option<(usize, usize)> {
     Some((slots[i].as_ref()?.0, slots[j].as_ref()?.0))
 }
 
-/// Pieces `a` and `b`, their shared curve first given the same points on both sides
-/// ([`conformed_pair`]), glued into one ([`Piece::glued`]), or with a slit where that is not
-/// within tolerance ([`Piece::slit_glued`]), with its valid flattening when it is within
-/// tolerance ([`flattened_within`]); `None` when neither is, or when the union is not to be one
-/// piece ([`can_be_one_piece`]).
-fn glued_within(a: &Piece, b: &Piece, options: &FlattenOptions) -> Option<(Piece, CutResult)> {
+/// Pieces `a` and `b` (with their patterns), their shared curve first given the same points on
+/// both sides ([`conformed_pair`]), glued into one ([`Piece::glued`]), or with a slit where that
+/// is not within tolerance ([`Piece::slit_glued`]), with its valid flattening when it is within
+/// tolerance ([`flattened_within`], started from the two patterns: [`UnionStart`]); `None` when
+/// neither is, or when the union is not to be one piece ([`can_be_one_piece`]).
+fn glued_within(
+    (a, a_pattern): (&Piece, &CutResult),
+    (b, b_pattern): (&Piece, &CutResult),
+    options: &FlattenOptions,
+) -> Option<(Piece, CutResult)> {
+    let triangles = a.model.triangle_count() + b.model.triangle_count();
+    let start = (triangles >= WARM_START_MIN_TRIANGLES)
+        .then(|| UnionStart::new((a, a_pattern), (b, b_pattern)))
+        .flatten();
     let (a, b) = conformed_pair(a, b);
+    let first_count = a.model.vertex_count();
+    let within = |union: &Piece| {
+        let positions = start.as_ref().and_then(|s| s.positions(union, first_count));
+        flattened_within(union, positions.as_deref(), options)
+    };
     let union = a.glued(&b).filter(can_be_one_piece)?;
-    match flattened_within(&union, options) {
+    match within(&union) {
         Some(result) => Some((union, result)),
         None => (a.slit_glued(&b, &union))
             .filter(can_be_one_piece)
-            .and_then(|slit| flattened_within(&slit, options).map(|result| (slit, result))),
+            .and_then(|slit| within(&slit).map(|result| (slit, result))),
     }
 }
 
-/// The valid flattening of a union of pieces when a quick one is within the tolerance and it is
-/// within it too (see `merge_neighbours`), reporting no progress (the stage reports the gluing).
-fn flattened_within(union: &Piece, options: &FlattenOptions) -> Option<CutResult> {
-    screened_flattening(union, GLUE_SCREEN_FACTOR, false, options, &NoProgress)
-        .ok()
-        .flatten()
-        .filter(|result| is_within(result, options.tolerance))
+/// The valid flattening of a union of pieces when a quick one, from `start` when given (one
+/// position per vertex of the union), is within the tolerance and it is within it too (see
+/// `merge_neighbours`), reporting no progress (the stage reports the gluing).
+fn flattened_within(
+    union: &Piece,
+    start: Option<&[DVec2]>,
+    options: &FlattenOptions,
+) -> Option<CutResult> {
+    let screen = Screen {
+        factor: GLUE_SCREEN_FACTOR,
+        repair: false,
+        start,
+    };
+    match screened_flattening(union, screen, options, &NoProgress) {
+        Ok(Screened::Flattened(result)) => {
+            Some(*result).filter(|r| is_within(r, options.tolerance))
+        }
+        _ => None,
+    }
 }
 
 /// The pairs of pieces within `tolerance` that share section edges, by the slots they are in,
@@ -332,29 +458,79 @@ fn neighbour_pairs(slots: &[Slot], tolerance: f64) -> Vec<(usize, usize)> {
     pairs.into_iter().map(|(pair, _)| pair).collect()
 }
 
+/// What [`screened_flattening`] made of a piece.
+enum Screened {
+    /// Its valid flattening.
+    Flattened(Box<CutResult>),
+    /// Nothing: its quick flattening is over the screen, with this error (the larger of its
+    /// area and shape errors).
+    Over {
+        /// The quick flattening's larger error.
+        error: f64,
+    },
+}
+
+/// How [`screened_flattening`] screens a piece.
+#[derive(Debug, Clone, Copy)]
+struct Screen<'a> {
+    /// The quick flattening's errors may be this many times the tolerance at most.
+    factor: f64,
+    /// Whether a quick flattening with a flipped triangle or an overlap passes.
+    repair: bool,
+    /// Where the quick flattening starts, one position per vertex of the piece (else it grows
+    /// its own start, as [`flatten_unrepaired`] does, and also when the pattern from this start
+    /// has a fold but errors within the screen).
+    start: Option<&'a [DVec2]>,
+}
+
 /// The piece's valid flattening ([`flatten_piece`]), or `None` when a quick flattening of the
-/// opened piece (the fast solver's pattern, flips allowed: [`flatten_unrepaired`]) is over
-/// `screen` times the tolerance, or invalid (a flipped triangle, an overlap) unless `repair`:
-/// the valid flattening, which costs far more, would not be within it.
+/// opened piece (the fast solver's pattern, flips allowed: [`flatten_unrepaired`], or
+/// [`flatten_unrepaired_from`] the screen's start) is over the screen's factor times the
+/// tolerance, or invalid (a flipped triangle, an overlap) unless the screen repairs: the valid
+/// flattening, which costs far more, would not be within it.
 fn screened_flattening(
     piece: &Piece,
-    screen: f64,
-    repair: bool,
+    screen: Screen,
     options: &FlattenOptions,
     progress: &dyn Progress,
-) -> Result<Option<CutResult>, CutError> {
+) -> Result<Screened, CutError> {
     let (opened, seams) = opened(piece)?;
-    let limit = screen * options.tolerance;
-    let quick = flatten_unrepaired(&opened.model, &opened.stiffness, options, &NoProgress)?;
-    let accuracy = quick.stats.accuracy;
-    let invalid = accuracy.flipped > 0 || accuracy.overlap;
-    if accuracy.area_error > limit || accuracy.shape_error > limit || (invalid && !repair) {
-        return Ok(None);
+    let limit = screen.factor * options.tolerance;
+    let cold = || flatten_unrepaired(&opened.model, &opened.stiffness, options, &NoProgress);
+    let invalid = |quick: &Flattened| {
+        let accuracy = quick.stats.accuracy;
+        accuracy.flipped > 0 || accuracy.overlap
+    };
+    let over = |quick: &Flattened| {
+        let accuracy = quick.stats.accuracy;
+        accuracy.area_error.max(accuracy.shape_error) > limit
+    };
+    let quick = match screen.start {
+        Some(start) => {
+            let start: Vec<DVec2> = (opened.original_vertex.iter())
+                .map(|&v| start[v as usize])
+                .collect();
+            let warm = flatten_unrepaired_from(&opened.model, &opened.stiffness, &start, options)?;
+            // A start can hold the solver in a fold a grown start would not have: a folded
+            // pattern the errors alone would pass is made again from a grown start.
+            if invalid(&warm) && !over(&warm) {
+                cold()?
+            } else {
+                warm
+            }
+        }
+        None => cold()?,
+    };
+    if over(&quick) || (invalid(&quick) && !screen.repair) {
+        let accuracy = quick.stats.accuracy;
+        let error = accuracy.area_error.max(accuracy.shape_error);
+        return Ok(Screened::Over { error });
     }
     // Without a flipped triangle the quick pattern is the valid flattening's first pattern
     // itself: the flip-free repair is all that tells them apart.
-    let first = (accuracy.flipped == 0).then_some(quick);
-    flatten_opened(opened, seams, first, options, progress).map(Some)
+    let first = (quick.stats.accuracy.flipped == 0).then_some(quick);
+    flatten_opened(opened, seams, first, options, progress)
+        .map(|result| Screened::Flattened(Box::new(result)))
 }
 
 /// The piece opened to a disk and flattened validly ([`flatten_opened`]).

@@ -96,6 +96,28 @@ pub fn flatten_from(
     initial: &[DVec2],
     options: &FlattenOptions,
 ) -> Result<Flattened, FlattenError> {
+    flatten_warm(model, stiffness, initial, options, Repair::FlipFree)
+}
+
+/// As [`flatten_from`], but a fast-solver pattern with flipped triangles is kept as it is (as
+/// [`flatten_unrepaired`] keeps it): a quick look at how flat the model lies from a start.
+pub fn flatten_unrepaired_from(
+    model: &FacetModel,
+    stiffness: &Stiffness,
+    initial: &[DVec2],
+    options: &FlattenOptions,
+) -> Result<Flattened, FlattenError> {
+    flatten_warm(model, stiffness, initial, options, Repair::None)
+}
+
+/// Phase two from `initial`, then [`finish`] with `repair`.
+fn flatten_warm(
+    model: &FacetModel,
+    stiffness: &Stiffness,
+    initial: &[DVec2],
+    options: &FlattenOptions,
+    repair: Repair,
+) -> Result<Flattened, FlattenError> {
     let started = Instant::now();
     check_input(model, stiffness)?;
     if initial.len() != model.vertex_count() {
@@ -105,14 +127,7 @@ pub fn flatten_from(
         });
     }
     let springs = SpringSystem::new(model, stiffness.factors(), options.spring_constant);
-    finish(
-        model,
-        &springs,
-        initial.to_vec(),
-        options,
-        Repair::FlipFree,
-        started,
-    )
+    finish(model, &springs, initial.to_vec(), options, repair, started)
 }
 
 /// The flip-free flattening with the outline kept from crossing itself: a Tutte start (no

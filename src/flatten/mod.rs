@@ -34,7 +34,8 @@ pub mod stiffness;
 pub use accuracy::{Accuracy, DEFAULT_TOLERANCE};
 pub use energy_release::{EnergyRelease, ReleaseOutcome, ReleaseParameters, StopReason};
 pub use entry::{
-    flatten, flatten_from, flatten_unrepaired, overlap_free_flatten, with_squeezed_triangles_opened,
+    flatten, flatten_from, flatten_unrepaired, flatten_unrepaired_from, overlap_free_flatten,
+    with_squeezed_triangles_opened,
 };
 pub use errors::FlattenError;
 pub use fast::{FastError, FastOptions, FastOutcome, FastSolver, fast_solve};
