@@ -820,6 +820,18 @@ mod tests {
     use crate::mesh::{TriangleSoup, validate};
 
     #[test]
+    fn a_gluing_batch_holds_no_two_pairs_of_one_piece_and_waits_behind_a_passed_over_pair() {
+        let mut queue = PairQueue::new(vec![(0, 1), (1, 2), (3, 4), (2, 5), (6, 7), (8, 9)]);
+        // (1, 2) shares piece 1 with (0, 1); (2, 5) shares piece 2 with the waiting (1, 2).
+        assert_eq!(queue.next_batch(3, |_| true), [(0, 1), (3, 4), (6, 7)]);
+        // Pieces 0 and 1 glued: (1, 2) is dropped, and (2, 5) comes before (8, 9).
+        let glued = [0, 1];
+        let untried = |(i, j): (usize, usize)| !glued.contains(&i) && !glued.contains(&j);
+        assert_eq!(queue.next_batch(3, untried), [(2, 5), (8, 9)]);
+        assert!(queue.next_batch(3, untried).is_empty());
+    }
+
+    #[test]
     fn a_strip_is_cut_across_its_middle_where_the_section_is_shortest() {
         let model = grid(20, 4);
         let plane = section_planes(&model)[0];
