@@ -16,23 +16,23 @@
 //! far more. Its sides' errors are estimated at [`SECTION_ERROR_RATIO`] of its own; a side of
 //! [`SKIP_MIN_TRIANGLES`] or more estimated over [`SKIP_FACTOR`] times the tolerance is cut
 //! without being flattened at all (on a 320k-triangle scan, the quick flattenings of the first
-//! few levels of halves took 10 s and kept nothing). Otherwise it is flattened validly (no crest-line cut) and kept when it is within
-//! tolerance. A piece of fewer than [`MIN_PIECE_TRIANGLES`] triangles or smaller than
-//! [`SMALLEST_PIECE`] of the part's mean triangle, or one past
-//! [`MAX_SECTIONS`] sections deep, or one whose part ran out of time, is kept as it is
-//! (rejected when over tolerance).
+//! few levels of halves took 10 s and kept nothing). Otherwise it is flattened validly (no
+//! crest-line cut) and kept when it is within tolerance. A piece of fewer than
+//! [`MIN_PIECE_TRIANGLES`] triangles or smaller than [`SMALLEST_PIECE`] of the part's mean
+//! triangle, or one past [`MAX_SECTIONS`] sections deep, or one whose part ran out of time, is
+//! kept as it is (rejected when over tolerance).
 //!
 //! Halving overshoots: the halves of a piece just over tolerance are often far within it. So
 //! once every piece is made, neighbouring pieces are glued back together along the section they
 //! share wherever a quick flattening of their union is valid and within the tolerance and its
 //! valid flattening is within it too (`merge_neighbours`), each side's section edges first split
 //! at the other side's points inside them (a later section crossed the curve on one side only:
-//! [`super::t_junctions`]) so that the curve glues whole. The quick flattening of a union starts
-//! from the two pieces' patterns, fitted together along the curve ([`super::union_start`]). Where the union closes around a cone
-//! point of the shared curve (a spike of a noisy scan, which no flattening of the closed union
-//! keeps within tolerance), they are glued with a slit instead: the shorter run of the curve from
-//! that point stays open, a dart ending in it. A union that would enclose other pieces in a hole
-//! is not made.
+//! [`super::t_junctions`]) so that the curve glues whole. The quick flattening of a large union
+//! starts from the two pieces' patterns, fitted together along the curve
+//! ([`super::union_start`]). Where the union closes around a cone point of the shared curve (a
+//! spike of a noisy scan, which no flattening of the closed union keeps within tolerance), they
+//! are glued with a slit instead: the shorter run of the curve from that point stays open, a dart
+//! ending in it. A union that would enclose other pieces in a hole is not made.
 //!
 //! Both stages use the threads without changing the result: the pieces of one depth are cut in
 //! parallel and kept in depth-first order, and the gluing tries pairs in parallel batches of
@@ -119,8 +119,8 @@ pub fn cut_into_pieces(
 ) -> Result<Vec<CutResult>, CutError> {
     let smallest_cut = SMALLEST_PIECE * model.area() / model.triangle_count() as f64;
     // Each piece with its path from the whole part (the side taken at each section: pieces in
-    // the order of their paths are in depth-first order)
-    // and the estimate of its quick flattening's error (none for the whole).
+    // the order of their paths are in depth-first order) and the estimate of its quick
+    // flattening's error (0, none, for the whole).
     let whole = Piece::whole(model, stiffness);
     let mut frontier: Vec<(Vec<u32>, Piece, f64)> = vec![(Vec::new(), whole, 0.0)];
     let mut done: Vec<(Vec<u32>, Piece, CutResult)> = Vec::new();
@@ -193,10 +193,8 @@ fn step(
         };
         match screened_flattening(&piece, screen, flatten_options, progress) {
             Ok(Screened::Flattened(result)) => {
-                let result = *result;
-                let accuracy = result.flattened.stats.accuracy;
-                let error = accuracy.area_error.max(accuracy.shape_error);
-                (Some(Ok(result)), error)
+                let error = result.flattened.stats.accuracy.larger_error();
+                (Some(Ok(*result)), error)
             }
             Ok(Screened::Over { error }) => (None, error),
             Err(error) => (Some(Err(error)), 0.0),
@@ -483,11 +481,11 @@ struct Screen<'a> {
     start: Option<&'a [DVec2]>,
 }
 
-/// The piece's valid flattening ([`flatten_piece`]), or `None` when a quick flattening of the
-/// opened piece (the fast solver's pattern, flips allowed: [`flatten_unrepaired`], or
-/// [`flatten_unrepaired_from`] the screen's start) is over the screen's factor times the
-/// tolerance, or invalid (a flipped triangle, an overlap) unless the screen repairs: the valid
-/// flattening, which costs far more, would not be within it.
+/// The piece's valid flattening ([`flatten_piece`]), or [`Screened::Over`] when a quick
+/// flattening of the opened piece (the fast solver's pattern, flips allowed:
+/// [`flatten_unrepaired`], or [`flatten_unrepaired_from`] the screen's start) is over the
+/// screen's factor times the tolerance, or invalid (a flipped triangle, an overlap) unless the
+/// screen repairs: the valid flattening, which costs far more, would not be within it.
 fn screened_flattening(
     piece: &Piece,
     screen: Screen,
@@ -501,10 +499,7 @@ fn screened_flattening(
         let accuracy = quick.stats.accuracy;
         accuracy.flipped > 0 || accuracy.overlap
     };
-    let over = |quick: &Flattened| {
-        let accuracy = quick.stats.accuracy;
-        accuracy.area_error.max(accuracy.shape_error) > limit
-    };
+    let over = |quick: &Flattened| quick.stats.accuracy.larger_error() > limit;
     let quick = match screen.start {
         Some(start) => {
             let start: Vec<DVec2> = (opened.original_vertex.iter())
@@ -522,8 +517,7 @@ fn screened_flattening(
         None => cold()?,
     };
     if over(&quick) || (invalid(&quick) && !screen.repair) {
-        let accuracy = quick.stats.accuracy;
-        let error = accuracy.area_error.max(accuracy.shape_error);
+        let error = quick.stats.accuracy.larger_error();
         return Ok(Screened::Over { error });
     }
     // Without a flipped triangle the quick pattern is the valid flattening's first pattern

@@ -359,7 +359,7 @@ fn judge(
     }
     let lower = match overlap {
         Overlap::Refused => pays(&after.accuracy, &before.stats.accuracy, tolerance),
-        Overlap::Ignored => error(&after.accuracy) < error(&before.stats.accuracy),
+        Overlap::Ignored => after.accuracy.larger_error() < before.stats.accuracy.larger_error(),
     };
     if !lower {
         return None;
@@ -398,11 +398,6 @@ fn reflatten(
     )
 }
 
-/// The larger of `E_S` and `E_C`.
-fn error(a: &Accuracy) -> f64 {
-    a.area_error.max(a.shape_error)
-}
-
 /// True if a cut that takes the pattern from `before` to `after` is worth making: `after` is the
 /// better pattern ([`is_better`]), except that a cut leaving an overlapping pattern overlapping
 /// with as many flipped triangles does not pay once `E_S` and `E_C` are within `tolerance`: the
@@ -410,7 +405,7 @@ fn error(a: &Accuracy) -> f64 {
 /// wall lies over its top face however it is cut: 8 cuts, 665 mm and 100 s spent in vain).
 fn pays(after: &Accuracy, before: &Accuracy, tolerance: f64) -> bool {
     let overlap_kept = after.overlap && before.overlap && after.flipped == before.flipped;
-    if overlap_kept && error(before) <= tolerance {
+    if overlap_kept && before.larger_error() <= tolerance {
         return false;
     }
     is_better(after, before)
@@ -425,7 +420,7 @@ pub(super) fn is_better(candidate: &Accuracy, current: &Accuracy) -> bool {
         (false, true) => true,
         (true, false) => false,
         (true, true) if candidate.flipped != current.flipped => candidate.flipped < current.flipped,
-        _ => error(candidate) < error(current),
+        _ => candidate.larger_error() < current.larger_error(),
     }
 }
 

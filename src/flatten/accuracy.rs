@@ -50,6 +50,11 @@ impl Accuracy {
         }
     }
 
+    /// The larger of `E_S` and `E_C`.
+    pub fn larger_error(&self) -> f64 {
+        self.area_error.max(self.shape_error)
+    }
+
     /// True if both errors are within `tolerance` and the pattern is a valid cut shape.
     pub fn within(&self, tolerance: f64) -> bool {
         self.area_error <= tolerance && self.shape_error <= tolerance && !self.overlap

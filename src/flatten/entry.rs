@@ -325,10 +325,11 @@ pub fn with_squeezed_triangles_opened(
 fn opening_pays(before: &Squeezed, after: &Squeezed, tolerance: f64) -> bool {
     let valid = |s: &Squeezed| s.accuracy.flipped == 0 && !s.accuracy.overlap && s.degenerate == 0;
     let within = |s: &Squeezed| valid(s) && s.accuracy.within(tolerance);
-    let larger = |s: &Squeezed| s.accuracy.area_error.max(s.accuracy.shape_error);
     within(after)
         || (valid(after) && !valid(before))
-        || (valid(after) && !within(before) && larger(after) <= larger(before))
+        || (valid(after)
+            && !within(before)
+            && after.accuracy.larger_error() <= before.accuracy.larger_error())
 }
 
 /// A pattern's figures and its degenerate triangles (at most [`DEGENERATE_AREA_RATIO`] of their
