@@ -170,11 +170,16 @@ impl PartDrawing {
                     let d = p - point;
                     DVec2::new(d.dot(along) / half.x, d.dot(along.perp()) / half.y)
                 };
+                // Nearest runs first, so that the far ones are skipped (the minima do not
+                // depend on the order).
+                let mut runs: Vec<(f64, &Chunk)> = (lines.chunks.iter())
+                    .map(|chunk| (distance_to_box(point, chunk.low, chunk.high), chunk))
+                    .collect();
+                runs.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
                 let (mut growth, mut clearance) = (f64::INFINITY, f64::INFINITY);
-                for chunk in &lines.chunks {
-                    let near = distance_to_box(point, chunk.low, chunk.high);
+                for (near, chunk) in runs {
                     if near >= clearance && near / diagonal >= growth {
-                        continue;
+                        break;
                     }
                     for &[p, q] in &chunk.segments {
                         growth = growth.min(chebyshev_distance_to_segment(frame(p), frame(q)));
