@@ -243,17 +243,20 @@ impl<'a> Placer<'a> {
     /// Places triangle `f`, reached through edge `via_edge` (or the seed when [`NONE`]).
     fn place_triangle(&mut self, f: u32, via_edge: u32) {
         let t = self.model.triangles()[f as usize];
+        let edges = self.model.face_edges()[f as usize];
         let k = if via_edge == NONE {
-            self.place_seed_edge(t);
+            self.place_seed_edge(t, edges[0]);
             0
         } else {
-            self.model.face_edges()[f as usize]
-                .iter()
+            (edges.iter())
                 .position(|&e| e == via_edge)
                 .expect("face owns the edge")
         };
         let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
-        let proposal = self.third_vertex(a, b, c);
+        // Edge k joins corners k and k + 1: the edges to c are k + 1 (from b) and k + 2 (to a).
+        let rest = |e: u32| self.springs.rest_lengths[e as usize];
+        let radii = (rest(edges[(k + 2) % 3]), rest(edges[(k + 1) % 3]));
+        let proposal = self.third_vertex(a, b, c, radii);
         let count = self.proposals[c as usize] as f64;
         self.positions[c as usize] =
             (self.positions[c as usize] * count + proposal) / (count + 1.0);
@@ -261,25 +264,21 @@ impl<'a> Placer<'a> {
         self.placed_triangle[f as usize] = true;
     }
 
-    fn place_seed_edge(&mut self, t: [u32; 3]) {
-        let length = self.rest_length(t[0], t[1]);
+    /// Lays the seed triangle's first edge, `edge` (from corner 0 to corner 1), on the x axis.
+    fn place_seed_edge(&mut self, t: [u32; 3], edge: u32) {
+        let length = self.springs.rest_lengths[edge as usize];
         self.positions[t[0] as usize] = DVec2::ZERO;
         self.positions[t[1] as usize] = DVec2::new(length, 0.0);
         self.proposals[t[0] as usize] = 1;
         self.proposals[t[1] as usize] = 1;
     }
 
-    fn rest_length(&self, a: u32, b: u32) -> f64 {
-        let e = self.model.find_edge(a, b).expect("triangle edge exists");
-        self.springs.rest_lengths[e]
-    }
-
-    /// The intersection of the circles around `a` and `b` with the rest lengths to `c` as radii,
-    /// to the left of `a → b`. Where the circles miss (the flat edge `ab` is longer or shorter
-    /// than the triangle allows), the triangle's 3D shape scaled to the flat edge is used.
-    fn third_vertex(&self, a: u32, b: u32, c: u32) -> DVec2 {
+    /// The intersection of the circles around `a` and `b` with the rest lengths to `c`, `(ra,
+    /// rb)`, as radii, to the left of `a → b`. Where the circles miss (the flat edge `ab` is
+    /// longer or shorter than the triangle allows), the triangle's 3D shape scaled to the flat
+    /// edge is used.
+    fn third_vertex(&self, a: u32, b: u32, c: u32, (ra, rb): (f64, f64)) -> DVec2 {
         let (pa, pb) = (self.positions[a as usize], self.positions[b as usize]);
-        let (ra, rb) = (self.rest_length(a, c), self.rest_length(b, c));
         let distance = pa.distance(pb);
         let direction = (pb - pa) / distance;
         let along = (distance * distance + ra * ra - rb * rb) / (2.0 * distance);
