@@ -157,6 +157,7 @@ impl PartDrawing {
         // A point at distance d from the centre is at least d / |half| away in the box's measure.
         let diagonal = half.length();
         let hole_boxes: Vec<(DVec2, DVec2)> = self.holes.iter().map(|h| bounding_box(h)).collect();
+        let outer = Lines::ring(&self.outer);
         let measure = |point: DVec2| -> Option<(f64, f64)> {
             let in_hole = self
                 .holes
@@ -165,7 +166,7 @@ impl PartDrawing {
                 .any(|(hole, &(low, high))| {
                     point.cmpge(low).all() && point.cmple(high).all() && inside(point, hole)
                 });
-            (inside(point, &self.outer) && !in_hole).then(|| {
+            (outer.encloses(point) && !in_hole).then(|| {
                 let frame = |p: DVec2| {
                     let d = p - point;
                     DVec2::new(d.dot(along) / half.x, d.dot(along.perp()) / half.y)
@@ -242,6 +243,31 @@ struct Chunk {
 const CHUNK_SEGMENTS: usize = 32;
 
 impl Lines {
+    /// The closed ring's sides.
+    fn ring(ring: &[DVec2]) -> Self {
+        Self::new(
+            (0..ring.len())
+                .map(|k| [ring[k], ring[(k + 1) % ring.len()]])
+                .collect(),
+        )
+    }
+
+    /// Whether `point` is inside the ring these lines are the sides of ([`Self::ring`]), as
+    /// [`inside`] decides it: the crossings of a ray towards +x counted only in the runs whose
+    /// height spans the point's (a side wholly above or wholly at or below it crosses nothing).
+    fn encloses(&self, point: DVec2) -> bool {
+        let crossings: usize = (self.chunks.iter())
+            .filter(|chunk| chunk.low.y <= point.y && point.y < chunk.high.y)
+            .map(|chunk| {
+                (chunk.segments.iter())
+                    .filter(|[p, q]| (p.y > point.y) != (q.y > point.y))
+                    .filter(|[p, q]| point.x < p.x + (point.y - p.y) / (q.y - p.y) * (q.x - p.x))
+                    .count()
+            })
+            .sum();
+        crossings % 2 == 1
+    }
+
     fn new(segments: Vec<[DVec2; 2]>) -> Self {
         let chunks = segments
             .chunks(CHUNK_SEGMENTS)
@@ -329,6 +355,28 @@ mod tests {
         // The diagonal x + y = 4 comes nearest at (2, 2).
         assert_eq!(distance(DVec2::new(4.0, 0.0), DVec2::new(0.0, 4.0)), 2.0);
         assert_eq!(distance(DVec2::new(3.0, 3.0), DVec2::new(4.0, 5.0)), 3.0);
+    }
+
+    #[test]
+    fn a_ring_encloses_the_points_inside_finds_in_it() {
+        // A star of 150 points (several runs of sides), probed on a grid that hits its vertices'
+        // heights exactly.
+        let star: Vec<DVec2> = (0..150)
+            .map(|k| {
+                let angle = k as f64 * std::f64::consts::TAU / 150.0;
+                DVec2::from_angle(angle) * if k % 2 == 0 { 10.0 } else { 4.0 }
+            })
+            .collect();
+        let ring = Lines::ring(&star);
+        let mut enclosed = 0;
+        for i in -60..=60 {
+            for j in -60..=60 {
+                let point = DVec2::new(i as f64, j as f64) / 5.0;
+                assert_eq!(ring.encloses(point), inside(point, &star), "{point}");
+                enclosed += usize::from(inside(point, &star));
+            }
+        }
+        assert!(enclosed > 1000, "{enclosed}");
     }
 
     #[test]
