@@ -6,8 +6,8 @@ pub mod tolerance;
 pub mod weld;
 
 pub use plane::{
-    barycentric, bounding_box, convex_hull, deep_interior_point, distance_to_box, inside,
-    long_side_of_smallest_rectangle, refined_grid_search, signed_area,
+    barycentric, bounding_box, convex_hull, crosses_ray, deep_interior_point, distance_to_box,
+    inside, long_side_of_smallest_rectangle, refined_grid_search, signed_area,
 };
 pub use segment::{
     distance_to_segment, distance_to_segment_3d, segment_fraction, segments_intersect,

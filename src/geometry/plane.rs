@@ -88,12 +88,18 @@ pub fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
 pub fn inside(point: DVec2, ring: &[DVec2]) -> bool {
     let count = ring.len();
     (0..count)
-        .map(|k| (ring[k], ring[(k + 1) % count]))
-        .filter(|(p, q)| (p.y > point.y) != (q.y > point.y))
-        .filter(|(p, q)| point.x < p.x + (point.y - p.y) / (q.y - p.y) * (q.x - p.x))
+        .filter(|&k| crosses_ray(point, ring[k], ring[(k + 1) % count]))
         .count()
         % 2
         == 1
+}
+
+/// Whether the side `p`–`q` crosses the ray from `point` towards +x, as the crossing rule counts
+/// it ([`inside`]): a side with one end above the point and the other at or below it, crossed
+/// right of the point.
+pub fn crosses_ray(point: DVec2, p: DVec2, q: DVec2) -> bool {
+    (p.y > point.y) != (q.y > point.y)
+        && point.x < p.x + (point.y - p.y) / (q.y - p.y) * (q.x - p.x)
 }
 
 /// The axis-aligned bounding box of `points`: (lowest corner, highest corner); infinite corners

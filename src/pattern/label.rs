@@ -8,8 +8,8 @@ use glam::DVec2;
 
 use super::drawing::PartDrawing;
 use crate::geometry::{
-    bounding_box, distance_to_box, distance_to_segment, inside, long_side_of_smallest_rectangle,
-    refined_grid_search,
+    bounding_box, crosses_ray, distance_to_box, distance_to_segment, inside,
+    long_side_of_smallest_rectangle, refined_grid_search,
 };
 
 /// Grid points per side of the search for the label's centre, in each refinement.
@@ -260,8 +260,7 @@ impl Lines {
             .filter(|chunk| chunk.low.y <= point.y && point.y < chunk.high.y)
             .map(|chunk| {
                 (chunk.segments.iter())
-                    .filter(|[p, q]| (p.y > point.y) != (q.y > point.y))
-                    .filter(|[p, q]| point.x < p.x + (point.y - p.y) / (q.y - p.y) * (q.x - p.x))
+                    .filter(|&&[p, q]| crosses_ray(point, p, q))
                     .count()
             })
             .sum();
