@@ -324,8 +324,8 @@ fn merge_neighbours(
         .collect()
 }
 
-/// A union of two pieces whose quick flattening, plain and with a slit, is over this many times
-/// the tolerance is tried in no larger union: no later pair of pieces holding both is tried (a
+/// A union of two pieces whose flattenings, plain and with a slit, are over this many times the
+/// tolerance (the smaller of their larger errors, [`Glued::Not`]) is tried in no larger union: no later pair of pieces holding both is tried (a
 /// union holding one far over the tolerance seldom comes within it; on the Hencky scan
 /// subdivided to 320k triangles, retrying such unions took a sixth of the time, and it ends in
 /// fewer pieces without them).
@@ -549,8 +549,9 @@ fn neighbour_pairs(slots: &[Slot], tolerance: f64) -> Vec<(usize, usize)> {
 enum Screened {
     /// Its valid flattening.
     Flattened(Box<CutResult>),
-    /// Nothing: its quick flattening is over the screen, with this error (the larger of its
-    /// area and shape errors).
+    /// Nothing: its quick flattening is over the screen, or folded (a flipped triangle, an
+    /// overlap) where the screen does not repair, with this error (the larger of its area and
+    /// shape errors).
     Over {
         /// The quick flattening's larger error.
         error: f64,
