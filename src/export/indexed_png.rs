@@ -14,6 +14,7 @@
 //! One byte per pixel instead of three, and runs of equal indices that deflate well, make the
 //! file several times smaller than 24-bit RGB.
 
+use rustc_hash::FxHashMap;
 use tiny_skia::Pixmap;
 
 /// Most colours a PNG palette holds (8-bit indices).
@@ -88,27 +89,37 @@ fn runs(packed: impl IntoIterator<Item = u32>) -> Vec<(u32, u32)> {
 /// The distinct colours of the picture with their pixel counts, sorted by packed colour, and
 /// for each run the index of its colour's entry.
 fn histogram(runs: &[(u32, u32)]) -> (Vec<Entry>, Vec<u32>) {
-    // Each run keyed by its colour above its index: one sort orders the colours and keeps
-    // which run each came from.
-    let mut keyed: Vec<u64> = (runs.iter().enumerate())
-        .map(|(run, &(colour, _))| (u64::from(colour) << 32) | run as u64)
-        .collect();
-    keyed.sort_unstable();
-    let mut entries: Vec<Entry> = Vec::new();
-    let mut entry_of_run = vec![0; runs.len()];
-    for key in keyed {
-        let (colour, run) = ((key >> 32) as u32, key as u32 as usize);
-        if entries.last().is_none_or(|last| pack(last.rgb) != colour) {
-            entries.push(Entry {
-                rgb: [(colour >> 16) as u8, (colour >> 8) as u8, colour as u8],
-                count: 0,
-            });
-        }
-        if let Some(last) = entries.last_mut() {
-            last.count += u64::from(runs[run].1);
-        }
-        entry_of_run[run] = (entries.len() - 1) as u32;
+    // Each colour gets a slot when first seen (a hash lookup per run); only the distinct colours,
+    // a few thousand against up to a million runs, are sorted.
+    let mut slot_of: FxHashMap<u32, u32> = FxHashMap::default();
+    let mut slots: Vec<(u32, u64)> = Vec::new();
+    let mut slot_of_run = Vec::with_capacity(runs.len());
+    for &(colour, length) in runs {
+        let slot = *slot_of.entry(colour).or_insert_with(|| {
+            slots.push((colour, 0));
+            (slots.len() - 1) as u32
+        });
+        slots[slot as usize].1 += u64::from(length);
+        slot_of_run.push(slot);
     }
+    let mut order: Vec<u32> = (0..slots.len() as u32).collect();
+    order.sort_unstable_by_key(|&slot| slots[slot as usize].0);
+    let mut entry_of_slot = vec![0; slots.len()];
+    for (entry, &slot) in order.iter().enumerate() {
+        entry_of_slot[slot as usize] = entry as u32;
+    }
+    let entries = (order.iter())
+        .map(|&slot| {
+            let (colour, count) = slots[slot as usize];
+            Entry {
+                rgb: [(colour >> 16) as u8, (colour >> 8) as u8, colour as u8],
+                count,
+            }
+        })
+        .collect();
+    let entry_of_run = (slot_of_run.iter())
+        .map(|&slot| entry_of_slot[slot as usize])
+        .collect();
     (entries, entry_of_run)
 }
 
