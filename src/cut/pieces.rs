@@ -36,12 +36,17 @@
 //! whose union is far over the tolerance ([`GIVE_UP_FACTOR`]) are not tried again inside larger
 //! ones.
 //!
-//! Both stages use the threads without changing the result: the pieces of one depth are cut in
-//! parallel and kept in depth-first order, and the gluing tries pairs in parallel batches of
-//! pairs that share no piece with each other nor with a pair before them still to be tried,
-//! which gives what trying them one by one in order gives.
+//! Both stages use the threads without changing the result and without waiting for each other
+//! at a barrier: the two sides of each section are cut in parallel, each on its own, and the
+//! pieces kept in depth-first order; the gluing sends off each pair as soon as it shares no
+//! piece with a pair being tried nor with a pair before it still to be tried, a few pairs per
+//! thread at a time, which gives what trying them one by one in order gives.
 
 use std::collections::{BTreeMap, BTreeSet};
+use std::panic::{self, AssertUnwindSafe};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, mpsc};
+use std::time::Duration;
 
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -111,57 +116,88 @@ pub const MIN_BALANCE: f64 = 0.25;
 
 /// Cuts the part into pieces by plane sections until each flattens within tolerance; see the
 /// module documentation. The pieces come depth first, the positive side of each section first.
-/// The pieces of one depth are handled in parallel (each on its own, so the result does not
-/// depend on the threads).
+/// The two sides of each section are handled in parallel, each on its own, so the result does
+/// not depend on the threads.
 pub fn cut_into_pieces(
     model: &FacetModel,
     stiffness: &Stiffness,
     flatten_options: &FlattenOptions,
     progress: &dyn Progress,
 ) -> Result<Vec<CutResult>, CutError> {
-    let smallest_cut = SMALLEST_PIECE * model.area() / model.triangle_count() as f64;
-    // Each piece with its path from the whole part (the side taken at each section: pieces in
-    // the order of their paths are in depth-first order) and the estimate of its quick
-    // flattening's error (0, none, for the whole).
-    let whole = Piece::whole(model, stiffness);
-    let mut frontier: Vec<(Vec<u32>, Piece, f64)> = vec![(Vec::new(), whole, 0.0)];
-    let mut done: Vec<(Vec<u32>, Piece, CutResult)> = Vec::new();
+    let cutting = Cutting {
+        smallest_cut: SMALLEST_PIECE * model.area() / model.triangle_count() as f64,
+        flatten_options,
+        progress,
+        made: AtomicUsize::new(0),
+        to_go: AtomicUsize::new(1),
+    };
     // One stage for the whole: each piece's own flattening is quick, and pieces run in parallel,
     // so the stage shows the pieces made and to go instead of their flattenings.
     progress.start("cutting into pieces", 0);
-    while !frontier.is_empty() {
-        progress.status(&format!("{} made, {} to go", done.len(), frontier.len()));
-        let steps: Vec<(Vec<u32>, Result<Step, CutError>)> = (frontier.into_par_iter())
-            .map(|(path, piece, estimate)| {
-                (path, step(piece, estimate, smallest_cut, flatten_options))
-            })
-            .collect();
-        frontier = Vec::new();
-        for (path, step) in steps {
-            match step? {
-                Step::Kept(kept) => {
-                    let (piece, result) = *kept;
-                    done.push((path, piece, result));
-                }
-                Step::Halved(sides, estimate) => {
-                    frontier.extend((sides.into_iter().enumerate()).map(|(side, piece)| {
-                        let mut path = path.clone();
-                        path.push(side as u32);
-                        (path, piece, estimate)
-                    }));
-                }
-            }
-        }
-    }
-    done.sort_by(|a, b| a.0.cmp(&b.0));
-    let done = (done.into_iter())
-        .map(|(_, piece, result)| (piece, result))
-        .collect();
+    // The whole part's quick flattening's error is not estimated (0).
+    let done = cutting.pieces_of(Piece::whole(model, stiffness), 0.0)?;
     let merged = merge_neighbours(done, flatten_options, progress);
     progress.finish();
     Ok((merged.into_iter())
         .map(|(piece, result)| finished(&piece, result, flatten_options))
         .collect())
+}
+
+/// What [`cut_into_pieces`] shares between the pieces it cuts, in parallel.
+struct Cutting<'a> {
+    /// The area under which a piece is not cut again.
+    smallest_cut: f64,
+    flatten_options: &'a FlattenOptions,
+    progress: &'a dyn Progress,
+    /// Pieces kept so far.
+    made: AtomicUsize,
+    /// Pieces being cut or waiting to be.
+    to_go: AtomicUsize,
+}
+
+impl Cutting<'_> {
+    /// The pieces `piece` ends in, depth first, with their patterns: itself when [`step`] keeps
+    /// it, else the pieces of its sides, found in parallel. `estimate` is the estimate of its
+    /// quick flattening's error. The error is the first in depth-first order, whatever thread
+    /// met it first.
+    fn pieces_of(&self, piece: Piece, estimate: f64) -> Result<Vec<(Piece, CutResult)>, CutError> {
+        let step = step(piece, estimate, self.smallest_cut, self.flatten_options);
+        let step = match step {
+            Ok(step) => step,
+            Err(error) => {
+                self.to_go.fetch_sub(1, Ordering::Relaxed);
+                return Err(error);
+            }
+        };
+        match step {
+            Step::Kept(kept) => {
+                self.made.fetch_add(1, Ordering::Relaxed);
+                self.to_go.fetch_sub(1, Ordering::Relaxed);
+                self.report();
+                Ok(vec![*kept])
+            }
+            Step::Halved(sides, estimate) => {
+                self.to_go.fetch_add(sides.len() - 1, Ordering::Relaxed);
+                let sides: Vec<Result<Vec<(Piece, CutResult)>, CutError>> = (sides.into_par_iter())
+                    .map(|side| self.pieces_of(side, estimate))
+                    .collect();
+                let mut pieces = Vec::new();
+                for side in sides {
+                    pieces.extend(side?);
+                }
+                Ok(pieces)
+            }
+        }
+    }
+
+    /// Shows the pieces made and to go.
+    fn report(&self) {
+        let (made, to_go) = (
+            self.made.load(Ordering::Relaxed),
+            self.to_go.load(Ordering::Relaxed),
+        );
+        self.progress.status(&format!("{made} made, {to_go} to go"));
+    }
 }
 
 /// What one step of [`cut_into_pieces`] made of a piece.
@@ -274,55 +310,95 @@ fn merge_neighbours(
     progress: &dyn Progress,
 ) -> Vec<(Piece, CutResult)> {
     let mut slots: Vec<Slot> = (pieces.into_iter().enumerate())
-        .map(|(id, (piece, result))| Some((id, piece, result)))
+        .map(|(id, piece)| Some((id, Arc::new(piece))))
         .collect();
     let mut log = GluingLog::new(slots.len());
     let far_over = GIVE_UP_FACTOR * options.tolerance;
-    let batch_size = BATCH_PER_THREAD * rayon::current_num_threads();
+    let most_in_flight = IN_FLIGHT_PER_THREAD * rayon::current_num_threads();
     loop {
         let mut busy = vec![false; slots.len()];
         let mut glued_any = false;
         let mut pairs = PairQueue::new(neighbour_pairs(&slots, options.tolerance));
-        while !options.deadline.passed() {
-            let untried = |(i, j): (usize, usize)| {
-                !busy[i] && !busy[j] && ids(&slots, i, j).is_some_and(|ids| log.is_to_try(ids))
-            };
-            let batch = pairs.next_batch(batch_size, untried);
-            if batch.is_empty() {
-                break;
-            }
-            progress.status(&format!("gluing neighbours, {} left", slots.len()));
-            let glued: Vec<Glued> = (batch.par_iter())
-                .map(|&(i, j)| match (&slots[i], &slots[j]) {
-                    (Some(a), Some(b)) => glued_within((&a.1, &a.2), (&b.1, &b.2), options),
-                    _ => Glued::Not { error: 0.0 },
-                })
-                .collect();
-            for (&(i, j), glued) in batch.iter().zip(glued) {
+        rayon::in_place_scope(|scope| {
+            let (sender, receiver) = mpsc::channel();
+            let mut in_flight: BTreeSet<usize> = BTreeSet::new();
+            loop {
+                while in_flight.len() < 2 * most_in_flight && !options.deadline.passed() {
+                    let untried = |(i, j): (usize, usize)| {
+                        !busy[i]
+                            && !busy[j]
+                            && ids(&slots, i, j).is_some_and(|ids| log.is_to_try(ids))
+                    };
+                    let Some((i, j)) = pairs.next_ready(&in_flight, untried) else {
+                        break;
+                    };
+                    let (Some(a), Some(b)) = (&slots[i], &slots[j]) else {
+                        continue;
+                    };
+                    let (a, b) = (Arc::clone(&a.1), Arc::clone(&b.1));
+                    let sender = sender.clone();
+                    in_flight.extend([i, j]);
+                    progress.status(&format!("gluing neighbours, {} left", slots.len()));
+                    scope.spawn(move |_| {
+                        let glued = panic::catch_unwind(AssertUnwindSafe(|| {
+                            glued_within((&a.0, &a.1), (&b.0, &b.1), options)
+                        }));
+                        // The receiver waits for every pair it sent off.
+                        let _ = sender.send(((i, j), glued));
+                    });
+                }
+                if in_flight.is_empty() {
+                    break;
+                }
+                let ((i, j), glued) = next_outcome(&receiver);
+                let glued = glued.unwrap_or_else(|payload| panic::resume_unwind(payload));
+                in_flight.remove(&i);
+                in_flight.remove(&j);
                 let Some(pair) = ids(&slots, i, j) else {
                     continue;
                 };
                 match glued {
                     Glued::Union(union, result) => {
                         (busy[i], busy[j], glued_any) = (true, true, true);
-                        slots[i] = Some((log.union(pair), *union, *result));
+                        slots[i] = Some((log.union(pair), Arc::new((*union, *result))));
                         slots[j] = None;
                     }
                     Glued::Not { error } => log.failure(pair, error > far_over),
                 }
             }
-        }
+        });
         slots.retain(Option::is_some);
         if !glued_any || options.deadline.passed() {
             break;
         }
     }
-    slots
-        .into_iter()
-        .flatten()
-        .map(|(_, piece, result)| (piece, result))
+    (slots.into_iter().flatten())
+        .map(|(_, piece)| Arc::unwrap_or_clone(piece))
         .collect()
 }
+
+/// The next outcome sent to `receiver`, running the pool's waiting work meanwhile (this thread
+/// is most often one of the pool's, whose other threads run the pairs sent off).
+fn next_outcome<T>(receiver: &mpsc::Receiver<T>) -> T {
+    loop {
+        if let Ok(outcome) = receiver.try_recv() {
+            return outcome;
+        }
+        match rayon::yield_now() {
+            Some(rayon::Yield::Executed) => {}
+            Some(rayon::Yield::Idle) => std::thread::sleep(IDLE_WAIT),
+            None => {
+                return receiver
+                    .recv()
+                    .expect("every pair sent off sends its outcome");
+            }
+        }
+    }
+}
+
+/// How long the gluing waits, when the pool has no work for it, before it looks again for an
+/// outcome or for work.
+const IDLE_WAIT: Duration = Duration::from_micros(50);
 
 /// A union of two pieces whose flattenings, plain and with a slit, are over this many times the
 /// tolerance (the smaller of their larger errors, [`Glued::Not`]) is tried in no larger union: no later pair of pieces holding both is tried (a
@@ -384,13 +460,15 @@ impl GluingLog {
     }
 }
 
-/// Pairs of pieces tried at once per thread when gluing (see [`PairQueue::next_batch`]).
-const BATCH_PER_THREAD: usize = 4;
+/// Pairs of pieces being tried at once per thread when gluing, at most (see `merge_neighbours`):
+/// more than one, so that a thread that finishes a pair finds the next one waiting.
+const IN_FLIGHT_PER_THREAD: usize = 2;
 
 /// The pairs of pieces a gluing round has yet to try, in order (longest shared curve first).
 struct PairQueue {
-    /// Pairs passed over by an earlier batch, in order; they come before `rest`.
-    deferred: Vec<(usize, usize)>,
+    /// Pairs passed over because a piece of theirs was being tried, in order; they come before
+    /// `rest`.
+    waiting: Vec<(usize, usize)>,
     /// The pairs not looked at yet, in order.
     rest: std::vec::IntoIter<(usize, usize)>,
 }
@@ -398,50 +476,52 @@ struct PairQueue {
 impl PairQueue {
     fn new(pairs: Vec<(usize, usize)>) -> Self {
         Self {
-            deferred: Vec::new(),
+            waiting: Vec::new(),
             rest: pairs.into_iter(),
         }
     }
 
-    /// Up to `size` of the next pairs that are still to be tried (`untried`; the others are
-    /// dropped), no two sharing a piece, none sharing a piece with a pair before it that is
-    /// passed over: whether a pair glues never depends on another of its batch or on a pair
-    /// still waiting, so trying a batch in parallel and taking its results in any order gives
-    /// what trying every pair one by one in order gives. A passed-over pair waits for a later
-    /// batch, in its place.
-    fn next_batch(
+    /// The first of the pairs, in order, that is still to be tried (`untried`; the others are
+    /// dropped) and shares no piece with a pair being tried (`in_flight`, their pieces) nor with
+    /// a pair before it that waits; a pair passed over waits, in its place. Whether a pair glues
+    /// never depends on a pair being tried at the same time or on a pair that waits, so trying
+    /// the pairs as they come from here, and taking their outcomes in any order, gives what
+    /// trying every pair one by one in order gives.
+    fn next_ready(
         &mut self,
-        size: usize,
+        in_flight: &BTreeSet<usize>,
         untried: impl Fn((usize, usize)) -> bool,
-    ) -> Vec<(usize, usize)> {
-        let mut batch = Vec::with_capacity(size);
-        let mut claimed = BTreeSet::new();
-        let mut waiting = Vec::new();
-        let mut deferred = std::mem::take(&mut self.deferred).into_iter();
-        while batch.len() < size {
-            let Some(pair) = deferred.next().or_else(|| self.rest.next()) else {
-                break;
-            };
+    ) -> Option<(usize, usize)> {
+        let mut claimed = in_flight.clone();
+        let mut k = 0;
+        while k < self.waiting.len() {
+            let pair = self.waiting[k];
+            if !untried(pair) {
+                self.waiting.remove(k);
+            } else if claimed.contains(&pair.0) || claimed.contains(&pair.1) {
+                claimed.extend([pair.0, pair.1]);
+                k += 1;
+            } else {
+                return Some(self.waiting.remove(k));
+            }
+        }
+        for pair in self.rest.by_ref() {
             if !untried(pair) {
                 continue;
             }
-            let free = !claimed.contains(&pair.0) && !claimed.contains(&pair.1);
-            claimed.extend([pair.0, pair.1]);
-            if free {
-                batch.push(pair);
-            } else {
-                waiting.push(pair);
+            if !claimed.contains(&pair.0) && !claimed.contains(&pair.1) {
+                return Some(pair);
             }
+            claimed.extend([pair.0, pair.1]);
+            self.waiting.push(pair);
         }
-        waiting.extend(deferred);
-        self.deferred = waiting;
-        batch
+        None
     }
 }
 
-/// A place in the list of pieces being glued: a piece under its id, or none once glued into
-/// another.
-type Slot = Option<(usize, Piece, CutResult)>;
+/// A place in the list of pieces being glued: a piece and its pattern under its id (shared with
+/// the pairs being tried), or none once glued into another.
+type Slot = Option<(usize, Arc<(Piece, CutResult)>)>;
 
 /// The ids of the pieces in slots `i` and `j`, when both hold one.
 fn ids(slots: &[Slot], i: usize, j: usize) -> Option<(usize, usize)> {
@@ -526,10 +606,10 @@ fn flattened_within(
 fn neighbour_pairs(slots: &[Slot], tolerance: f64) -> Vec<(usize, usize)> {
     let mut owners: BTreeMap<SideKey, Vec<usize>> = BTreeMap::new();
     for (i, slot) in slots.iter().enumerate() {
-        if let Some((_, piece, result)) = slot
-            && is_within(result, tolerance)
+        if let Some((_, piece)) = slot
+            && is_within(&piece.1, tolerance)
         {
-            for key in piece.section_sides().into_keys() {
+            for key in piece.0.section_sides().into_keys() {
                 owners.entry(key).or_default().push(i);
             }
         }
@@ -904,15 +984,38 @@ mod tests {
     use crate::mesh::{TriangleSoup, validate};
 
     #[test]
-    fn a_gluing_batch_holds_no_two_pairs_of_one_piece_and_waits_behind_a_passed_over_pair() {
+    fn a_pair_waits_while_a_piece_of_it_or_of_a_waiting_pair_before_it_is_being_tried() {
         let mut queue = PairQueue::new(vec![(0, 1), (1, 2), (3, 4), (2, 5), (6, 7), (8, 9)]);
+        let mut in_flight = BTreeSet::new();
+        let mut next = |in_flight: &mut BTreeSet<usize>,
+                        untried: &dyn Fn((usize, usize)) -> bool| {
+            let pair = queue.next_ready(in_flight, untried);
+            in_flight.extend(pair.iter().flat_map(|&(i, j)| [i, j]));
+            pair
+        };
         // (1, 2) shares piece 1 with (0, 1); (2, 5) shares piece 2 with the waiting (1, 2).
-        assert_eq!(queue.next_batch(3, |_| true), [(0, 1), (3, 4), (6, 7)]);
+        let all = |_: (usize, usize)| true;
+        assert_eq!(next(&mut in_flight, &all), Some((0, 1)));
+        assert_eq!(next(&mut in_flight, &all), Some((3, 4)));
+        assert_eq!(next(&mut in_flight, &all), Some((6, 7)));
         // Pieces 0 and 1 glued: (1, 2) is dropped, and (2, 5) comes before (8, 9).
+        in_flight.retain(|&piece| piece > 1);
         let glued = [0, 1];
         let untried = |(i, j): (usize, usize)| !glued.contains(&i) && !glued.contains(&j);
-        assert_eq!(queue.next_batch(3, untried), [(2, 5), (8, 9)]);
-        assert!(queue.next_batch(3, untried).is_empty());
+        assert_eq!(next(&mut in_flight, &untried), Some((2, 5)));
+        assert_eq!(next(&mut in_flight, &untried), Some((8, 9)));
+        assert_eq!(next(&mut in_flight, &untried), None);
+    }
+
+    #[test]
+    fn a_pair_after_a_waiting_pair_of_its_piece_waits_behind_it() {
+        let mut queue = PairQueue::new(vec![(0, 1), (1, 2), (2, 3)]);
+        assert_eq!(queue.next_ready(&BTreeSet::new(), |_| true), Some((0, 1)));
+        // (1, 2) waits for (0, 1); (2, 3) shares piece 2 with it and waits behind it.
+        assert_eq!(queue.next_ready(&BTreeSet::from([0, 1]), |_| true), None);
+        assert_eq!(queue.next_ready(&BTreeSet::new(), |_| true), Some((1, 2)));
+        assert_eq!(queue.next_ready(&BTreeSet::from([1, 2]), |_| true), None);
+        assert_eq!(queue.next_ready(&BTreeSet::new(), |_| true), Some((2, 3)));
     }
 
     #[test]
