@@ -30,7 +30,7 @@ use std::collections::VecDeque;
 use std::f64::consts::{PI, TAU};
 
 use super::crest::boundary_flags;
-use super::paths::{Adjacency, dijkstra, weighted_dijkstra};
+use super::paths::{Adjacency, GrowingSearch, dijkstra};
 use super::seam::angle_deficits;
 use crate::mesh::{FacetModel, NONE};
 
@@ -167,24 +167,23 @@ fn steiner_tree(
     }
     let cost = route_costs(model, terminal);
     let mut in_graph = vec![false; model.edges().len()];
+    let mut search = GrowingSearch::new(model.vertex_count(), adjacency);
+    for v in (0..model.vertex_count() as u32).filter(|&v| in_tree[v as usize]) {
+        search.add_source(v);
+    }
     loop {
-        let tree: Vec<u32> = (0..model.vertex_count() as u32)
-            .filter(|&v| in_tree[v as usize])
-            .collect();
-        let (paths, reached) = weighted_dijkstra(
-            model,
-            adjacency,
-            &tree,
+        let path = search.next_reached(
             |v| !blocked[v as usize],
             |v| terminal[v as usize] && !in_tree[v as usize],
             |edge| cost[edge as usize],
         );
-        let Some(path) = reached.and_then(|target| paths.path_to(target)) else {
+        let Some(path) = path else {
             break;
         };
         for pair in path.windows(2) {
             in_graph[model.find_edge(pair[0], pair[1])?] = true;
             in_tree[pair[1] as usize] = true;
+            search.add_source(pair[1]);
         }
     }
     let edges: Vec<usize> = (0..in_graph.len()).filter(|&e| in_graph[e]).collect();

@@ -166,6 +166,96 @@ pub fn weighted_dijkstra(
     )
 }
 
+/// A Dijkstra from sources that may be added while it runs, for growing a tree one shortest path
+/// at a time (Prim's Steiner heuristic): each path found joins the sources, and the search goes
+/// on from the labels it has instead of starting again, so growing a tree through `k` targets
+/// costs about one search of the model, not `k` (on a noisy 320k-triangle scan, thousands of
+/// targets took 80 s searched afresh each time). The labels stay exact: a source added later only
+/// lowers them, and every lowered label is queued again. The vertex reached first is the same as a
+/// fresh search from all the sources would reach (nearest, then lowest index).
+#[derive(Debug, Clone)]
+pub struct GrowingSearch<'a> {
+    adjacency: &'a Adjacency,
+    distances: Vec<f64>,
+    predecessors: Vec<u32>,
+    is_source: Vec<bool>,
+    heap: BinaryHeap<Queued>,
+}
+
+impl<'a> GrowingSearch<'a> {
+    /// A search over the model of this adjacency (`vertex_count` vertices), with no source yet.
+    pub fn new(vertex_count: usize, adjacency: &'a Adjacency) -> Self {
+        Self {
+            adjacency,
+            distances: vec![f64::INFINITY; vertex_count],
+            predecessors: vec![u32::MAX; vertex_count],
+            is_source: vec![false; vertex_count],
+            heap: BinaryHeap::new(),
+        }
+    }
+
+    /// Makes `v` a source (a no-op for one already).
+    pub fn add_source(&mut self, v: u32) {
+        if self.is_source[v as usize] {
+            return;
+        }
+        self.is_source[v as usize] = true;
+        self.distances[v as usize] = 0.0;
+        self.predecessors[v as usize] = u32::MAX;
+        self.heap.push(Queued {
+            distance: 0.0,
+            vertex: v,
+        });
+    }
+
+    /// The shortest path (a source first) to the nearest non-source vertex for which `stop_at`
+    /// holds, entering only vertices that are `passable` and crossing each edge at `cost(edge)`
+    /// (non-negative); `None` when no such vertex is reachable. The search resumes from here on
+    /// the next call.
+    pub fn next_reached(
+        &mut self,
+        passable: impl Fn(u32) -> bool,
+        stop_at: impl Fn(u32) -> bool,
+        cost: impl Fn(u32) -> f64,
+    ) -> Option<Vec<u32>> {
+        while let Some(Queued { distance, vertex }) = self.heap.pop() {
+            if distance > self.distances[vertex as usize] {
+                continue;
+            }
+            if !self.is_source[vertex as usize] && stop_at(vertex) {
+                return Some(self.path_to(vertex));
+            }
+            for &(next, edge) in self.adjacency.neighbours(vertex) {
+                if self.is_source[next as usize] || !passable(next) {
+                    continue;
+                }
+                let candidate = distance + cost(edge);
+                if candidate < self.distances[next as usize] {
+                    self.distances[next as usize] = candidate;
+                    self.predecessors[next as usize] = vertex;
+                    self.heap.push(Queued {
+                        distance: candidate,
+                        vertex: next,
+                    });
+                }
+            }
+        }
+        None
+    }
+
+    /// The path from a source to `target` along the predecessors, source first.
+    fn path_to(&self, target: u32) -> Vec<u32> {
+        let mut path = vec![target];
+        let mut current = target;
+        while self.predecessors[current as usize] != u32::MAX {
+            current = self.predecessors[current as usize];
+            path.push(current);
+        }
+        path.reverse();
+        path
+    }
+}
+
 /// 3D length of a vertex path.
 pub fn path_length(model: &FacetModel, path: &[u32]) -> f64 {
     let positions = model.positions();
@@ -216,6 +306,43 @@ pub(crate) mod tests {
         assert_eq!(reached, Some(15));
         assert_eq!(paths.path_to(15), Some(vec![0, 5, 10, 15]));
         assert!((paths.distances[15] - 3.0 * 2f64.sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_growing_search_reaches_what_a_fresh_search_from_all_its_sources_reaches() {
+        let model = grid();
+        let adjacency = Adjacency::new(&model);
+        let positions = model.positions();
+        let length = |edge: u32| {
+            let [a, b] = model.edges()[edge as usize];
+            positions[a as usize].distance(positions[b as usize])
+        };
+        let targets = [15, 3, 12, 6, 9];
+        let mut search = GrowingSearch::new(model.vertex_count(), &adjacency);
+        search.add_source(0);
+        let mut sources = vec![0];
+        let mut reached_count = 0;
+        loop {
+            let is_target = |v: u32| targets.contains(&v) && !sources.contains(&v);
+            let (fresh, reached) = dijkstra(&model, &adjacency, &sources, |_| true, is_target);
+            let grown = search.next_reached(|_| true, is_target, length);
+            let Some(target) = reached else {
+                assert_eq!(grown, None);
+                break;
+            };
+            let path = grown.expect("the growing search reaches a target too");
+            assert_eq!(path.last(), Some(&target), "the same nearest target");
+            assert!(sources.contains(&path[0]), "the path starts at a source");
+            assert!((path_length(&model, &path) - fresh.distances[target as usize]).abs() < 1e-12);
+            assert!(path_edges(&model, &path).is_some());
+            for &v in &path[1..] {
+                search.add_source(v);
+                sources.push(v);
+            }
+            reached_count += 1;
+        }
+        assert!(reached_count >= 2, "several targets joined");
+        assert!(targets.iter().all(|t| sources.contains(t)));
     }
 
     #[test]
