@@ -82,15 +82,20 @@ impl ShortestPaths {
         if !self.distances[target as usize].is_finite() {
             return None;
         }
-        let mut path = vec![target];
-        let mut current = target;
-        while self.predecessors[current as usize] != u32::MAX {
-            current = self.predecessors[current as usize];
-            path.push(current);
-        }
-        path.reverse();
-        Some(path)
+        Some(path_back(&self.predecessors, target))
     }
+}
+
+/// The path to `target` along `predecessors` (`u32::MAX` at a source), source first.
+fn path_back(predecessors: &[u32], target: u32) -> Vec<u32> {
+    let mut path = vec![target];
+    let mut current = target;
+    while predecessors[current as usize] != u32::MAX {
+        current = predecessors[current as usize];
+        path.push(current);
+    }
+    path.reverse();
+    path
 }
 
 /// Dijkstra over 3D edge lengths from `sources`. A vertex is entered only if `passable(v)`;
@@ -223,7 +228,7 @@ impl<'a> GrowingSearch<'a> {
                 continue;
             }
             if !self.is_source[vertex as usize] && stop_at(vertex) {
-                return Some(self.path_to(vertex));
+                return Some(path_back(&self.predecessors, vertex));
             }
             for &(next, edge) in self.adjacency.neighbours(vertex) {
                 if self.is_source[next as usize] || !passable(next) {
@@ -241,18 +246,6 @@ impl<'a> GrowingSearch<'a> {
             }
         }
         None
-    }
-
-    /// The path from a source to `target` along the predecessors, source first.
-    fn path_to(&self, target: u32) -> Vec<u32> {
-        let mut path = vec![target];
-        let mut current = target;
-        while self.predecessors[current as usize] != u32::MAX {
-            current = self.predecessors[current as usize];
-            path.push(current);
-        }
-        path.reverse();
-        path
     }
 }
 
