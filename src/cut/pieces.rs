@@ -313,60 +313,8 @@ fn merge_neighbours(
         .map(|(id, piece)| Some((id, Arc::new(piece))))
         .collect();
     let mut log = GluingLog::new(slots.len());
-    let far_over = GIVE_UP_FACTOR * options.tolerance;
-    let most_in_flight = IN_FLIGHT_PER_THREAD * rayon::current_num_threads();
     loop {
-        let mut busy = vec![false; slots.len()];
-        let mut glued_any = false;
-        let mut pairs = PairQueue::new(neighbour_pairs(&slots, options.tolerance));
-        rayon::in_place_scope(|scope| {
-            let (sender, receiver) = mpsc::channel();
-            let mut in_flight: BTreeSet<usize> = BTreeSet::new();
-            loop {
-                while in_flight.len() < 2 * most_in_flight && !options.deadline.passed() {
-                    let untried = |(i, j): (usize, usize)| {
-                        !busy[i]
-                            && !busy[j]
-                            && ids(&slots, i, j).is_some_and(|ids| log.is_to_try(ids))
-                    };
-                    let Some((i, j)) = pairs.next_ready(&in_flight, untried) else {
-                        break;
-                    };
-                    let (Some(a), Some(b)) = (&slots[i], &slots[j]) else {
-                        continue;
-                    };
-                    let (a, b) = (Arc::clone(&a.1), Arc::clone(&b.1));
-                    let sender = sender.clone();
-                    in_flight.extend([i, j]);
-                    progress.status(&format!("gluing neighbours, {} left", slots.len()));
-                    scope.spawn(move |_| {
-                        let glued = panic::catch_unwind(AssertUnwindSafe(|| {
-                            glued_within((&a.0, &a.1), (&b.0, &b.1), options)
-                        }));
-                        // The receiver waits for every pair it sent off.
-                        let _ = sender.send(((i, j), glued));
-                    });
-                }
-                if in_flight.is_empty() {
-                    break;
-                }
-                let ((i, j), glued) = next_outcome(&receiver);
-                let glued = glued.unwrap_or_else(|payload| panic::resume_unwind(payload));
-                in_flight.remove(&i);
-                in_flight.remove(&j);
-                let Some(pair) = ids(&slots, i, j) else {
-                    continue;
-                };
-                match glued {
-                    Glued::Union(union, result) => {
-                        (busy[i], busy[j], glued_any) = (true, true, true);
-                        slots[i] = Some((log.union(pair), Arc::new((*union, *result))));
-                        slots[j] = None;
-                    }
-                    Glued::Not { error } => log.failure(pair, error > far_over),
-                }
-            }
-        });
+        let glued_any = glue_round(&mut slots, &mut log, options, progress);
         slots.retain(Option::is_some);
         if !glued_any || options.deadline.passed() {
             break;
@@ -375,6 +323,72 @@ fn merge_neighbours(
     (slots.into_iter().flatten())
         .map(|(_, piece)| Arc::unwrap_or_clone(piece))
         .collect()
+}
+
+/// One round of `merge_neighbours`: every pair of neighbouring pieces in `slots` still to be
+/// tried ([`neighbour_pairs`], [`GluingLog::is_to_try`]), each piece in at most one union, sent
+/// off to the pool as soon as it is ready ([`PairQueue::next_ready`]), at most
+/// [`IN_FLIGHT_PER_THREAD`] pairs per thread at a time. A union takes the first piece's slot and
+/// empties the second's. True when a pair glued.
+fn glue_round(
+    slots: &mut [Slot],
+    log: &mut GluingLog,
+    options: &FlattenOptions,
+    progress: &dyn Progress,
+) -> bool {
+    let far_over = GIVE_UP_FACTOR * options.tolerance;
+    let most_in_flight = IN_FLIGHT_PER_THREAD * rayon::current_num_threads();
+    let mut busy = vec![false; slots.len()];
+    let mut glued_any = false;
+    let mut pairs = PairQueue::new(neighbour_pairs(slots, options.tolerance));
+    rayon::in_place_scope(|scope| {
+        let (sender, receiver) = mpsc::channel();
+        // The pieces of the pairs in flight.
+        let mut in_flight: BTreeSet<usize> = BTreeSet::new();
+        loop {
+            while in_flight.len() < 2 * most_in_flight && !options.deadline.passed() {
+                let untried = |(i, j): (usize, usize)| {
+                    !busy[i] && !busy[j] && ids(slots, i, j).is_some_and(|ids| log.is_to_try(ids))
+                };
+                let Some((i, j)) = pairs.next_ready(&in_flight, untried) else {
+                    break;
+                };
+                let (Some(a), Some(b)) = (&slots[i], &slots[j]) else {
+                    continue;
+                };
+                let (a, b) = (Arc::clone(&a.1), Arc::clone(&b.1));
+                let sender = sender.clone();
+                in_flight.extend([i, j]);
+                progress.status(&format!("gluing neighbours, {} left", slots.len()));
+                scope.spawn(move |_| {
+                    let glued = panic::catch_unwind(AssertUnwindSafe(|| {
+                        glued_within((&a.0, &a.1), (&b.0, &b.1), options)
+                    }));
+                    // The receiver waits for every pair it sent off.
+                    let _ = sender.send(((i, j), glued));
+                });
+            }
+            if in_flight.is_empty() {
+                break;
+            }
+            let ((i, j), glued) = next_outcome(&receiver);
+            let glued = glued.unwrap_or_else(|payload| panic::resume_unwind(payload));
+            in_flight.remove(&i);
+            in_flight.remove(&j);
+            let Some(pair) = ids(slots, i, j) else {
+                continue;
+            };
+            match glued {
+                Glued::Union(union, result) => {
+                    (busy[i], busy[j], glued_any) = (true, true, true);
+                    slots[i] = Some((log.union(pair), Arc::new((*union, *result))));
+                    slots[j] = None;
+                }
+                Glued::Not { error } => log.failure(pair, error > far_over),
+            }
+        }
+    });
+    glued_any
 }
 
 /// The next outcome sent to `receiver`, running the pool's waiting work meanwhile (this thread
