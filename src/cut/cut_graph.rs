@@ -172,15 +172,15 @@ fn steiner_tree(
         search.add_source(v);
     }
     loop {
-        let path = search.next_reached(
+        let reached = search.next_reached(
             |v| !blocked[v as usize],
             |v| terminal[v as usize] && !in_tree[v as usize],
             |edge| cost[edge as usize],
         );
-        let Some(path) = path else {
+        let Some(target) = reached else {
             break;
         };
-        for pair in path.windows(2) {
+        for pair in search.path_to(target).windows(2) {
             in_graph[model.find_edge(pair[0], pair[1])?] = true;
             in_tree[pair[1] as usize] = true;
             search.add_source(pair[1]);

@@ -113,66 +113,16 @@ pub fn dijkstra(
         let [a, b] = model.edges()[edge as usize];
         positions[a as usize].distance(positions[b as usize])
     };
-    weighted_dijkstra(model, adjacency, sources, passable, stop_at, length)
-}
-
-/// [`dijkstra`] with the cost of crossing each edge given by `cost(edge)` (non-negative) instead
-/// of its 3D length; the distances are sums of those costs.
-pub fn weighted_dijkstra(
-    model: &FacetModel,
-    adjacency: &Adjacency,
-    sources: &[u32],
-    passable: impl Fn(u32) -> bool,
-    stop_at: impl Fn(u32) -> bool,
-    cost: impl Fn(u32) -> f64,
-) -> (ShortestPaths, Option<u32>) {
-    let mut distances = vec![f64::INFINITY; model.vertex_count()];
-    let mut predecessors = vec![u32::MAX; model.vertex_count()];
-    let mut is_source = vec![false; model.vertex_count()];
-    let mut heap = BinaryHeap::new();
+    let mut search = GrowingSearch::new(model.vertex_count(), adjacency);
     for &source in sources {
-        distances[source as usize] = 0.0;
-        is_source[source as usize] = true;
-        heap.push(Queued {
-            distance: 0.0,
-            vertex: source,
-        });
+        search.add_source(source);
     }
-    let mut reached = None;
-    while let Some(Queued { distance, vertex }) = heap.pop() {
-        if distance > distances[vertex as usize] {
-            continue;
-        }
-        if !is_source[vertex as usize] && stop_at(vertex) {
-            reached = Some(vertex);
-            break;
-        }
-        for &(next, edge) in adjacency.neighbours(vertex) {
-            if is_source[next as usize] || !passable(next) {
-                continue;
-            }
-            let candidate = distance + cost(edge);
-            if candidate < distances[next as usize] {
-                distances[next as usize] = candidate;
-                predecessors[next as usize] = vertex;
-                heap.push(Queued {
-                    distance: candidate,
-                    vertex: next,
-                });
-            }
-        }
-    }
-    (
-        ShortestPaths {
-            distances,
-            predecessors,
-        },
-        reached,
-    )
+    let reached = search.next_reached(passable, stop_at, length);
+    (search.into_paths(), reached)
 }
 
-/// A Dijkstra from sources that may be added while it runs, for growing a tree one shortest path
-/// at a time (Prim's Steiner heuristic): each path found joins the sources, and the search goes
+/// A Dijkstra from sources that may be added while it runs ([`dijkstra`] runs one with fixed
+/// sources), for growing a tree one shortest path at a time (Prim's Steiner heuristic): each path found joins the sources, and the search goes
 /// on from the labels it has instead of starting again, so growing a tree through `k` targets
 /// costs about one search of the model, not `k` (on a noisy 320k-triangle scan, thousands of
 /// targets took 80 s searched afresh each time). The labels stay exact: a source added later only
@@ -213,8 +163,8 @@ impl<'a> GrowingSearch<'a> {
         });
     }
 
-    /// The shortest path (a source first) to the nearest non-source vertex for which `stop_at`
-    /// holds, entering only vertices that are `passable` and crossing each edge at `cost(edge)`
+    /// The nearest non-source vertex for which `stop_at` holds (its path: [`Self::path_to`]),
+    /// entering only vertices that are `passable` and crossing each edge at `cost(edge)`
     /// (non-negative); `None` when no such vertex is reachable. The search resumes from here on
     /// the next call.
     pub fn next_reached(
@@ -222,13 +172,13 @@ impl<'a> GrowingSearch<'a> {
         passable: impl Fn(u32) -> bool,
         stop_at: impl Fn(u32) -> bool,
         cost: impl Fn(u32) -> f64,
-    ) -> Option<Vec<u32>> {
+    ) -> Option<u32> {
         while let Some(Queued { distance, vertex }) = self.heap.pop() {
             if distance > self.distances[vertex as usize] {
                 continue;
             }
             if !self.is_source[vertex as usize] && stop_at(vertex) {
-                return Some(path_back(&self.predecessors, vertex));
+                return Some(vertex);
             }
             for &(next, edge) in self.adjacency.neighbours(vertex) {
                 if self.is_source[next as usize] || !passable(next) {
@@ -246,6 +196,19 @@ impl<'a> GrowingSearch<'a> {
             }
         }
         None
+    }
+
+    /// The shortest path found to `target` (one [`Self::next_reached`] returned), source first.
+    pub fn path_to(&self, target: u32) -> Vec<u32> {
+        path_back(&self.predecessors, target)
+    }
+
+    /// The distances and predecessors found so far.
+    pub fn into_paths(self) -> ShortestPaths {
+        ShortestPaths {
+            distances: self.distances,
+            predecessors: self.predecessors,
+        }
     }
 }
 
@@ -319,12 +282,12 @@ pub(crate) mod tests {
             let is_target = |v: u32| targets.contains(&v) && !sources.contains(&v);
             let (fresh, reached) = dijkstra(&model, &adjacency, &sources, |_| true, is_target);
             let grown = search.next_reached(|_| true, is_target, length);
+            assert_eq!(grown, reached, "the same nearest target");
             let Some(target) = reached else {
-                assert_eq!(grown, None);
                 break;
             };
-            let path = grown.expect("the growing search reaches a target too");
-            assert_eq!(path.last(), Some(&target), "the same nearest target");
+            let path = search.path_to(target);
+            assert_eq!(path.last(), Some(&target));
             assert!(sources.contains(&path[0]), "the path starts at a source");
             assert!((path_length(&model, &path) - fresh.distances[target as usize]).abs() < 1e-12);
             assert!(path_edges(&model, &path).is_some());

@@ -161,14 +161,10 @@ impl Cutting<'_> {
     /// quick flattening's error. The error is the first in depth-first order, whatever thread
     /// met it first.
     fn pieces_of(&self, piece: Piece, estimate: f64) -> Result<Vec<(Piece, CutResult)>, CutError> {
-        let step = step(piece, estimate, self.smallest_cut, self.flatten_options);
-        let step = match step {
-            Ok(step) => step,
-            Err(error) => {
+        let step =
+            step(piece, estimate, self.smallest_cut, self.flatten_options).inspect_err(|_| {
                 self.to_go.fetch_sub(1, Ordering::Relaxed);
-                return Err(error);
-            }
-        };
+            })?;
         match step {
             Step::Kept(kept) => {
                 self.made.fetch_add(1, Ordering::Relaxed);
@@ -415,10 +411,10 @@ fn next_outcome<T>(receiver: &mpsc::Receiver<T>) -> T {
 const IDLE_WAIT: Duration = Duration::from_micros(50);
 
 /// A union of two pieces whose flattenings, plain and with a slit, are over this many times the
-/// tolerance (the smaller of their larger errors, [`Glued::Not`]) is tried in no larger union: no later pair of pieces holding both is tried (a
-/// union holding one far over the tolerance seldom comes within it; on the Hencky scan
-/// subdivided to 320k triangles, retrying such unions took a sixth of the time, and it ends in
-/// fewer pieces without them).
+/// tolerance (the smaller of their larger errors, [`Glued::Not`]) is tried in no larger union:
+/// no later pair of pieces holding both is tried (a union holding one far over the tolerance
+/// seldom comes within it; on the Hencky scan subdivided to 320k triangles, retrying such unions
+/// took a sixth of the time, and it ends in fewer pieces without them).
 pub const GIVE_UP_FACTOR: f64 = 2.0;
 
 /// What gluing has tried, by piece ids (a union gets a new id).

@@ -108,7 +108,7 @@ impl PartDrawing {
     fn drawn_segments(&self) -> Vec<[DVec2; 2]> {
         let mut segments = Vec::new();
         for ring in std::iter::once(&self.outer).chain(&self.holes) {
-            segments.extend((0..ring.len()).map(|k| [ring[k], ring[(k + 1) % ring.len()]]));
+            segments.extend(ring_sides(ring));
         }
         for line in &self.fold_lines {
             segments.extend(line.windows(2).map(|pair| [pair[0], pair[1]]));
@@ -242,14 +242,15 @@ struct Chunk {
 /// Segments per run of [`Lines`].
 const CHUNK_SEGMENTS: usize = 32;
 
+/// The sides of a closed ring, the last back to the first point.
+fn ring_sides(ring: &[DVec2]) -> impl Iterator<Item = [DVec2; 2]> + '_ {
+    (0..ring.len()).map(|k| [ring[k], ring[(k + 1) % ring.len()]])
+}
+
 impl Lines {
     /// The closed ring's sides.
     fn ring(ring: &[DVec2]) -> Self {
-        Self::new(
-            (0..ring.len())
-                .map(|k| [ring[k], ring[(k + 1) % ring.len()]])
-                .collect(),
-        )
+        Self::new(ring_sides(ring).collect())
     }
 
     /// Whether `point` is inside the ring these lines are the sides of ([`Self::ring`]), as
