@@ -34,7 +34,10 @@
 //! are glued with a slit instead: the shorter run of the curve from that point stays open, a dart
 //! ending in it. A union that would enclose other pieces in a hole is not made, and two pieces
 //! whose union is far over the tolerance ([`GIVE_UP_FACTOR`]) are not tried again inside larger
-//! ones.
+//! ones. Last, each sliver left (a piece of fewer than [`SLIVER_TRIANGLES`]: on a draped
+//! garment, a corner of a face cut off where a section grazed a flap folded over) is glued into
+//! a neighbour whose union is within tolerance, its union flattened validly even where its quick
+//! pattern folds (`without_slivers`).
 //!
 //! Both stages use the threads without changing the result and without waiting for each other
 //! at a barrier: the two sides of each section are cut in parallel, each on its own, and the
@@ -137,6 +140,7 @@ pub fn cut_into_pieces(
     // The whole part's quick flattening's error is not estimated (0).
     let done = cutting.pieces_of(Piece::whole(model, stiffness), 0.0)?;
     let merged = merge_neighbours(done, flatten_options, progress);
+    let merged = without_slivers(merged, flatten_options);
     progress.finish();
     Ok((merged.into_iter())
         .map(|(piece, result)| finished(&piece, result, flatten_options))
@@ -358,7 +362,7 @@ fn glue_round(
                 progress.status(&format!("gluing neighbours, {} left", slots.len()));
                 scope.spawn(move |_| {
                     let glued = panic::catch_unwind(AssertUnwindSafe(|| {
-                        glued_within((&a.0, &a.1), (&b.0, &b.1), options)
+                        glued_within((&a.0, &a.1), (&b.0, &b.1), false, options)
                     }));
                     // The receiver waits for every pair it sent off.
                     let _ = sender.send(((i, j), glued));
@@ -386,6 +390,67 @@ fn glue_round(
     });
     glued_any
 }
+
+/// The glued pieces with each sliver among them (a piece of fewer than [`SLIVER_TRIANGLES`]: a
+/// few faces a section cut off where it grazed a fold, or a sector around a cone point) glued
+/// into a neighbour when their union is within tolerance, neighbours tried by decreasing shared
+/// length ([`sliver_union`]). The slivers are tried in parallel, each against the pieces as
+/// gluing left them; their unions are then taken in the pieces' order, each unless its
+/// neighbour or the sliver is already in one taken before.
+fn without_slivers(
+    pieces: Vec<(Piece, CutResult)>,
+    options: &FlattenOptions,
+) -> Vec<(Piece, CutResult)> {
+    let slivers: Vec<usize> = (0..pieces.len())
+        .filter(|&s| pieces[s].0.model.triangle_count() < SLIVER_TRIANGLES)
+        .collect();
+    let unions: Vec<Option<(usize, Piece, CutResult)>> = (slivers.par_iter())
+        .map(|&s| sliver_union(&pieces, s, options))
+        .collect();
+    let mut slots: Vec<Option<(Piece, CutResult)>> = pieces.into_iter().map(Some).collect();
+    let mut taken = vec![false; slots.len()];
+    for (&s, union) in slivers.iter().zip(unions) {
+        if let Some((i, piece, result)) = union
+            && !taken[i]
+            && !taken[s]
+        {
+            (taken[i], taken[s]) = (true, true);
+            slots[i] = Some((piece, result));
+            slots[s] = None;
+        }
+    }
+    slots.into_iter().flatten().collect()
+}
+
+/// The union of the sliver `pieces[s]` with the first of its neighbours (by decreasing length of
+/// the curve they share) that it glues to within tolerance, and that neighbour's index. Unlike
+/// gluing's pairs, a union whose quick pattern folds is flattened validly all the same
+/// ([`glued_within`] with `repair`): the fold is most often the sliver itself, a flap folded over
+/// in the drape, which the flip-free repair opens; there are few slivers, so this costs little.
+fn sliver_union(
+    pieces: &[(Piece, CutResult)],
+    s: usize,
+    options: &FlattenOptions,
+) -> Option<(usize, Piece, CutResult)> {
+    let (sliver, pattern) = &pieces[s];
+    let mut neighbours: Vec<(usize, f64)> = (0..pieces.len())
+        .filter(|&i| i != s)
+        .map(|i| (i, pieces[i].0.shared_length(sliver)))
+        .filter(|&(_, length)| length > 0.0)
+        .collect();
+    neighbours.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+    neighbours.into_iter().find_map(|(i, _)| {
+        let (piece, piece_pattern) = &pieces[i];
+        match glued_within((piece, piece_pattern), (sliver, pattern), true, options) {
+            Glued::Union(union, result) => Some((i, *union, *result)),
+            Glued::Not { .. } => None,
+        }
+    })
+}
+
+/// A piece left after gluing with fewer triangles than this is a sliver, glued into a neighbour
+/// where it can be (see `without_slivers`).
+pub const SLIVER_TRIANGLES: usize = 8;
 
 /// The next outcome sent to `receiver`, running the pool's waiting work meanwhile (this thread
 /// is most often one of the pool's, whose other threads run the pairs sent off).
@@ -553,11 +618,13 @@ enum Glued {
 /// Pieces `a` and `b` (with their patterns), their shared curve first given the same points on
 /// both sides ([`conformed_pair`]), glued into one ([`Piece::glued`]), or with a slit where that
 /// is not within tolerance ([`Piece::slit_glued`]), with its valid flattening when it is within
-/// tolerance ([`flattened_within`], started from the two patterns: [`UnionStart`]); not glued
-/// when neither is, or when the union is not to be one piece ([`can_be_one_piece`]).
+/// tolerance ([`flattened_within`], started from the two patterns: [`UnionStart`]; a union whose
+/// quick pattern folds is flattened validly all the same when `repair`); not glued when neither
+/// is, or when the union is not to be one piece ([`can_be_one_piece`]).
 fn glued_within(
     (a, a_pattern): (&Piece, &CutResult),
     (b, b_pattern): (&Piece, &CutResult),
+    repair: bool,
     options: &FlattenOptions,
 ) -> Glued {
     let triangles = a.model.triangle_count() + b.model.triangle_count();
@@ -568,7 +635,7 @@ fn glued_within(
     let first_count = a.model.vertex_count();
     let within = |union: &Piece| {
         let positions = start.as_ref().and_then(|s| s.positions(union, first_count));
-        flattened_within(union, positions.as_deref(), options)
+        flattened_within(union, positions.as_deref(), repair, options)
     };
     let Some(union) = a.glued(&b).filter(can_be_one_piece) else {
         return Glued::Not { error: 0.0 };
@@ -589,18 +656,19 @@ fn glued_within(
 }
 
 /// The valid flattening of a union of pieces when a quick one, from `start` when given (one
-/// position per vertex of the union), is within the tolerance and it is within it too (see
-/// `merge_neighbours`), reporting no progress (the stage reports the gluing); else the error of
+/// position per vertex of the union), is within the tolerance (and without a fold, unless
+/// `repair`) and it is within it too (see `merge_neighbours`), reporting no progress (the stage reports the gluing); else the error of
 /// the flattening that was not within it (the larger of its area and shape errors; 0 when the
 /// flattening failed).
 fn flattened_within(
     union: &Piece,
     start: Option<&[DVec2]>,
+    repair: bool,
     options: &FlattenOptions,
 ) -> Result<CutResult, f64> {
     let screen = Screen {
         factor: GLUE_SCREEN_FACTOR,
-        repair: false,
+        repair,
         start,
     };
     match screened_flattening(union, screen, options, &NoProgress) {
@@ -687,9 +755,15 @@ fn screened_flattening(
                 .collect();
             let warm = flatten_unrepaired_from(&opened.model, &opened.stiffness, &start, options)?;
             // A start can hold the solver in a fold a grown start would not have: a folded
-            // pattern the errors alone would pass is made again from a grown start.
+            // pattern the errors alone would pass is made again from a grown start (kept unless
+            // it is over the screen where the folded one, which the screen repairs, is not).
             if invalid(&warm) && !over(&warm) {
-                cold()?
+                let grown = cold()?;
+                if screen.repair && over(&grown) {
+                    warm
+                } else {
+                    grown
+                }
             } else {
                 warm
             }
@@ -1144,6 +1218,47 @@ mod tests {
         assert!(all.section_sides().is_empty(), "no section left");
         assert!((all.model.area() - 80.0).abs() < 1e-9);
         assert!((perimeter(&all) - 48.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_sliver_cut_off_a_corner_is_glued_back_and_a_large_piece_is_not() {
+        let model = grid(20, 4);
+        let whole = Piece::whole(&model, &Stiffness::uniform(&model));
+        let corner = Plane::through(DVec3::new(0.4, 0.4, 0.0), DVec3::new(1.0, 1.0, 0.0));
+        let options = FlattenOptions::default();
+        let pieces: Vec<(Piece, CutResult)> = (section(&model, corner).expect("two sides"))
+            .into_iter()
+            .map(|side| {
+                let piece = child(&whole, side);
+                let pattern = flatten_piece(&piece, &options, &NoProgress).expect("flat");
+                (piece, pattern)
+            })
+            .collect();
+        let counts: Vec<usize> = (pieces.iter())
+            .map(|(piece, _)| piece.model.triangle_count())
+            .collect();
+        assert_eq!(counts.len(), 2);
+        assert!(
+            counts.iter().any(|&count| count < SLIVER_TRIANGLES),
+            "{counts:?}"
+        );
+        let glued = without_slivers(pieces.clone(), &options);
+        assert_eq!(glued.len(), 1);
+        assert!((glued[0].0.model.area() - 80.0).abs() < 1e-9);
+        assert!(glued[0].0.section_sides().is_empty());
+        assert!(is_within(&glued[0].1, options.tolerance));
+
+        // Two large pieces are left as they are.
+        let across = Plane::through(DVec3::new(10.0, 0.0, 0.0), DVec3::X);
+        let halves: Vec<(Piece, CutResult)> = (section(&model, across).expect("two sides"))
+            .into_iter()
+            .map(|side| {
+                let piece = child(&whole, side);
+                let pattern = flatten_piece(&piece, &options, &NoProgress).expect("flat");
+                (piece, pattern)
+            })
+            .collect();
+        assert_eq!(without_slivers(halves, &options).len(), 2);
     }
 
     #[test]
