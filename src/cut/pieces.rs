@@ -74,6 +74,10 @@ use crate::mesh::{
 };
 use crate::progress::{NoProgress, Progress};
 
+/// A piece left after gluing with fewer triangles than this is a sliver, glued into a neighbour
+/// where it can be (see `without_slivers`).
+pub const SLIVER_TRIANGLES: usize = 8;
+
 /// A piece with fewer triangles is not cut again.
 pub const MIN_PIECE_TRIANGLES: usize = 2;
 
@@ -396,11 +400,15 @@ fn glue_round(
 /// into a neighbour when their union is within tolerance, neighbours tried by decreasing shared
 /// length ([`sliver_union`]). The slivers are tried in parallel, each against the pieces as
 /// gluing left them; their unions are then taken in the pieces' order, each unless its
-/// neighbour or the sliver is already in one taken before.
+/// neighbour or the sliver is already in one taken before. Nothing is tried once the part is
+/// out of time.
 fn without_slivers(
     pieces: Vec<(Piece, CutResult)>,
     options: &FlattenOptions,
 ) -> Vec<(Piece, CutResult)> {
+    if options.deadline.passed() {
+        return pieces;
+    }
     let slivers: Vec<usize> = (0..pieces.len())
         .filter(|&s| pieces[s].0.model.triangle_count() < SLIVER_TRIANGLES)
         .collect();
@@ -447,10 +455,6 @@ fn sliver_union(
         }
     })
 }
-
-/// A piece left after gluing with fewer triangles than this is a sliver, glued into a neighbour
-/// where it can be (see `without_slivers`).
-pub const SLIVER_TRIANGLES: usize = 8;
 
 /// The next outcome sent to `receiver`, running the pool's waiting work meanwhile (this thread
 /// is most often one of the pool's, whose other threads run the pairs sent off).
@@ -657,9 +661,9 @@ fn glued_within(
 
 /// The valid flattening of a union of pieces when a quick one, from `start` when given (one
 /// position per vertex of the union), is within the tolerance (and without a fold, unless
-/// `repair`) and it is within it too (see `merge_neighbours`), reporting no progress (the stage reports the gluing); else the error of
-/// the flattening that was not within it (the larger of its area and shape errors; 0 when the
-/// flattening failed).
+/// `repair`) and it is within it too (see `merge_neighbours`), reporting no progress (the stage
+/// reports the gluing); else the error of the flattening that was not within it (the larger of
+/// its area and shape errors; 0 when the flattening failed).
 fn flattened_within(
     union: &Piece,
     start: Option<&[DVec2]>,
@@ -1223,17 +1227,21 @@ mod tests {
     #[test]
     fn a_sliver_cut_off_a_corner_is_glued_back_and_a_large_piece_is_not() {
         let model = grid(20, 4);
-        let whole = Piece::whole(&model, &Stiffness::uniform(&model));
-        let corner = Plane::through(DVec3::new(0.4, 0.4, 0.0), DVec3::new(1.0, 1.0, 0.0));
         let options = FlattenOptions::default();
-        let pieces: Vec<(Piece, CutResult)> = (section(&model, corner).expect("two sides"))
-            .into_iter()
-            .map(|side| {
-                let piece = child(&whole, side);
-                let pattern = flatten_piece(&piece, &options, &NoProgress).expect("flat");
-                (piece, pattern)
-            })
-            .collect();
+        // The sides of a section of the whole strip, each with its valid flattening.
+        let flattened_sides = |plane: Plane| -> Vec<(Piece, CutResult)> {
+            let whole = Piece::whole(&model, &Stiffness::uniform(&model));
+            (section(&model, plane).expect("two sides"))
+                .into_iter()
+                .map(|side| {
+                    let piece = child(&whole, side);
+                    let pattern = flatten_piece(&piece, &options, &NoProgress).expect("flat");
+                    (piece, pattern)
+                })
+                .collect()
+        };
+        let corner = Plane::through(DVec3::new(0.4, 0.4, 0.0), DVec3::new(1.0, 1.0, 0.0));
+        let pieces = flattened_sides(corner);
         let counts: Vec<usize> = (pieces.iter())
             .map(|(piece, _)| piece.model.triangle_count())
             .collect();
@@ -1242,7 +1250,7 @@ mod tests {
             counts.iter().any(|&count| count < SLIVER_TRIANGLES),
             "{counts:?}"
         );
-        let glued = without_slivers(pieces.clone(), &options);
+        let glued = without_slivers(pieces, &options);
         assert_eq!(glued.len(), 1);
         assert!((glued[0].0.model.area() - 80.0).abs() < 1e-9);
         assert!(glued[0].0.section_sides().is_empty());
@@ -1250,15 +1258,7 @@ mod tests {
 
         // Two large pieces are left as they are.
         let across = Plane::through(DVec3::new(10.0, 0.0, 0.0), DVec3::X);
-        let halves: Vec<(Piece, CutResult)> = (section(&model, across).expect("two sides"))
-            .into_iter()
-            .map(|side| {
-                let piece = child(&whole, side);
-                let pattern = flatten_piece(&piece, &options, &NoProgress).expect("flat");
-                (piece, pattern)
-            })
-            .collect();
-        assert_eq!(without_slivers(halves, &options).len(), 2);
+        assert_eq!(without_slivers(flattened_sides(across), &options).len(), 2);
     }
 
     #[test]
