@@ -125,15 +125,6 @@ impl Piece {
             .filter(|slit_union| slit_union.model.boundary_loops().len() == 1)
     }
 
-    /// The length of the section curve this piece shares with `other` (0 when they share none).
-    pub fn shared_length(&self, other: &Piece) -> f64 {
-        let theirs = other.section_sides();
-        (self.section_sides().into_keys())
-            .filter(|key| theirs.contains_key(key))
-            .map(|key| side_length(&key))
-            .sum()
-    }
-
     /// The section edges this piece shares with `other`, as (this piece's edge, theirs) pairs.
     fn shared_sides(&self, other: &Piece) -> Vec<(usize, usize)> {
         let theirs = other.section_sides();

@@ -412,8 +412,14 @@ fn without_slivers(
     let slivers: Vec<usize> = (0..pieces.len())
         .filter(|&s| pieces[s].0.model.triangle_count() < SLIVER_TRIANGLES)
         .collect();
+    if slivers.is_empty() {
+        return pieces;
+    }
+    let sides: Vec<BTreeMap<SideKey, usize>> = (pieces.par_iter())
+        .map(|(piece, _)| piece.section_sides())
+        .collect();
     let unions: Vec<Option<(usize, Piece, CutResult)>> = (slivers.par_iter())
-        .map(|&s| sliver_union(&pieces, s, options))
+        .map(|&s| sliver_union(&pieces, &sides, s, options))
         .collect();
     let mut slots: Vec<Option<(Piece, CutResult)>> = pieces.into_iter().map(Some).collect();
     let mut taken = vec![false; slots.len()];
@@ -431,19 +437,27 @@ fn without_slivers(
 }
 
 /// The union of the sliver `pieces[s]` with the first of its neighbours (by decreasing length of
-/// the curve they share) that it glues to within tolerance, and that neighbour's index. Unlike
+/// the curve they share, from the pieces' section `sides`) that it glues to within tolerance,
+/// and that neighbour's index. Unlike
 /// gluing's pairs, a union whose quick pattern folds is flattened validly all the same
 /// ([`glued_within`] with `repair`): the fold is most often the sliver itself, a flap folded over
 /// in the drape, which the flip-free repair opens; there are few slivers, so this costs little.
 fn sliver_union(
     pieces: &[(Piece, CutResult)],
+    sides: &[BTreeMap<SideKey, usize>],
     s: usize,
     options: &FlattenOptions,
 ) -> Option<(usize, Piece, CutResult)> {
     let (sliver, pattern) = &pieces[s];
+    let shared_length = |i: usize| -> f64 {
+        (sides[s].keys())
+            .filter(|key| sides[i].contains_key(*key))
+            .map(side_length)
+            .sum()
+    };
     let mut neighbours: Vec<(usize, f64)> = (0..pieces.len())
         .filter(|&i| i != s)
-        .map(|i| (i, pieces[i].0.shared_length(sliver)))
+        .map(|i| (i, shared_length(i)))
         .filter(|&(_, length)| length > 0.0)
         .collect();
     neighbours.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
@@ -539,7 +553,7 @@ impl GluingLog {
     }
 }
 
-/// Pairs of pieces being tried at once per thread when gluing, at most (see `merge_neighbours`):
+/// Pairs of pieces being tried at once per thread when gluing, at most (see `glue_round`):
 /// more than one, so that a thread that finishes a pair finds the next one waiting.
 const IN_FLIGHT_PER_THREAD: usize = 2;
 

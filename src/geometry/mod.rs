@@ -7,7 +7,7 @@ pub mod weld;
 
 pub use plane::{
     barycentric, bounding_box, convex_hull, crosses_ray, deep_interior_point, distance_to_box,
-    inside, long_side_of_smallest_rectangle, refined_grid_search, signed_area,
+    inside, long_side_of_smallest_rectangle, refined_grid_search, ring_sides, signed_area,
 };
 pub use segment::{
     distance_to_segment, distance_to_segment_3d, segment_fraction, segments_intersect,

@@ -83,12 +83,16 @@ pub fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
     hull
 }
 
+/// The sides of a closed ring, the last from its last point back to the first.
+pub fn ring_sides(ring: &[DVec2]) -> impl Iterator<Item = [DVec2; 2]> + '_ {
+    (0..ring.len()).map(|k| [ring[k], ring[(k + 1) % ring.len()]])
+}
+
 /// Whether `point` lies inside the closed `ring`, by the crossing rule (the ring's last point may
 /// or may not repeat its first).
 pub fn inside(point: DVec2, ring: &[DVec2]) -> bool {
-    let count = ring.len();
-    (0..count)
-        .filter(|&k| crosses_ray(point, ring[k], ring[(k + 1) % count]))
+    ring_sides(ring)
+        .filter(|&[p, q]| crosses_ray(point, p, q))
         .count()
         % 2
         == 1
@@ -146,9 +150,8 @@ pub fn deep_interior_point(outer: &[DVec2], holes: &[Vec<DVec2>]) -> DVec2 {
             if distance_to_box(point, ring_low, ring_high) >= nearest {
                 continue;
             }
-            for k in 0..ring.len() {
-                let side = distance_to_segment(point, ring[k], ring[(k + 1) % ring.len()]);
-                nearest = nearest.min(side);
+            for [p, q] in ring_sides(ring) {
+                nearest = nearest.min(distance_to_segment(point, p, q));
             }
             if nearest <= to_beat {
                 return None;

@@ -9,7 +9,7 @@ use glam::DVec2;
 use super::drawing::PartDrawing;
 use crate::geometry::{
     bounding_box, crosses_ray, distance_to_box, distance_to_segment, inside,
-    long_side_of_smallest_rectangle, refined_grid_search,
+    long_side_of_smallest_rectangle, refined_grid_search, ring_sides,
 };
 
 /// Grid points per side of the search for the label's centre, in each refinement.
@@ -241,11 +241,6 @@ struct Chunk {
 
 /// Segments per run of [`Lines`].
 const CHUNK_SEGMENTS: usize = 32;
-
-/// The sides of a closed ring, the last back to the first point.
-fn ring_sides(ring: &[DVec2]) -> impl Iterator<Item = [DVec2; 2]> + '_ {
-    (0..ring.len()).map(|k| [ring[k], ring[(k + 1) % ring.len()]])
-}
 
 impl Lines {
     /// The closed ring's sides.

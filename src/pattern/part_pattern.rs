@@ -14,7 +14,7 @@ use super::fold_polylines::fold_polylines;
 use crate::flatten::grain::flat_grain;
 use crate::flatten::outline::Outline;
 use crate::flatten::stiffness::Stiffness;
-use crate::geometry::deep_interior_point;
+use crate::geometry::{deep_interior_point, ring_sides};
 use crate::mesh::FacetModel;
 use crate::units::Units;
 
@@ -138,7 +138,7 @@ fn grain_line(
     let deep = deep_interior_point(outer, holes);
     let rings = std::iter::once(outer)
         .chain(holes.iter().map(Vec::as_slice))
-        .flat_map(|ring| (0..ring.len()).map(move |k| [ring[k], ring[(k + 1) % ring.len()]]));
+        .flat_map(ring_sides);
     let folds = fold_lines
         .iter()
         .flat_map(|line| line.windows(2).map(|pair| [pair[0], pair[1]]));
