@@ -68,8 +68,9 @@ pub struct PartArgs {
     #[arg(long, value_enum, default_value_t = SeamSource::default())]
     seams: SeamSource,
     /// Repair a mesh file's connectivity, with a warning for each change: weld vertices at the
-    /// same point, split edges shared by more than two triangles and vertices joining separate
-    /// fans (after `--seams from-uv` has cut the texture charts apart).
+    /// same point, split edges shared by more than two triangles (keeping together, in pairs,
+    /// those the texture layout continues across the edge) and vertices joining separate fans
+    /// (after `--seams from-uv` has cut the texture charts apart).
     #[arg(long)]
     repair: bool,
     /// DXF version of the cut files: `r2000` (LWPOLYLINE, units in the header) or `r12` for old

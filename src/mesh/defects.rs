@@ -93,6 +93,9 @@ pub enum Defect {
         vertices: [u32; 2],
         /// How many triangles shared it.
         faces: usize,
+        /// How many of them stay neighbours in pairs, the file's texture layout continuing one
+        /// into the other across the edge.
+        kept: usize,
     },
     /// A vertex joining several fans of triangles, given one copy per fan (`--repair`).
     SplitVertex {
@@ -275,9 +278,21 @@ impl fmt::Display for Defect {
             Defect::SplitEdge {
                 vertices: [a, b],
                 faces,
+                kept: 0,
             } => write!(
                 f,
                 "edge {}-{} was shared by {faces} triangles: split apart (--repair)",
+                n(*a as usize),
+                n(*b as usize)
+            ),
+            Defect::SplitEdge {
+                vertices: [a, b],
+                faces,
+                kept,
+            } => write!(
+                f,
+                "edge {}-{} was shared by {faces} triangles: split apart, keeping the {kept} \
+                 that the texture layout (vt) continues across it together in pairs (--repair)",
                 n(*a as usize),
                 n(*b as usize)
             ),

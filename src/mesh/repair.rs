@@ -6,7 +6,7 @@
 use std::collections::BTreeMap;
 
 use super::defects::Defect;
-use super::validate::{corner_fans, edge_groups, sorted_half_edges};
+use super::validate::{corner_fans, edge_groups, manifold_pairs, sorted_half_edges};
 use crate::cad::TriangleSoup;
 
 /// The soup with every vertex that lies exactly on an earlier one replaced by it in the
@@ -46,27 +46,42 @@ pub(super) fn is_usable([a, b, c]: [u32; 3], vertex_count: usize) -> bool {
     a != b && b != c && a != c && [a, b, c].iter().all(|&v| (v as usize) < vertex_count)
 }
 
-/// The soup with its non-manifold edges and vertices split: triangles stop being neighbours
-/// across an edge that more than two of them share, and each vertex gets one copy per fan of
-/// triangles that meet there (`corner_fans`; fans ordered by their lowest triangle, the first
-/// keeping the vertex). Copies keep their vertex's position and file line. A triangle that
-/// repeats a vertex or names a missing one is left as it is, for validation. Returns the
-/// warnings, one [`Defect::SplitEdge`] per edge and one [`Defect::SplitVertex`] per vertex split.
+/// A half-edge from [`sorted_half_edges`]: lower vertex, higher vertex, triangle, and whether
+/// the triangle runs from the lower to the higher.
+type HalfEdge = (u32, u32, u32, bool);
+
+/// The soup with its non-manifold edges and vertices split: at an edge that more than two
+/// triangles share, only the triangles that the file's texture layout continues across it stay
+/// neighbours (`continued_pairs`; none without texture coordinates), and each vertex gets one
+/// copy per fan of triangles that meet there (`corner_fans`; fans ordered by their lowest
+/// triangle, the first keeping the vertex). Copies keep their vertex's position and file line. A
+/// triangle that repeats a vertex or names a missing one is left as it is, for validation.
+/// Returns the warnings, one [`Defect::SplitEdge`] per edge and one [`Defect::SplitVertex`] per
+/// vertex split.
 pub fn split_non_manifold(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
     let vertex_count = soup.positions.len();
     let usable: Vec<usize> = (0..soup.triangles.len())
         .filter(|&t| is_usable(soup.triangles[t], vertex_count))
         .collect();
     let triangles: Vec<[u32; 3]> = usable.iter().map(|&t| soup.triangles[t]).collect();
+    let texture: Option<Vec<[u32; 3]>> = soup
+        .texture
+        .as_ref()
+        .map(|texture| usable.iter().map(|&t| texture.corners[t]).collect());
     let half_edges = sorted_half_edges(&triangles);
-    let mut warnings: Vec<Defect> = edge_groups(&half_edges)
+    let shared: Vec<&[HalfEdge]> = edge_groups(&half_edges)
         .filter(|group| group.len() > 2)
-        .map(|group| Defect::SplitEdge {
+        .collect();
+    let (kept, fans) = kept_pairs(&triangles, &half_edges, &shared, texture.as_deref());
+    let mut warnings: Vec<Defect> = shared
+        .iter()
+        .zip(&kept)
+        .map(|(group, pairs)| Defect::SplitEdge {
             vertices: [group[0].0, group[0].1],
             faces: group.len(),
+            kept: 2 * pairs.len(),
         })
         .collect();
-    let fans = corner_fans(&triangles, &half_edges);
     // Per vertex, its fans in the order of their lowest triangle, each with its corners.
     let mut fans_of_vertex: Vec<Vec<(u32, Vec<usize>)>> = vec![Vec::new(); vertex_count];
     for (corner, &fan) in fans.iter().enumerate() {
@@ -100,11 +115,88 @@ pub fn split_non_manifold(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
     (split, warnings)
 }
 
+/// Per non-manifold edge (`shared`), the pairs of its triangles that stay neighbours, and the
+/// corner fans (`corner_fans`) they make: an edge keeps its continued pairs as long as the split
+/// still leaves it with at most two triangles on each copy. An edge whose triangles stay joined
+/// around its ends by other ways loses its pairs, and the others are checked again.
+fn kept_pairs(
+    triangles: &[[u32; 3]],
+    half_edges: &[HalfEdge],
+    shared: &[&[HalfEdge]],
+    texture: Option<&[[u32; 3]]>,
+) -> (Vec<Vec<[HalfEdge; 2]>>, Vec<u32>) {
+    let mut kept: Vec<Vec<[HalfEdge; 2]>> = shared
+        .iter()
+        .map(|group| texture.map_or_else(Vec::new, |t| continued_pairs(group, triangles, t)))
+        .collect();
+    loop {
+        let neighbours = manifold_pairs(half_edges).chain(kept.iter().flatten().copied());
+        let fans = corner_fans(triangles, neighbours);
+        let mut dropped = false;
+        for (group, pairs) in shared.iter().zip(&mut kept) {
+            if !pairs.is_empty() && !split_apart(group, triangles, &fans) {
+                pairs.clear();
+                dropped = true;
+            }
+        }
+        if !dropped {
+            return (kept, fans);
+        }
+    }
+}
+
+/// Disjoint pairs of an edge's half-edges, running opposite ways, whose triangles give both of
+/// the edge's ends the same texture point: the file's texture layout continues one triangle into
+/// the other there (a garment's panel goes on across a seam that another panel is sewn onto).
+fn continued_pairs(
+    group: &[HalfEdge],
+    triangles: &[[u32; 3]],
+    texture: &[[u32; 3]],
+) -> Vec<[HalfEdge; 2]> {
+    let ends = |half: &HalfEdge| {
+        [half.0, half.1].map(|vertex| texture.as_flattened()[corner(triangles, half, vertex)])
+    };
+    let mut pairs = Vec::new();
+    let mut taken = vec![false; group.len()];
+    for i in 0..group.len() {
+        for j in i + 1..group.len() {
+            let (x, y) = (&group[i], &group[j]);
+            if !taken[i] && !taken[j] && x.3 != y.3 && ends(x) == ends(y) {
+                taken[i] = true;
+                taken[j] = true;
+                pairs.push([*x, *y]);
+            }
+        }
+    }
+    pairs
+}
+
+/// True when the fans leave no more than two of an edge's triangles on any one copy of it.
+fn split_apart(group: &[HalfEdge], triangles: &[[u32; 3]], fans: &[u32]) -> bool {
+    let mut copies: Vec<[u32; 2]> = group
+        .iter()
+        .map(|half| [half.0, half.1].map(|vertex| fans[corner(triangles, half, vertex)]))
+        .collect();
+    copies.sort_unstable();
+    copies.chunk_by(|a, b| a == b).all(|same| same.len() <= 2)
+}
+
+/// The corner (`3 f + k`) of a half-edge's triangle `f` at one of the edge's vertices.
+fn corner(triangles: &[[u32; 3]], half: &HalfEdge, vertex: u32) -> usize {
+    let face = half.2 as usize;
+    let k = triangles[face]
+        .iter()
+        .position(|&v| v == vertex)
+        .expect("an edge's vertex is a corner of its triangle");
+    face * 3 + k
+}
+
 #[cfg(test)]
 mod tests {
-    use glam::DVec3;
+    use glam::{DVec2, DVec3};
 
     use super::*;
+    use crate::cad::{NO_SOURCE_FACE, TextureCorners};
     use crate::mesh::validate;
 
     /// Three triangles on one edge (0-1), like three panels sewn along one seam.
@@ -128,7 +220,8 @@ mod tests {
             warnings[0],
             Defect::SplitEdge {
                 vertices: [0, 1],
-                faces: 3
+                faces: 3,
+                kept: 0
             }
         );
         assert!(warnings.iter().all(Defect::is_repaired));
@@ -142,6 +235,59 @@ mod tests {
         {
             assert!(soup.positions[..2].contains(p), "copy {v} of an edge end");
         }
+    }
+
+    #[test]
+    fn the_two_triangles_the_texture_continues_across_a_split_edge_stay_neighbours() {
+        let mut soup = three_panels();
+        // The first two panels are one chart across the edge; the third is a chart of its own.
+        soup.texture = Some(TextureCorners {
+            points: (0..7).map(|i| DVec2::new(i as f64, 0.0)).collect(),
+            corners: vec![[0, 1, 2], [1, 0, 3], [4, 5, 6]],
+        });
+        let (split, warnings) = split_non_manifold(&soup);
+        assert_eq!(
+            warnings[0],
+            Defect::SplitEdge {
+                vertices: [0, 1],
+                faces: 3,
+                kept: 2
+            }
+        );
+        let validated = validate(&split).expect("valid after the split");
+        let mut sizes: Vec<usize> = validated
+            .components
+            .iter()
+            .map(|c| c.triangles().len())
+            .collect();
+        sizes.sort_unstable();
+        assert_eq!(sizes, vec![1, 2], "the chart's two panels stay one piece");
+    }
+
+    #[test]
+    fn a_continued_pair_is_not_kept_where_the_split_would_leave_the_edge_shared_by_three() {
+        let mut soup = three_panels();
+        // The third panel is joined to the first around both ends of the edge by two more
+        // triangles, so the edge keeps three triangles unless the continued pair is parted.
+        soup.triangles.extend([[0, 4, 2], [1, 2, 4]]);
+        soup.face_sources.extend([NO_SOURCE_FACE; 2]);
+        soup.texture = Some(TextureCorners {
+            points: (0..7).map(|i| DVec2::new(i as f64, 0.0)).collect(),
+            corners: vec![[0, 1, 2], [1, 0, 3], [4, 5, 6], [0, 4, 2], [1, 2, 4]],
+        });
+        let (split, warnings) = split_non_manifold(&soup);
+        assert_eq!(
+            warnings[0],
+            Defect::SplitEdge {
+                vertices: [0, 1],
+                faces: 3,
+                kept: 0
+            }
+        );
+        assert!(
+            validate(&split).is_ok(),
+            "every edge has at most two triangles"
+        );
     }
 
     #[test]

@@ -164,12 +164,10 @@ fn orient_and_label(
 ) -> Vec<u32> {
     // Face neighbours across manifold edges: (other face, edge vertices, same_direction).
     let mut neighbours: Vec<Vec<(u32, [u32; 2], bool)>> = vec![Vec::new(); triangles.len()];
-    for group in edge_groups(half_edges) {
-        if let [x, y] = group {
-            let same = x.3 == y.3;
-            neighbours[x.2 as usize].push((y.2, [x.0, x.1], same));
-            neighbours[y.2 as usize].push((x.2, [x.0, x.1], same));
-        }
+    for [x, y] in manifold_pairs(half_edges) {
+        let same = x.3 == y.3;
+        neighbours[x.2 as usize].push((y.2, [x.0, x.1], same));
+        neighbours[y.2 as usize].push((x.2, [x.0, x.1], same));
     }
     let mut component = vec![NONE; triangles.len()];
     let mut flipped = vec![false; triangles.len()];
@@ -213,7 +211,7 @@ fn orient_and_label(
 /// Flags vertices whose faces form several fans: corners are joined across shared edges, and a
 /// vertex must end with all its corners in one group.
 fn check_vertex_fans(vertex_count: usize, triangles: &[[u32; 3]], errors: &mut Vec<Defect>) {
-    let fans = corner_fans(triangles, &sorted_half_edges(triangles));
+    let fans = corner_fans(triangles, manifold_pairs(&sorted_half_edges(triangles)));
     let mut roots_of_vertex: Vec<Vec<u32>> = vec![Vec::new(); vertex_count];
     for (f, t) in triangles.iter().enumerate() {
         for (k, &v) in t.iter().enumerate() {
@@ -232,12 +230,23 @@ fn check_vertex_fans(vertex_count: usize, triangles: &[[u32; 3]], errors: &mut V
     }
 }
 
+/// The pairs of half-edges (from [`sorted_half_edges`]) of the edges that exactly two triangles
+/// share: the triangles that are neighbours.
+pub(super) fn manifold_pairs(
+    half_edges: &[(u32, u32, u32, bool)],
+) -> impl Iterator<Item = [(u32, u32, u32, bool); 2]> + '_ {
+    edge_groups(half_edges).filter_map(|group| match group {
+        [x, y] => Some([*x, *y]),
+        _ => None,
+    })
+}
+
 /// The fan of every triangle corner (corner `3 f + k` is corner `k` of triangle `f`), as one
-/// representative corner per fan: a vertex's corners are joined across each edge that exactly
-/// two triangles share (`half_edges` from [`sorted_half_edges`]). Triangles repeat no vertex.
+/// representative corner per fan: a vertex's corners are joined across the edge of each pair of
+/// neighbour half-edges (`neighbours`, such as [`manifold_pairs`]). Triangles repeat no vertex.
 pub(super) fn corner_fans(
     triangles: &[[u32; 3]],
-    half_edges: &[(u32, u32, u32, bool)],
+    neighbours: impl IntoIterator<Item = [(u32, u32, u32, bool); 2]>,
 ) -> Vec<u32> {
     let mut parent: Vec<u32> = (0..triangles.len() as u32 * 3).collect();
     fn root(parent: &mut [u32], mut x: u32) -> u32 {
@@ -255,15 +264,13 @@ pub(super) fn corner_fans(
             .expect("vertex of face");
         f * 3 + k as u32
     };
-    for group in edge_groups(half_edges) {
-        if let [x, y] = group {
-            for v in [x.0, x.1] {
-                let (ra, rb) = (
-                    root(&mut parent, corner(x.2, v)),
-                    root(&mut parent, corner(y.2, v)),
-                );
-                parent[ra as usize] = rb;
-            }
+    for [x, y] in neighbours {
+        for v in [x.0, x.1] {
+            let (ra, rb) = (
+                root(&mut parent, corner(x.2, v)),
+                root(&mut parent, corner(y.2, v)),
+            );
+            parent[ra as usize] = rb;
         }
     }
     (0..parent.len() as u32)

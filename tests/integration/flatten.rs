@@ -453,6 +453,49 @@ fn repair_mends_a_zero_area_triangle_and_drops_a_repeated_one() {
 }
 
 #[test]
+fn repair_keeps_the_panels_a_texture_layout_continues_across_a_non_manifold_edge_together() {
+    let folder = tempfile::tempdir().expect("temporary directory");
+    let input = folder.path().join("sewn_on.obj");
+    // Two squares that the texture layout continues across edge 1-2 (one chart: texture
+    // points 1-6), and a third square sewn onto that edge, a chart of its own (points 7-10).
+    let text = "v 0 0 0\nv 0 0 10\nv 10 0 0\nv 10 0 10\nv -10 0 0\nv -10 0 10\n\
+                v 0 10 0\nv 0 10 10\n\
+                vt 0 0\nvt 0 1\nvt 1 0\nvt 1 1\nvt -1 0\nvt -1 1\n\
+                vt 5 5\nvt 5 6\nvt 6 6\nvt 6 5\n\
+                f 1/1 3/3 4/4 2/2\nf 2/2 6/6 5/5 1/1\nf 1/7 2/8 8/9 7/10\n";
+    std::fs::write(&input, text).expect("write input");
+    let output = folder.path().join("repaired");
+    let repaired = flatten_into(&input, &output, &["--repair"]);
+    assert_eq!(repaired.status.code(), Some(0), "{}", stderr(&repaired));
+    let message = stderr(&repaired);
+    assert!(
+        message.contains(
+            "edge 1-2 was shared by 3 triangles: split apart, keeping the 2 that the texture \
+             layout (vt) continues across it together in pairs (--repair)"
+        ),
+        "{message}"
+    );
+    let report = read_report(&output);
+    let mut triangles: Vec<u64> = report["parts"]
+        .as_array()
+        .expect("parts")
+        .iter()
+        .map(|part| part["triangles"].as_u64().expect("triangles"))
+        .collect();
+    triangles.sort_unstable();
+    assert_eq!(
+        triangles,
+        vec![2, 4],
+        "the sewn-on square, and the chart's two squares in one"
+    );
+    for part in report["parts"].as_array().expect("parts") {
+        let figures = recompute(&output, part["name"].as_str().unwrap());
+        assert!(figures.area_error <= DEVELOPABLE_ERROR, "{figures:?}");
+        assert_eq!(figures.flipped, 0);
+    }
+}
+
+#[test]
 fn repair_splits_a_non_manifold_edge_that_stops_the_mesh_otherwise() {
     let folder = tempfile::tempdir().expect("temporary directory");
     let input = folder.path().join("three_panels.obj");
