@@ -5,8 +5,14 @@
 //!
 //! Input: the opened part (a disk) and its first pattern, over tolerance, with more than
 //! [`PLAN_ABOVE_TRIANGLES`] triangles, uniform stiffness, no fold line and rest lengths equal to
-//! its 3D lengths. Output: the part cut along the planned cuts and re-flattened, or `None` when
-//! the plan does not bring a valid pattern with a lower error (the cut loop then plans on the
+//! its 3D lengths. Output ([`Planned`]): the part cut along the planned cuts and re-flattened,
+//! for the cut loop to go on from; or, when the plan ended short of the tolerance (no cut
+//! lowered the remesh's error further, or the cut budget was spent), the part cut along the
+//! planned cuts where they give it a valid pattern of lower error, and left there: the same
+//! search on the part itself ended where the plan did, and took 9-35 s to (`--seams whole` on
+//! the README's real meshes: the spot head, bimba, armadillo, cow head and Hencky all ended with
+//! no cut); or nothing to go by, when the remesh cannot be made, the plan runs out of time, or
+//! its cuts do not give the part a valid pattern of lower error (the cut loop then plans on the
 //! part itself, as for a small part).
 //!
 //! Remesh: the pattern is a valid flattening, so its plane is a parameter domain of the surface.
@@ -65,16 +71,30 @@ const REFINEMENT_BUDGET: usize = 4;
 /// The smallest triangle angle refinement aims for, degrees.
 const MINIMUM_ANGLE_DEGREES: f64 = 25.0;
 
+/// What planning a part's cuts on its coarse remesh came to.
+pub(super) enum Planned {
+    /// The part cut along the planned cuts and re-flattened: the cut loop goes on from there.
+    Laid(Box<Cutting>),
+    /// The plan ended short of the tolerance, for this reason (no cut lowered the remesh's
+    /// error further, or the cut budget was spent): the same search on the part itself would end
+    /// there too (see the module documentation). The part, cut along the planned cuts where they
+    /// give it a valid pattern of lower error (else as it was), is left there.
+    Short(Box<Cutting>, CutStop),
+    /// No plan to go by: the remesh could not be made, the plan ran out of time, or its cuts,
+    /// within the tolerance on the remesh, did not give the part a valid pattern of lower error
+    /// (the cut loop then plans on the part itself, as for a small part).
+    Nothing,
+}
+
 /// Plans the part's cuts on a coarse remesh and lays them on the part (see the module
-/// documentation); `None` when the remesh cannot be made, the plan does not reach its tolerance,
-/// or its cuts do not give the part a valid pattern of lower error.
+/// documentation and [`Planned`]).
 pub(super) fn plan_cuts(
     cutting: &Cutting,
     plan: &Plan<'_>,
     progress: &dyn Progress,
-) -> Result<Option<Cutting>, CutError> {
+) -> Result<Planned, CutError> {
     let Some(remesh) = coarse_remesh(&cutting.state, &cutting.flattened.positions) else {
-        return Ok(None);
+        return Ok(Planned::Nothing);
     };
     let flattened = flatten_from(
         &remesh.state.model,
@@ -84,10 +104,23 @@ pub(super) fn plan_cuts(
     )?;
     let coarse = Cutting::uncut(remesh.state, flattened);
     let (coarse, stop) = cut_along_crest_lines(coarse, plan, "plan cuts", progress)?;
-    if stop != CutStop::ToleranceMet || coarse.cuts.is_empty() {
-        return Ok(None);
-    }
-    lay_planned_cuts(cutting, &coarse.cuts, remesh.spacing, plan, progress)
+    let laid = || -> Result<Option<Cutting>, CutError> {
+        if coarse.cuts.is_empty() {
+            return Ok(None);
+        }
+        lay_planned_cuts(cutting, &coarse.cuts, remesh.spacing, plan, progress)
+    };
+    Ok(match stop {
+        CutStop::ToleranceMet => match laid()? {
+            Some(laid) => Planned::Laid(Box::new(laid)),
+            None => Planned::Nothing,
+        },
+        CutStop::NoBetterCut | CutStop::CutBudget => {
+            let left = laid()?.unwrap_or_else(|| cutting.clone());
+            Planned::Short(Box::new(left), stop)
+        }
+        CutStop::TimeLimit => Planned::Nothing,
+    })
 }
 
 /// The coarse remesh of a part, with its start pattern (its vertices' places in the part's
@@ -473,7 +506,10 @@ fn edge_path(
 #[cfg(test)]
 mod tests {
     use crate::cut::coarse::*;
+    use crate::cut::options::CutOptions;
     use crate::cut::straighten::tests::flat_grid;
+    use crate::flatten::FlattenOptions;
+    use crate::progress::NoProgress;
 
     const RADIUS: f64 = 100.0;
 
@@ -524,6 +560,62 @@ mod tests {
         let area: f64 = (0..count).map(|f| model.triangle_area(f)).sum();
         assert!((area / (120.0 * 120.0) - 1.0).abs() < 1e-3, "area {area}");
         assert!(is_plain(&remesh.state));
+    }
+
+    /// The rolled sheet's square pressed onto a sphere of radius 60 mm instead (each flat point
+    /// at its distance from the square's centre along the sphere's great circles): a cap of 81°
+    /// at the square's corners.
+    fn domed_sheet() -> CutState {
+        const SPHERE_RADIUS: f64 = 60.0;
+        let (state, pattern) = rolled_sheet();
+        let positions: Vec<DVec3> = pattern
+            .iter()
+            .map(|&p| {
+                let from_centre = p - DVec2::splat(60.0);
+                let angle = from_centre.length() / SPHERE_RADIUS;
+                let direction = from_centre.normalize_or_zero();
+                let across = SPHERE_RADIUS * angle.sin();
+                DVec3::new(
+                    across * direction.x,
+                    across * direction.y,
+                    SPHERE_RADIUS * angle.cos(),
+                )
+            })
+            .collect();
+        let soup = TriangleSoup::new(positions, state.model.triangles().to_vec());
+        let model = validate(&soup).expect("valid dome").components.remove(0);
+        CutState {
+            stiffness: Stiffness::uniform(&model),
+            original_vertex: (0..model.vertex_count() as u32).collect(),
+            model,
+        }
+    }
+
+    #[test]
+    fn a_plan_that_spends_its_cut_budget_short_of_the_tolerance_is_laid_and_ends_there() {
+        let state = domed_sheet();
+        let options = FlattenOptions::default();
+        let flattened =
+            flatten(&state.model, &state.stiffness, &options, &NoProgress).expect("flattened");
+        let uncut_error = flattened.stats.accuracy.larger_error();
+        assert!(uncut_error > 2.0 * options.tolerance, "{uncut_error}");
+        let cutting = Cutting::uncut(state, flattened);
+        let cut_options = CutOptions::default();
+        let plan = Plan {
+            max_cuts: 1,
+            regions: &[],
+            flatten_options: &options,
+            options: &cut_options,
+        };
+        let planned = plan_cuts(&cutting, &plan, &NoProgress).expect("plan");
+        let Planned::Short(left, stop) = planned else {
+            panic!("one cut does not bring the dome within tolerance ({uncut_error})");
+        };
+        assert_eq!(stop, CutStop::CutBudget);
+        assert_eq!(left.cuts.len(), 1, "the planned cut, laid");
+        let accuracy = left.flattened.stats.accuracy;
+        assert!(accuracy.larger_error() < uncut_error, "{accuracy:?}");
+        assert!(accuracy.flipped == 0 && !accuracy.overlap, "{accuracy:?}");
     }
 
     #[test]

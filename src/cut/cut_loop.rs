@@ -3,7 +3,7 @@
 
 use std::collections::BTreeSet;
 
-use super::coarse::{self, PLAN_ABOVE_TRIANGLES};
+use super::coarse::{self, PLAN_ABOVE_TRIANGLES, Planned};
 use super::crest_cuts::{Cutting, Plan, cut_along_crest_lines};
 use super::errors::CutError;
 use super::opening::{lay_user_seams, open_and_flatten};
@@ -11,7 +11,7 @@ use super::options::{
     CAP_CURVATURE, CUT_LOOP_ENERGY_TOLERANCE, CUTS_PER_CAP, CutConstraints, CutOptions,
     DEFAULT_MAX_CUTS,
 };
-use super::result::{Cut, CutResult, Seam};
+use super::result::{Cut, CutResult, CutStop, Seam};
 use super::seam;
 use super::state::{CutState, PointKey, point_key};
 use crate::flatten::{
@@ -90,19 +90,31 @@ pub(super) fn cut_opened(
         flattened = without_overlap(&state, flattened, &loop_options, None)?;
     }
     let flatten_options = &loop_options;
-    let mut cutting = Cutting::uncut(state, flattened);
+    let cutting = Cutting::uncut(state, flattened);
     let plan = Plan {
         max_cuts,
         regions: &constraints.no_cut_regions,
         flatten_options,
         options,
     };
-    if planned_on_coarse_remesh(&cutting, &plan)
-        && let Some(planned) = coarse::plan_cuts(&cutting, &plan, progress)?
-    {
-        cutting = planned;
-    }
-    let (cutting, stop) = cut_along_crest_lines(cutting, &plan, "cut", progress)?;
+    let planned = if planned_on_coarse_remesh(&cutting, &plan) {
+        coarse::plan_cuts(&cutting, &plan, progress)?
+    } else {
+        Planned::Nothing
+    };
+    let (cutting, stop) = match planned {
+        Planned::Laid(laid) => cut_along_crest_lines(*laid, &plan, "cut", progress)?,
+        Planned::Short(left, stop) => {
+            // The part itself measures a little lower than its remesh: it may be within.
+            let within = left
+                .flattened
+                .stats
+                .accuracy
+                .within(flatten_options.tolerance);
+            (*left, if within { CutStop::ToleranceMet } else { stop })
+        }
+        Planned::Nothing => cut_along_crest_lines(cutting, &plan, "cut", progress)?,
+    };
     let Cutting {
         state,
         mut flattened,
