@@ -211,19 +211,34 @@ mod tests {
         TriangleSoup::new(positions, vec![[0, 1, 2], [1, 0, 3], [0, 1, 4]])
     }
 
-    #[test]
-    fn a_non_manifold_edge_is_split_and_the_mesh_then_validates() {
-        let soup = three_panels();
-        assert!(validate(&soup).is_err());
-        let (split, warnings) = split_non_manifold(&soup);
+    /// The soup split ([`split_non_manifold`]) and its warnings, the first of which says that
+    /// edge 0-1 of [`three_panels`] was split keeping `kept` of its triangles together.
+    fn split_edge_keeping(soup: &TriangleSoup, kept: usize) -> (TriangleSoup, Vec<Defect>) {
+        let (split, warnings) = split_non_manifold(soup);
         assert_eq!(
             warnings[0],
             Defect::SplitEdge {
                 vertices: [0, 1],
                 faces: 3,
-                kept: 0
+                kept
             }
         );
+        (split, warnings)
+    }
+
+    /// Texture points 0 to 6, one per corner as `corners` gives them.
+    fn texture(corners: Vec<[u32; 3]>) -> Option<TextureCorners> {
+        Some(TextureCorners {
+            points: (0..7).map(|i| DVec2::new(i as f64, 0.0)).collect(),
+            corners,
+        })
+    }
+
+    #[test]
+    fn a_non_manifold_edge_is_split_and_the_mesh_then_validates() {
+        let soup = three_panels();
+        assert!(validate(&soup).is_err());
+        let (split, warnings) = split_edge_keeping(&soup, 0);
         assert!(warnings.iter().all(Defect::is_repaired));
         let validated = validate(&split).expect("valid after the split");
         assert_eq!(validated.components.len(), 3, "three separate panels");
@@ -241,19 +256,8 @@ mod tests {
     fn the_two_triangles_the_texture_continues_across_a_split_edge_stay_neighbours() {
         let mut soup = three_panels();
         // The first two panels are one chart across the edge; the third is a chart of its own.
-        soup.texture = Some(TextureCorners {
-            points: (0..7).map(|i| DVec2::new(i as f64, 0.0)).collect(),
-            corners: vec![[0, 1, 2], [1, 0, 3], [4, 5, 6]],
-        });
-        let (split, warnings) = split_non_manifold(&soup);
-        assert_eq!(
-            warnings[0],
-            Defect::SplitEdge {
-                vertices: [0, 1],
-                faces: 3,
-                kept: 2
-            }
-        );
+        soup.texture = texture(vec![[0, 1, 2], [1, 0, 3], [4, 5, 6]]);
+        let (split, _) = split_edge_keeping(&soup, 2);
         let validated = validate(&split).expect("valid after the split");
         let mut sizes: Vec<usize> = validated
             .components
@@ -271,19 +275,8 @@ mod tests {
         // triangles, so the edge keeps three triangles unless the continued pair is parted.
         soup.triangles.extend([[0, 4, 2], [1, 2, 4]]);
         soup.face_sources.extend([NO_SOURCE_FACE; 2]);
-        soup.texture = Some(TextureCorners {
-            points: (0..7).map(|i| DVec2::new(i as f64, 0.0)).collect(),
-            corners: vec![[0, 1, 2], [1, 0, 3], [4, 5, 6], [0, 4, 2], [1, 2, 4]],
-        });
-        let (split, warnings) = split_non_manifold(&soup);
-        assert_eq!(
-            warnings[0],
-            Defect::SplitEdge {
-                vertices: [0, 1],
-                faces: 3,
-                kept: 0
-            }
-        );
+        soup.texture = texture(vec![[0, 1, 2], [1, 0, 3], [4, 5, 6], [0, 4, 2], [1, 2, 4]]);
+        let (split, _) = split_edge_keeping(&soup, 0);
         assert!(
             validate(&split).is_ok(),
             "every edge has at most two triangles"
