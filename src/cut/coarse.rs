@@ -77,9 +77,9 @@ pub(super) enum Planned {
     Laid(Box<Cutting>),
     /// The plan ended short of the tolerance, for this reason (no cut lowered the remesh's
     /// error further, or the cut budget was spent): the same search on the part itself would end
-    /// there too (see the module documentation). The part, cut along the planned cuts where they
-    /// give it a valid pattern of lower error (else as it was), is left there.
-    Short(Box<Cutting>, CutStop),
+    /// there too (see the module documentation). The part is left there: cut along the planned
+    /// cuts when they give it a valid pattern of lower error (given here), else as it was.
+    Short(Option<Box<Cutting>>, CutStop),
     /// No plan to go by: the remesh could not be made, the plan ran out of time, or its cuts,
     /// within the tolerance on the remesh, did not give the part a valid pattern of lower error
     /// (the cut loop then plans on the part itself, as for a small part).
@@ -115,10 +115,7 @@ pub(super) fn plan_cuts(
             Some(laid) => Planned::Laid(Box::new(laid)),
             None => Planned::Nothing,
         },
-        CutStop::NoBetterCut | CutStop::CutBudget => {
-            let left = laid()?.unwrap_or_else(|| cutting.clone());
-            Planned::Short(Box::new(left), stop)
-        }
+        CutStop::NoBetterCut | CutStop::CutBudget => Planned::Short(laid()?.map(Box::new), stop),
         CutStop::TimeLimit => Planned::Nothing,
     })
 }
@@ -608,8 +605,8 @@ mod tests {
             options: &cut_options,
         };
         let planned = plan_cuts(&cutting, &plan, &NoProgress).expect("plan");
-        let Planned::Short(left, stop) = planned else {
-            panic!("one cut does not bring the dome within tolerance ({uncut_error})");
+        let Planned::Short(Some(left), stop) = planned else {
+            panic!("one cut leaves the dome over tolerance, and lowers its error ({uncut_error})");
         };
         assert_eq!(stop, CutStop::CutBudget);
         assert_eq!(left.cuts.len(), 1, "the planned cut, laid");

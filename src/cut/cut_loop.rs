@@ -104,14 +104,12 @@ pub(super) fn cut_opened(
     };
     let (cutting, stop) = match planned {
         Planned::Laid(laid) => cut_along_crest_lines(*laid, &plan, "cut", progress)?,
-        Planned::Short(left, stop) => {
+        Planned::Short(laid, stop) => {
+            let left = laid.map_or(cutting, |laid| *laid);
             // The part itself measures a little lower than its remesh: it may be within.
-            let within = left
-                .flattened
-                .stats
-                .accuracy
-                .within(flatten_options.tolerance);
-            (*left, if within { CutStop::ToleranceMet } else { stop })
+            let accuracy = left.flattened.stats.accuracy;
+            let within = accuracy.within(flatten_options.tolerance);
+            (left, if within { CutStop::ToleranceMet } else { stop })
         }
         Planned::Nothing => cut_along_crest_lines(cutting, &plan, "cut", progress)?,
     };

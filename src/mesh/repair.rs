@@ -6,7 +6,9 @@
 use std::collections::BTreeMap;
 
 use super::defects::Defect;
-use super::validate::{corner_fans, edge_groups, manifold_pairs, sorted_half_edges};
+use super::validate::{
+    HalfEdge, corner, corner_fans, edge_groups, manifold_pairs, sorted_half_edges,
+};
 use crate::cad::TriangleSoup;
 
 /// The soup with every vertex that lies exactly on an earlier one replaced by it in the
@@ -45,10 +47,6 @@ pub fn weld_duplicates(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
 pub(super) fn is_usable([a, b, c]: [u32; 3], vertex_count: usize) -> bool {
     a != b && b != c && a != c && [a, b, c].iter().all(|&v| (v as usize) < vertex_count)
 }
-
-/// A half-edge from [`sorted_half_edges`]: lower vertex, higher vertex, triangle, and whether
-/// the triangle runs from the lower to the higher.
-type HalfEdge = (u32, u32, u32, bool);
 
 /// The soup with its non-manifold edges and vertices split: at an edge that more than two
 /// triangles share, only the triangles that the file's texture layout continues across it stay
@@ -179,16 +177,6 @@ fn split_apart(group: &[HalfEdge], triangles: &[[u32; 3]], fans: &[u32]) -> bool
         .collect();
     copies.sort_unstable();
     copies.chunk_by(|a, b| a == b).all(|same| same.len() <= 2)
-}
-
-/// The corner (`3 f + k`) of a half-edge's triangle `f` at one of the edge's vertices.
-fn corner(triangles: &[[u32; 3]], half: &HalfEdge, vertex: u32) -> usize {
-    let face = half.2 as usize;
-    let k = triangles[face]
-        .iter()
-        .position(|&v| v == vertex)
-        .expect("an edge's vertex is a corner of its triangle");
-    face * 3 + k
 }
 
 #[cfg(test)]

@@ -122,9 +122,13 @@ fn check_areas(soup: &TriangleSoup, kept: &[usize], errors: &mut Vec<Defect>) {
     }
 }
 
+/// A triangle's side as [`sorted_half_edges`] lists it: lower vertex, higher vertex, triangle,
+/// and whether the triangle runs from the lower to the higher.
+pub(super) type HalfEdge = (u32, u32, u32, bool);
+
 /// Half-edges `(min, max, face, forward)` sorted by edge; `forward` is true when the face runs
 /// from `min` to `max`.
-pub(super) fn sorted_half_edges(triangles: &[[u32; 3]]) -> Vec<(u32, u32, u32, bool)> {
+pub(super) fn sorted_half_edges(triangles: &[[u32; 3]]) -> Vec<HalfEdge> {
     let mut half_edges = Vec::with_capacity(triangles.len() * 3);
     for (f, t) in triangles.iter().enumerate() {
         for k in 0..3 {
@@ -137,13 +141,11 @@ pub(super) fn sorted_half_edges(triangles: &[[u32; 3]]) -> Vec<(u32, u32, u32, b
 }
 
 /// Groups of half-edges that share an undirected edge.
-pub(super) fn edge_groups(
-    half_edges: &[(u32, u32, u32, bool)],
-) -> impl Iterator<Item = &[(u32, u32, u32, bool)]> {
+pub(super) fn edge_groups(half_edges: &[HalfEdge]) -> impl Iterator<Item = &[HalfEdge]> {
     half_edges.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1))
 }
 
-fn check_edge_valence(half_edges: &[(u32, u32, u32, bool)], errors: &mut Vec<Defect>) {
+fn check_edge_valence(half_edges: &[HalfEdge], errors: &mut Vec<Defect>) {
     for group in edge_groups(half_edges) {
         if group.len() > 2 {
             errors.push(Defect::NonManifoldEdge {
@@ -158,7 +160,7 @@ fn check_edge_valence(half_edges: &[(u32, u32, u32, bool)], errors: &mut Vec<Def
 /// flipping faces as needed, and returns the component label of every face.
 fn orient_and_label(
     triangles: &mut [[u32; 3]],
-    half_edges: &[(u32, u32, u32, bool)],
+    half_edges: &[HalfEdge],
     errors: &mut Vec<Defect>,
     warnings: &mut Vec<Defect>,
 ) -> Vec<u32> {
@@ -232,9 +234,7 @@ fn check_vertex_fans(vertex_count: usize, triangles: &[[u32; 3]], errors: &mut V
 
 /// The pairs of half-edges (from [`sorted_half_edges`]) of the edges that exactly two triangles
 /// share: the triangles that are neighbours.
-pub(super) fn manifold_pairs(
-    half_edges: &[(u32, u32, u32, bool)],
-) -> impl Iterator<Item = [(u32, u32, u32, bool); 2]> + '_ {
+pub(super) fn manifold_pairs(half_edges: &[HalfEdge]) -> impl Iterator<Item = [HalfEdge; 2]> + '_ {
     edge_groups(half_edges).filter_map(|group| match group {
         [x, y] => Some([*x, *y]),
         _ => None,
@@ -246,7 +246,7 @@ pub(super) fn manifold_pairs(
 /// neighbour half-edges (`neighbours`, such as [`manifold_pairs`]). Triangles repeat no vertex.
 pub(super) fn corner_fans(
     triangles: &[[u32; 3]],
-    neighbours: impl IntoIterator<Item = [(u32, u32, u32, bool); 2]>,
+    neighbours: impl IntoIterator<Item = [HalfEdge; 2]>,
 ) -> Vec<u32> {
     let mut parent: Vec<u32> = (0..triangles.len() as u32 * 3).collect();
     fn root(parent: &mut [u32], mut x: u32) -> u32 {
@@ -256,19 +256,11 @@ pub(super) fn corner_fans(
         }
         x
     }
-    // Corner of vertex v in face f.
-    let corner = |f: u32, v: u32| -> u32 {
-        let k = triangles[f as usize]
-            .iter()
-            .position(|&x| x == v)
-            .expect("vertex of face");
-        f * 3 + k as u32
-    };
     for [x, y] in neighbours {
         for v in [x.0, x.1] {
             let (ra, rb) = (
-                root(&mut parent, corner(x.2, v)),
-                root(&mut parent, corner(y.2, v)),
+                root(&mut parent, corner(triangles, &x, v) as u32),
+                root(&mut parent, corner(triangles, &y, v) as u32),
             );
             parent[ra as usize] = rb;
         }
@@ -276,6 +268,16 @@ pub(super) fn corner_fans(
     (0..parent.len() as u32)
         .map(|c| root(&mut parent, c))
         .collect()
+}
+
+/// The corner (`3 f + k`) of a half-edge's triangle `f` at one of the edge's vertices.
+pub(super) fn corner(triangles: &[[u32; 3]], half: &HalfEdge, vertex: u32) -> usize {
+    let face = half.2 as usize;
+    let k = triangles[face]
+        .iter()
+        .position(|&v| v == vertex)
+        .expect("an edge's vertex is a corner of its triangle");
+    face * 3 + k
 }
 
 /// One facet model per component label, vertices renumbered in ascending input order, each with
