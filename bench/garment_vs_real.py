@@ -21,10 +21,12 @@ For the real pattern and for each OUT, printed as one JSON line:
                once
 
 With --panels (for OUT folders of `flatcut flatten --seams from-uv`), each flatcut piece is
-also matched to the real panel holding most of its vertices (by their 3D positions) and printed
-as one JSON line: the piece, its panel, its vertices and those the panel holds (a vertex a cut
-inserted has no texture point), and its match: the RMS distance between those vertices' flat
-points and their texture points after a rigid motion of each piece and one scale common to all
+also matched to the real panel holding most of its triangles (by their corners' 3D positions)
+and printed as one JSON line: the piece, its panel, its vertices and those of the triangles the
+panel holds (a triangle a cut made has no texture points), and its match: the RMS distance
+between those vertices' flat points and their texture points (each vertex's at its corner of
+the panel's triangle: a panel sewn into a tube meets itself along a seam, where one 3D point
+has a texture point on each side) after a rigid motion of each piece and one scale common to all
 (the least-squares fit), in per cent of the piece's bounding-box diagonal, whether the best
 fit mirrors the panel, and the panel's own E_S against the drape (at the real pattern's scale):
 a panel far from its drape's developed shape cannot be matched by a flattening that is not.
@@ -214,10 +216,17 @@ def corner_key(point):
     return tuple(round(x, 6) for x in point)
 
 
-def panel_points(panels):
-    """For each real panel, its texture point at each 3D corner."""
-    return [{corner_key(p): q for t3, t2 in zip(panel.triangles_3d, panel.triangles_2d)
-             for p, q in zip(t3, t2)} for panel in panels]
+def panel_faces(panels):
+    """Each real panel triangle by its three 3D corners (sorted): the panels holding such a
+    triangle, each with the texture point at each of its corners. A triangle, not a corner, is
+    the key: a panel sewn into a tube (a sleeve, a cuff) meets itself along a seam, where one 3D
+    corner has two texture points, one on each side."""
+    faces = defaultdict(list)
+    for index, panel in enumerate(panels):
+        for t3, t2 in zip(panel.triangles_3d, panel.triangles_2d):
+            keys = [corner_key(p) for p in t3]
+            faces[tuple(sorted(keys))].append((index, dict(zip(keys, t2))))
+    return faces
 
 
 def rigid_fit(pairs):
@@ -243,20 +252,31 @@ def rigid_fit(pairs):
 
 
 def panel_matches(folder, panels):
-    """One line per flatcut piece of `folder`: the real panel holding most of its vertices and
-    the match over the vertices the panel holds (a vertex a cut inserted has no texture point)."""
-    points_of = panel_points(panels)
+    """One line per flatcut piece of `folder`: the real panel holding most of its triangles and
+    the match over the vertices of the triangles the panel holds (a triangle a cut made has no
+    texture points), each vertex paired with the texture point of its corner there."""
+    faces_of = panel_faces(panels)
     rows = []
     for mesh_path in sorted(glob.glob(os.path.join(folder, "*.mesh.obj"))):
         pattern_path = mesh_path[: -len(".mesh.obj")] + ".pattern.obj"
-        points_3d, _, _ = read_obj(mesh_path)
+        points_3d, _, faces = read_obj(mesh_path)
         points_2d, _, _ = read_obj(pattern_path)
         keys = [corner_key(p) for p in points_3d]
-        held = [sum(key in points for key in keys) for points in points_of]
-        panel = max(range(len(panels)), key=lambda index: held[index])
+        triangles = [tuple(v for v, _ in face) for face in faces]
+        found = [faces_of.get(tuple(sorted(keys[v] for v in t)), []) for t in triangles]
+        votes = defaultdict(int)
+        for candidates in found:
+            for index in {index for index, _ in candidates}:
+                votes[index] += 1
+        panel = max(sorted(votes), key=lambda index: votes[index])
+        texture_of = {}
+        for triangle, candidates in zip(triangles, found):
+            corners = next((c for index, c in candidates if index == panel), None)
+            if corners is not None:
+                for v in triangle:
+                    texture_of.setdefault(v, corners[keys[v]])
         name = os.path.basename(mesh_path)[: -len(".mesh.obj")]
-        pairs = [(points_of[panel][key], flat[:2])
-                 for key, flat in zip(keys, points_2d) if key in points_of[panel]]
+        pairs = [(texture, points_2d[v][:2]) for v, texture in sorted(texture_of.items())]
         flat = [p[:2] for p in points_2d]
         diagonal = math.hypot(max(p[0] for p in flat) - min(p[0] for p in flat),
                               max(p[1] for p in flat) - min(p[1] for p in flat))
