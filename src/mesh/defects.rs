@@ -73,6 +73,17 @@ pub enum Defect {
         /// How many triangles were flipped.
         count: usize,
     },
+    /// Most triangles share no edge with another though their corners lie on other triangles'
+    /// vertices: a file that gives each triangle vertices of its own (as STL converters write
+    /// them), which would otherwise come out as one part per triangle.
+    Unwelded {
+        /// How many triangles are so.
+        isolated: usize,
+        /// How many triangles the mesh has.
+        triangles: usize,
+        /// The first of them.
+        first: usize,
+    },
     /// Vertices no triangle uses (dropped, with a warning).
     UnreferencedVertices {
         /// How many.
@@ -86,6 +97,11 @@ pub enum Defect {
         vertex: usize,
         /// The earlier vertex it was welded into.
         into: usize,
+    },
+    /// More vertices welded than are named one by one ([`Defect::WeldedVertex`]), `--repair`.
+    MoreWelded {
+        /// How many.
+        count: usize,
     },
     /// An edge shared by more than two triangles, split apart (`--repair`).
     SplitEdge {
@@ -143,6 +159,7 @@ impl Defect {
                 | Defect::Reoriented { .. }
                 | Defect::UnreferencedVertices { .. }
                 | Defect::WeldedVertex { .. }
+                | Defect::MoreWelded { .. }
                 | Defect::SplitEdge { .. }
                 | Defect::SplitVertex { .. }
                 | Defect::DuplicateTriangle { .. }
@@ -174,6 +191,9 @@ impl Defect {
             Defect::IndexOutOfRange { triangle, .. }
             | Defect::RepeatedVertex { triangle }
             | Defect::ZeroArea { triangle, .. }
+            | Defect::Unwelded {
+                first: triangle, ..
+            }
             | Defect::DuplicateTriangle { triangle, .. }
             | Defect::FlippedEdge { triangle, .. }
             | Defect::DroppedSliver { triangle }
@@ -187,7 +207,7 @@ impl Defect {
                 vertices: [a, b], ..
             }
             | Defect::NonOrientable { vertices: [a, b] } => vertex_lines(&[a as usize, b as usize]),
-            Defect::NoTriangles | Defect::Reoriented { .. } => None,
+            Defect::NoTriangles | Defect::Reoriented { .. } | Defect::MoreWelded { .. } => None,
         };
         match line {
             Some(line) if line.contains(' ') => format!("{self} [lines {line}]"),
@@ -262,6 +282,17 @@ impl fmt::Display for Defect {
                     "{count} triangles had the opposite orientation and were flipped"
                 )
             }
+            Defect::Unwelded {
+                isolated,
+                triangles,
+                first,
+            } => write!(
+                f,
+                "{isolated} of the {triangles} triangles (first: {}) share no edge with another \
+                 though their corners lie on other triangles' vertices: the file gives each \
+                 triangle vertices of its own; --repair welds vertices at the same point",
+                n(*first)
+            ),
             Defect::UnreferencedVertices { count, first } => {
                 write!(
                     f,
@@ -274,6 +305,10 @@ impl fmt::Display for Defect {
                 "vertex {} lies on vertex {}: welded into it (--repair)",
                 n(*vertex),
                 n(*into)
+            ),
+            Defect::MoreWelded { count } => write!(
+                f,
+                "{count} more vertices lay on earlier vertices: welded into them (--repair)"
             ),
             Defect::SplitEdge {
                 vertices: [a, b],

@@ -27,4 +27,4 @@ pub use section::{
 };
 pub use slivers::repair_degenerate_triangles;
 pub use texture_seams::{SeamSource, split_at_texture_seams};
-pub use validate::{ValidatedMesh, validate};
+pub use validate::{UNWELDED_SHARE, ValidatedMesh, check_welded, validate};

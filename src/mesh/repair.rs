@@ -7,13 +7,18 @@ use std::collections::BTreeMap;
 
 use super::defects::Defect;
 use super::validate::{
-    HalfEdge, corner, corner_fans, edge_groups, manifold_pairs, sorted_half_edges,
+    HalfEdge, corner, corner_fans, edge_groups, is_usable, manifold_pairs, sorted_half_edges,
 };
 use crate::cad::TriangleSoup;
 
+/// Welded vertices named one by one in the warnings; the rest are counted in one
+/// ([`Defect::MoreWelded`]), since a triangle soup welds every vertex it has.
+pub const NAMED_WELDS: usize = 10;
+
 /// The soup with every vertex that lies exactly on an earlier one replaced by it in the
 /// triangles (the duplicate is then used by no triangle and dropped by validation), and one
-/// [`Defect::WeldedVertex`] per duplicate. Vertex numbers do not change.
+/// [`Defect::WeldedVertex`] per duplicate for the first [`NAMED_WELDS`], one
+/// [`Defect::MoreWelded`] for the others. Vertex numbers do not change.
 pub fn weld_duplicates(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
     let mut first_at: BTreeMap<[u64; 3], u32> = BTreeMap::new();
     let mut representative: Vec<u32> = (0..soup.positions.len() as u32).collect();
@@ -30,6 +35,11 @@ pub fn weld_duplicates(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
             });
         }
     }
+    if warnings.len() > NAMED_WELDS {
+        let count = warnings.len() - NAMED_WELDS;
+        warnings.truncate(NAMED_WELDS);
+        warnings.push(Defect::MoreWelded { count });
+    }
     let mut welded = soup.clone();
     for triangle in &mut welded.triangles {
         *triangle = triangle.map(|v| representative.get(v as usize).copied().unwrap_or(v));
@@ -40,12 +50,6 @@ pub fn weld_duplicates(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
             .map(|v| representative.get(v as usize).copied().unwrap_or(v));
     }
     (welded, warnings)
-}
-
-/// True for a triangle of three distinct vertices, each one of the `vertex_count` there are: one
-/// the repairs work on (validation drops or refuses the others).
-pub(super) fn is_usable([a, b, c]: [u32; 3], vertex_count: usize) -> bool {
-    a != b && b != c && a != c && [a, b, c].iter().all(|&v| (v as usize) < vertex_count)
 }
 
 /// The soup with its non-manifold edges and vertices split: at an edge that more than two
@@ -185,7 +189,7 @@ mod tests {
 
     use super::*;
     use crate::cad::{NO_SOURCE_FACE, TextureCorners};
-    use crate::mesh::validate;
+    use crate::mesh::{check_welded, validate};
 
     /// Three triangles on one edge (0-1), like three panels sewn along one seam.
     fn three_panels() -> TriangleSoup {
@@ -316,6 +320,15 @@ mod tests {
             DVec3::new(0.0, 1.0, 0.0),
         ];
         let soup = TriangleSoup::new(positions, vec![[0, 1, 2], [3, 4, 5]]);
+        let refused = check_welded(&soup).expect_err("a triangle soup is refused");
+        assert_eq!(
+            refused.defects,
+            vec![Defect::Unwelded {
+                isolated: 2,
+                triangles: 2,
+                first: 0
+            }]
+        );
         let (welded, warnings) = weld_duplicates(&soup);
         assert_eq!(welded.triangles, vec![[0, 1, 2], [1, 4, 2]]);
         assert_eq!(
@@ -324,6 +337,39 @@ mod tests {
                 Defect::WeldedVertex { vertex: 3, into: 1 },
                 Defect::WeldedVertex { vertex: 5, into: 2 }
             ]
+        );
+        assert_eq!(validate(&welded).expect("valid").components.len(), 1);
+    }
+
+    /// A strip of unwelded triangles, each with vertices of its own: the first welds are named,
+    /// the rest counted in one warning, and the strip validates as one part.
+    #[test]
+    fn a_soup_names_its_first_welds_and_counts_the_rest() {
+        let strip = 20;
+        let corner = |i: u32, top: bool| DVec3::new(f64::from(i), f64::from(u8::from(top)), 0.0);
+        let mut positions = Vec::new();
+        let mut triangles = Vec::new();
+        for i in 0..strip {
+            let base = positions.len() as u32;
+            positions.extend([corner(i, false), corner(i + 1, false), corner(i, true)]);
+            positions.extend([corner(i + 1, false), corner(i + 1, true), corner(i, true)]);
+            triangles.extend([[base, base + 1, base + 2], [base + 3, base + 4, base + 5]]);
+        }
+        let soup = TriangleSoup::new(positions, triangles);
+        let (welded, warnings) = weld_duplicates(&soup);
+        // 6 × 20 corners at 2 × 21 points.
+        let duplicates = 6 * strip as usize - 2 * (strip as usize + 1);
+        assert_eq!(warnings.len(), NAMED_WELDS + 1);
+        assert_eq!(
+            warnings[NAMED_WELDS],
+            Defect::MoreWelded {
+                count: duplicates - NAMED_WELDS
+            }
+        );
+        assert!(
+            warnings[..NAMED_WELDS]
+                .iter()
+                .all(|w| matches!(w, Defect::WeldedVertex { .. }))
         );
         assert_eq!(validate(&welded).expect("valid").components.len(), 1);
     }

@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 use glam::DVec3;
 
 use super::defects::Defect;
-use super::repair::is_usable;
+use super::validate::is_usable;
 use crate::cad::TriangleSoup;
 use crate::geometry::tolerance::has_zero_area;
 

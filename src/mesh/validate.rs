@@ -6,7 +6,10 @@
 //! and an orientable surface whose faces disagree in orientation is reoriented to agree with its
 //! lowest-numbered face. Everything else is an error: non-finite coordinates, indices out of
 //! range, zero-area triangles with three distinct vertices, edges with more than two faces,
-//! vertices whose faces form more than one fan, and non-orientable surfaces.
+//! vertices whose faces form more than one fan, non-orientable surfaces, and a triangle soup (most
+//! triangles with vertices of their own, lying on other triangles' vertices: `--repair` welds it).
+
+use std::collections::HashMap;
 
 use glam::DVec3;
 
@@ -14,6 +17,11 @@ use super::defects::{Defect, MAXIMUM_COORDINATE, MeshDefects};
 use super::facet::{FacetModel, NONE};
 use crate::cad::TriangleSoup;
 use crate::geometry::tolerance::has_zero_area;
+
+/// Share of the triangles that, sharing no edge with another but a point with another's vertex,
+/// make a mesh a triangle soup to refuse (a few such triangles are pieces of their own, as a
+/// texture chart of one triangle is).
+pub const UNWELDED_SHARE: f64 = 0.5;
 
 /// A validated mesh: its connected components and the repairs made on the way.
 #[derive(Debug, Clone)]
@@ -154,6 +162,57 @@ fn check_edge_valence(half_edges: &[HalfEdge], errors: &mut Vec<Defect>) {
             });
         }
     }
+}
+
+/// True for a triangle of three distinct vertices, each one of the `vertex_count` there are: one
+/// the repairs work on (validation drops or refuses the others).
+pub(super) fn is_usable([a, b, c]: [u32; 3], vertex_count: usize) -> bool {
+    a != b && b != c && a != c && [a, b, c].iter().all(|&v| (v as usize) < vertex_count)
+}
+
+/// Refuses a file's soup most of whose triangles ([`UNWELDED_SHARE`]) share no edge with
+/// another while a corner of each lies at the same point as another triangle's vertex: a
+/// triangle soup whose every triangle would be a part of its own ([`Defect::Unwelded`];
+/// `--repair` welds it first). Checked on the file as read, before any repair or split, which
+/// make such copies on purpose.
+pub fn check_welded(soup: &TriangleSoup) -> Result<(), MeshDefects> {
+    let count = soup.positions.len();
+    let usable: Vec<usize> = (0..soup.triangles.len())
+        .filter(|&t| is_usable(soup.triangles[t], count))
+        .collect();
+    let triangles: Vec<[u32; 3]> = usable.iter().map(|&t| soup.triangles[t]).collect();
+    let mut has_neighbour = vec![false; triangles.len()];
+    let half_edges = sorted_half_edges(&triangles);
+    for group in edge_groups(&half_edges).filter(|group| group.len() > 1) {
+        for half in group {
+            has_neighbour[half.2 as usize] = true;
+        }
+    }
+    let mut at_point: HashMap<[u64; 3], u32> = HashMap::new();
+    let mut shared = vec![false; count];
+    for &vertex in triangles.iter().flatten() {
+        // +0.0 for -0.0, so that the two zeros are one point.
+        let key = soup.positions[vertex as usize]
+            .to_array()
+            .map(|c| (c + 0.0).to_bits());
+        let first = *at_point.entry(key).or_insert(vertex);
+        if first != vertex {
+            shared[vertex as usize] = true;
+            shared[first as usize] = true;
+        }
+    }
+    let isolated: Vec<usize> = (0..triangles.len())
+        .filter(|&t| !has_neighbour[t] && triangles[t].iter().any(|&v| shared[v as usize]))
+        .collect();
+    if isolated.is_empty() || (isolated.len() as f64) < UNWELDED_SHARE * triangles.len() as f64 {
+        return Ok(());
+    }
+    let unwelded = Defect::Unwelded {
+        isolated: isolated.len(),
+        triangles: triangles.len(),
+        first: usable[isolated[0]],
+    };
+    Err(refusal(soup, vec![unwelded]))
 }
 
 /// Propagates a consistent orientation over each component (breadth first from its lowest face),
@@ -427,6 +486,17 @@ mod tests {
                 .contains(&Defect::RepeatedVertex { triangle: 2 })
         );
         assert_eq!(validated.components[0].triangles()[1], [0, 2, 3]);
+    }
+
+    /// A lone triangle on a square's corners (a texture chart of one triangle, cut apart) is a
+    /// part of its own, not a triangle soup: one of three triangles is under the share refused.
+    #[test]
+    fn a_few_lone_triangles_on_other_vertices_are_parts_of_their_own() {
+        let mut positions = SQUARE.to_vec();
+        positions.extend([SQUARE[0], SQUARE[1], [0.5, -1., 0.]]);
+        let soup = soup(&positions, &[[0, 1, 2], [0, 2, 3], [4, 6, 5]]);
+        assert!(check_welded(&soup).is_ok());
+        assert_eq!(validate(&soup).expect("valid").components.len(), 2);
     }
 
     #[test]

@@ -16,8 +16,8 @@ use crate::error::Error;
 use crate::flatten::Stiffness;
 use crate::ingest::{CutSidecar, Input, read_cut_sidecar, read_input};
 use crate::mesh::{
-    Defect, FacetModel, SeamSource, repair_degenerate_triangles, split_at_texture_seams,
-    split_non_manifold, validate, weld_duplicates,
+    Defect, FacetModel, SeamSource, check_welded, repair_degenerate_triangles,
+    split_at_texture_seams, split_non_manifold, validate, weld_duplicates,
 };
 use crate::sheet::{
     BendLine, BendRule, FoldedPart, NotASheet, SHEET_CHORD_MM, SheetOptions, SheetUnfold,
@@ -221,7 +221,8 @@ fn shell_by_shell_parts(
     Ok(jobs)
 }
 
-/// A mesh file's soup as the options want it: duplicates welded (`--repair`), cut into its
+/// A mesh file's soup as the options want it: refused if it is a triangle soup (without
+/// `--repair`, which welds it), duplicates welded (`--repair`), cut into its
 /// texture charts (`--seams from-uv`), duplicate and zero-area triangles mended and non-manifold
 /// edges and vertices split (`--repair`); with the repairs made, as warnings.
 fn prepared_soup(
@@ -229,6 +230,12 @@ fn prepared_soup(
     mut soup: TriangleSoup,
     options: &RunOptions,
 ) -> Result<(TriangleSoup, Vec<String>), Error> {
+    if !options.repair {
+        check_welded(&soup).map_err(|defects| Error::Mesh {
+            path: path.to_path_buf(),
+            defects,
+        })?;
+    }
     let mut warnings = Vec::new();
     let mut note = |soup: &TriangleSoup, repairs: Vec<Defect>| {
         warnings.extend(repairs.iter().map(|r| r.located(&soup.source_lines)));

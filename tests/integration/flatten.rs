@@ -496,6 +496,53 @@ fn repair_keeps_the_panels_a_texture_layout_continues_across_a_non_manifold_edge
 }
 
 #[test]
+fn a_triangle_soup_is_refused_and_repair_welds_it_into_one_part() {
+    let folder = tempfile::tempdir().expect("temporary directory");
+    let input = folder.path().join("soup.obj");
+    // A 30 x 10 strip of six triangles, each with three vertices of its own (as some STL to
+    // OBJ converters write them): without welding, six parts of one triangle each.
+    let mut text = String::new();
+    for i in 0..3 {
+        let (x, y) = (10 * i, 10 * (i + 1));
+        text += &format!("v {x} 0 0\nv {y} 0 0\nv {y} 10 0\nv {x} 0 0\nv {y} 10 0\nv {x} 10 0\n");
+    }
+    for t in 0..6 {
+        text += &format!("f {} {} {}\n", 3 * t + 1, 3 * t + 2, 3 * t + 3);
+    }
+    std::fs::write(&input, text).expect("write input");
+    let refused_folder = folder.path().join("refused");
+    let refused = flatten_into(&input, &refused_folder, &[]);
+    assert_eq!(refused.status.code(), Some(1), "{}", stderr(&refused));
+    let message = stderr(&refused);
+    assert!(
+        message.contains(
+            "6 of the 6 triangles (first: 1) share no edge with another though their corners \
+             lie on other triangles' vertices: the file gives each triangle vertices of its own; \
+             --repair welds vertices at the same point [line 19]"
+        ),
+        "{message}"
+    );
+    assert!(!refused_folder.join("report.json").exists());
+    let repaired_folder = folder.path().join("repaired");
+    let repaired = flatten_into(&input, &repaired_folder, &["--repair"]);
+    assert_eq!(repaired.status.code(), Some(0), "{}", stderr(&repaired));
+    let message = stderr(&repaired);
+    // 18 corners at 8 points: 10 welds, all named (the tenth is the last named one).
+    assert!(
+        message.contains("vertex 18 lies on vertex 9: welded into it (--repair)")
+            && !message.contains("more vertices lay on earlier vertices"),
+        "{message}"
+    );
+    let report = read_report(&repaired_folder);
+    let parts = report["parts"].as_array().expect("parts");
+    assert_eq!(parts.len(), 1, "one strip");
+    assert_eq!(parts[0]["triangles"], 6);
+    let figures = recompute(&repaired_folder, parts[0]["name"].as_str().unwrap());
+    assert!(figures.area_error <= DEVELOPABLE_ERROR, "{figures:?}");
+    assert_eq!(figures.flipped, 0);
+}
+
+#[test]
 fn repair_splits_a_non_manifold_edge_that_stops_the_mesh_otherwise() {
     let folder = tempfile::tempdir().expect("temporary directory");
     let input = folder.path().join("three_panels.obj");
