@@ -189,7 +189,7 @@ mod tests {
 
     use super::*;
     use crate::cad::{NO_SOURCE_FACE, TextureCorners};
-    use crate::mesh::{check_welded, validate};
+    use crate::mesh::validate::{check_welded, validate};
 
     /// Three triangles on one edge (0-1), like three panels sewn along one seam.
     fn three_panels() -> TriangleSoup {
