@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 
 use crate::cad::{
     Brep, BrepShell, FoldBend, FoldLineGeometry, ParameterRegion, PartAttributes, PartModel,
@@ -104,7 +104,8 @@ fn read_parts(path: &Path, options: &RunOptions) -> Result<Vec<PartJob>, Error> 
     match read_input(path, options.units)? {
         Input::Mesh(mesh) => {
             let template = template(mesh.name, mesh.units);
-            let (soup, repairs) = prepared_soup(path, mesh.soup, options)?;
+            let (soup, mut repairs) = prepared_soup(path, mesh.soup, options)?;
+            repairs.extend(small_mesh_warning(&soup, mesh.units));
             let mut jobs = split_parts(path, &soup, template, |_, _, _| {})?;
             for job in &mut jobs {
                 job.warnings.splice(0..0, repairs.iter().cloned());
@@ -219,6 +220,29 @@ fn shell_by_shell_parts(
         jobs.extend(step_parts(path, &single, shell_options)?);
     }
     Ok(jobs)
+}
+
+/// A mesh read in millimetres whose bounding box's diagonal is under this (mm) gets a warning
+/// that its units may be metres or centimetres: garment tools export
+/// metres, and a dress read as millimetres is under 2 mm tall.
+pub const SMALL_MESH_MM: f64 = 20.0;
+
+/// The warning for a mesh read in millimetres that is under [`SMALL_MESH_MM`] across, naming
+/// `--units m` and `--units cm`; `None` for any other.
+fn small_mesh_warning(soup: &TriangleSoup, units: Units) -> Option<String> {
+    let finite = soup.positions.iter().filter(|p| p.is_finite());
+    let (min, max) = finite.fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(min, max), p| (min.min(*p), max.max(*p)),
+    );
+    let across = (max - min).length() * units.millimetres();
+    (units == Units::Millimetres && across < SMALL_MESH_MM).then(|| {
+        format!(
+            "the mesh is only {across:.3} mm across (its bounding box's diagonal, read in \
+             millimetres): if the file is in metres (as garment tools export) or centimetres, \
+             give --units m or --units cm"
+        )
+    })
 }
 
 /// A mesh file's soup as the options want it: refused if it is a triangle soup (without

@@ -31,7 +31,8 @@ pub use config::{
 pub use facet_model::{FacetModelOutput, FacetSource, facet_model, write_facet_model};
 pub use flatten_part::{flatten_in_pieces, flatten_job, flatten_or_cut_into_pieces, flatten_part};
 pub use load::{
-    PartJob, SheetPart, TessellationFigures, load_parts, tessellate_part, tessellate_step,
+    PartJob, SMALL_MESH_MM, SheetPart, TessellationFigures, load_parts, tessellate_part,
+    tessellate_step,
 };
 pub use output_folder::{
     InterruptHandle, MANIFEST_FILE, OutputFolder, check_inputs_outside, complete_run_present,

@@ -495,6 +495,37 @@ fn repair_keeps_the_panels_a_texture_layout_continues_across_a_non_manifold_edge
     }
 }
 
+/// A mesh a few units across read as millimetres (a garment exported in metres) gets a warning
+/// naming `--units m`; read as metres, none.
+#[test]
+fn a_mesh_under_two_centimetres_across_is_warned_about_its_units() {
+    let folder = tempfile::tempdir().expect("temporary directory");
+    let input = folder.path().join("panel.obj");
+    std::fs::write(
+        &input,
+        "v 0 0 0\nv 1.2 0 0\nv 1.2 0.9 0\nv 0 0.9 0\nf 1 2 3 4\n",
+    )
+    .expect("write input");
+    let read_as_mm = flatten_into(&input, &folder.path().join("mm"), &[]);
+    assert_eq!(read_as_mm.status.code(), Some(0), "{}", stderr(&read_as_mm));
+    assert!(
+        stderr(&read_as_mm).contains(
+            "the mesh is only 1.500 mm across (its bounding box's diagonal, read in \
+             millimetres): if the file is in metres (as garment tools export) or centimetres, \
+             give --units m or --units cm"
+        ),
+        "{}",
+        stderr(&read_as_mm)
+    );
+    let read_as_m = flatten_into(&input, &folder.path().join("m"), &["--units", "m"]);
+    assert_eq!(read_as_m.status.code(), Some(0), "{}", stderr(&read_as_m));
+    assert!(
+        !stderr(&read_as_m).contains("--units"),
+        "{}",
+        stderr(&read_as_m)
+    );
+}
+
 #[test]
 fn a_triangle_soup_is_refused_and_repair_welds_it_into_one_part() {
     let folder = tempfile::tempdir().expect("temporary directory");
