@@ -103,7 +103,7 @@ pub(super) fn cut_opened(
         Planned::Nothing
     };
     let (cutting, stop) = match planned {
-        Planned::Laid(laid) => cut_along_crest_lines(*laid, &plan, "cut", progress)?,
+        Planned::Cut(cut, stop) => (*cut, stop),
         Planned::Short(laid, stop) => {
             let left = laid.map_or(cutting, |laid| *laid);
             // The part itself measures a little lower than its remesh: it may be within.

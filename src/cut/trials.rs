@@ -116,24 +116,9 @@ fn best_cut(
         step_tolerance: fast.step_tolerance.max(TRIAL_STEP_TOLERANCE),
         ..fast
     });
-    let mut best: Option<Trial> = None;
-    let mut accepted = 0;
-    for (tried, trial) in screened.into_iter().enumerate() {
-        let out_of_time = flatten_options.deadline.passed();
-        if accepted == FULL_TRIALS || (tried >= TRIAL_BUDGET && accepted > 0) || out_of_time {
-            break;
-        }
-        let Some(trial) = flatten_on(trial, flattened, &trial_options)? else {
-            continue;
-        };
-        accepted += 1;
-        if best.as_ref().is_none_or(|known| trial.gain > known.gain) {
-            best = Some(trial);
-        }
-    }
     let Some(Trial {
         mut improvement, ..
-    }) = best
+    }) = best_trial(screened, flattened, &trial_options)?
     else {
         return Ok(None);
     };
@@ -151,6 +136,48 @@ fn best_cut(
         improvement.flattened = refined;
     }
     Ok(Some(improvement))
+}
+
+/// The trial round of [`best_cut`]: the screened cuts, in their order, flattened on with
+/// `trial_options` until [`FULL_TRIALS`] still lower the error, or [`TRIAL_BUDGET`] were tried
+/// and at least one does; the one of largest gain among those that do. The trials run in
+/// parallel batches no larger than the number the rule is sure to try next, so the choice is
+/// the one trying them one by one would make.
+fn best_trial(
+    screened: Vec<Trial>,
+    flattened: &Flattened,
+    trial_options: &FlattenOptions,
+) -> Result<Option<Trial>, CutError> {
+    let mut best: Option<Trial> = None;
+    let mut accepted = 0;
+    let mut tried = 0;
+    let mut waiting = screened.into_iter();
+    while accepted < FULL_TRIALS && !(tried >= TRIAL_BUDGET && accepted > 0) {
+        if trial_options.deadline.passed() {
+            break;
+        }
+        let batch_size = if tried < TRIAL_BUDGET {
+            (FULL_TRIALS - accepted).min(TRIAL_BUDGET - tried)
+        } else {
+            1
+        };
+        let batch: Vec<Trial> = waiting.by_ref().take(batch_size).collect();
+        if batch.is_empty() {
+            break;
+        }
+        tried += batch.len();
+        let flattened_on: Vec<Option<Trial>> = batch
+            .into_par_iter()
+            .map(|trial| flatten_on(trial, flattened, trial_options))
+            .collect::<Result<_, _>>()?;
+        for trial in flattened_on.into_iter().flatten() {
+            accepted += 1;
+            if best.as_ref().is_none_or(|known| trial.gain > known.gain) {
+                best = Some(trial);
+            }
+        }
+    }
+    Ok(best)
 }
 
 /// The crest lines of the current pattern a cut step may take: those of the energy map (Eq. 1)

@@ -10,5 +10,6 @@ pub use plane::{
     inside, long_side_of_smallest_rectangle, refined_grid_search, ring_sides, signed_area,
 };
 pub use segment::{
-    distance_to_segment, distance_to_segment_3d, segment_fraction, segments_intersect,
+    distance_to_segment, distance_to_segment_3d, polyline_prefix, segment_fraction,
+    segments_intersect,
 };

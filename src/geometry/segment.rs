@@ -55,9 +55,54 @@ pub fn segments_intersect(p: DVec2, q: DVec2, r: DVec2, s: DVec2) -> bool {
         || (d4 == 0.0 && on_segment(p, q, s))
 }
 
+/// The part of the polyline `points` from its first point along `fraction` (clamped to 0..=1) of
+/// its length: its points up to there, and the point at that length on the segment it falls in.
+/// An empty polyline gives an empty one.
+pub fn polyline_prefix(points: &[DVec3], fraction: f64) -> Vec<DVec3> {
+    let Some(&first) = points.first() else {
+        return Vec::new();
+    };
+    if fraction >= 1.0 {
+        return points.to_vec();
+    }
+    let total: f64 = points.windows(2).map(|w| w[0].distance(w[1])).sum();
+    let mut left = fraction.clamp(0.0, 1.0) * total;
+    let mut prefix = vec![first];
+    for pair in points.windows(2) {
+        let length = pair[0].distance(pair[1]);
+        if length >= left {
+            if length > 0.0 && left > 0.0 {
+                prefix.push(pair[0].lerp(pair[1], left / length));
+            }
+            break;
+        }
+        left -= length;
+        prefix.push(pair[1]);
+    }
+    prefix
+}
+
 #[cfg(test)]
 mod tests {
     use crate::geometry::segment::*;
+
+    #[test]
+    fn a_polyline_prefix_ends_at_its_fraction_of_the_length() {
+        let points = [
+            DVec3::ZERO,
+            DVec3::new(3.0, 0.0, 0.0),
+            DVec3::new(3.0, 4.0, 0.0),
+        ];
+        let prefix = polyline_prefix(&points, 0.5);
+        assert_eq!(&prefix[..2], &points[..2]);
+        assert!(
+            prefix[2].distance(DVec3::new(3.0, 0.5, 0.0)) < 1e-12,
+            "{prefix:?}"
+        );
+        assert_eq!(polyline_prefix(&points, 1.0), points.to_vec());
+        assert_eq!(polyline_prefix(&points, 0.0), vec![DVec3::ZERO]);
+        assert!(polyline_prefix(&[], 0.5).is_empty());
+    }
 
     #[test]
     fn the_foot_is_clamped_to_the_segment() {
