@@ -422,13 +422,23 @@ fn carried_edges(
         }
         (ratio, factor)
     };
+    // The refined model's edges come in the model's order (both sorted), so one pass along the
+    // model's edges finds those it kept.
+    let kept_edges = model.edges();
+    let mut cursor = 0;
+    let mut kept_edge = |key: [u32; 2]| {
+        while kept_edges.get(cursor).is_some_and(|&edge| edge < key) {
+            cursor += 1;
+        }
+        (kept_edges.get(cursor) == Some(&key)).then_some(cursor)
+    };
     refined
         .edges()
         .iter()
         .zip(refined.edge_faces())
         .map(|(&[a, b], &[face, _])| {
             if b < count {
-                if let Some(e) = model.find_edge(a, b) {
+                if let Some(e) = kept_edge([a, b]) {
                     // An edge of a moved vertex: its rest length scales with its 3D length.
                     let scale = length(a, b) / length_before(a, b);
                     return (model.rest_lengths()[e] * scale, factors[e]);
