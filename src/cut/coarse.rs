@@ -118,12 +118,6 @@ pub(super) fn plan_cuts(
     let coarse = Cutting::uncut(remesh.state, flattened);
     let (coarse, stop) = cut_along_crest_lines(coarse, plan, "plan cuts", progress)?;
     let planned: Vec<Vec<DVec3>> = coarse.cuts.iter().map(|cut| cut.points.clone()).collect();
-    if planned.is_empty() {
-        return Ok(match stop {
-            CutStop::NoBetterCut | CutStop::CutBudget => Planned::Short(None, stop),
-            CutStop::ToleranceMet | CutStop::TimeLimit => Planned::Nothing,
-        });
-    }
     Ok(match stop {
         CutStop::ToleranceMet => {
             match cut_along_plan(cutting, &planned, remesh.spacing, plan, progress)? {
