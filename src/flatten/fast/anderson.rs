@@ -107,9 +107,7 @@ impl Anderson {
         if m == 0 {
             return false;
         }
-        let gram = Mat::from_fn(m, m, |i, j| {
-            dot(&self.residual_differences[i], &self.residual_differences[j])
-        });
+        let gram = Mat::from_fn(m, m, |i, j| self.gram[i][j]);
         let trace: f64 = (0..m).map(|i| gram[(i, i)]).sum();
         let regularised = Mat::from_fn(m, m, |i, j| {
             gram[(i, j)]
