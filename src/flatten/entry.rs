@@ -16,7 +16,7 @@ use super::flattened::{FlattenStats, Flattened};
 use super::init_flatten::{InitRelease, NEIGHBOURHOOD_SWEEPS, init_flatten};
 use super::injective::{
     Barrier, FlipFreeSettings, OPENING_BARRIER, Outline, SLIVER_BARRIER, flip_free_flatten,
-    flip_free_solve_moving,
+    flip_free_solve_moving, near_triangles, repaired_locally,
 };
 use super::options::{FlattenOptions, Solver};
 use super::orient::move_to_origin;
@@ -232,10 +232,13 @@ fn relax(
 ///
 /// The fast solver never flips a triangle that is positive in its start, but it keeps the flips
 /// of a start that has them (phase one folds strongly curved parts). When its pattern has a
-/// flipped triangle and the model has a boundary, the pattern is made again by the flip-free
-/// flattening ([`flip_free_flatten`]: a Tutte embedding, then the spring energy with a barrier on
-/// triangle orientation, minimised by projected Newton with flip-free steps, at most the fast
-/// solver's iteration budget per stage), which has none; the iterations then count both solvers'.
+/// flipped triangle, the vertices near the flips are placed afresh and relaxed, the rest held
+/// ([`repaired_locally`]), and the fast solver goes on from there, which keeps every triangle
+/// positive. When that region cannot be made without flips and the model has a boundary, the
+/// pattern is made again by the flip-free flattening ([`flip_free_flatten`]: a Tutte embedding,
+/// then the spring energy with a barrier on triangle orientation, minimised by projected Newton
+/// with flip-free steps, at most the fast solver's iteration budget per stage), which has none;
+/// the iterations then count every solver's.
 /// A pattern without flipped triangles is kept as it is, so good results do not change. When the
 /// flip-free flattening cannot run (a closed model, a system that does not factor) the fast solver's
 /// pattern stays, flips and all, and the part is judged by it.
@@ -253,6 +256,17 @@ fn minimise(
     let fast = fast_solve(model, springs, positions, fast_options)?;
     if repair == Repair::None || flipped_triangles(model, positions) == 0 {
         return Ok((fast.iterations, fast.stop_reason));
+    }
+    if let Some((mut repaired, newton)) =
+        repaired_locally(model, springs, positions, options.deadline)
+    {
+        let again = fast_solve(model, springs, &mut repaired, fast_options)?;
+        // The fast solver keeps positive triangles positive; checked all the same.
+        if flipped_triangles(model, &repaired) == 0 {
+            *positions = repaired;
+            let iterations = fast.iterations + newton + again.iterations;
+            return Ok((iterations, again.stop_reason));
+        }
     }
     Ok(
         match flip_free_flatten(
@@ -400,33 +414,6 @@ fn open_squeezed_triangles(
         }
         Err(_) => 0,
     }
-}
-
-/// Per vertex, whether it is a corner of one of `triangles` or within `rings` rings of one.
-fn near_triangles(model: &FacetModel, triangles: &[usize], rings: usize) -> Vec<bool> {
-    let mut near = vec![false; model.vertex_count()];
-    let mut front: Vec<u32> = triangles
-        .iter()
-        .flat_map(|&f| model.triangles()[f])
-        .collect();
-    for &v in &front {
-        near[v as usize] = true;
-    }
-    for _ in 0..rings {
-        let mut next = Vec::new();
-        for v in front {
-            for &f in model.vertex_faces(v) {
-                for w in model.triangles()[f as usize] {
-                    if !near[w as usize] {
-                        near[w as usize] = true;
-                        next.push(w);
-                    }
-                }
-            }
-        }
-        front = next;
-    }
-    near
 }
 
 #[cfg(test)]

@@ -24,6 +24,7 @@
 mod barrier;
 mod boundary;
 mod errors;
+mod local;
 mod lscm;
 mod solver;
 mod sparse;
@@ -33,6 +34,9 @@ mod tutte;
 pub use barrier::{Barrier, OPENING_BARRIER, ORIENTATION_BARRIER, SHAPING_BARRIER, SLIVER_BARRIER};
 pub use boundary::{BOUNDARY_REACH, BoundaryBarrier, Contact, point_segment_distance};
 pub use errors::InjectiveError;
+pub use local::{
+    LOCAL_ITERATIONS, LOCAL_REPAIR_SHARE, REPAIR_RINGS, near_triangles, repaired_locally,
+};
 pub use lscm::conformal_map;
 pub use solver::{
     FLIP_FREE_FRACTION, FlipFreeSettings, InjectiveOutcome, MAX_NEWTON_ITERATIONS,

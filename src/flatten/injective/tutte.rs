@@ -122,7 +122,7 @@ fn edge_weights(model: &FacetModel) -> Vec<f64> {
 /// Places the interior vertices (those with an `unknown` index) at the weighted means of their
 /// neighbours, the outer boundary being placed already; each hole's vertices are also joined to a
 /// virtual vertex of their own.
-fn solve_interior(
+pub(super) fn solve_interior(
     model: &FacetModel,
     unknown: &[u32],
     interior: usize,
