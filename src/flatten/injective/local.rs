@@ -2,19 +2,23 @@
 //! triangles (phase one folded the part there), only the vertices near them are placed afresh,
 //! the rest of the pattern held where it is, instead of flattening the whole part again from a
 //! Tutte start ([`flip_free_flatten`](super::flip_free_flatten), hundreds of Newton iterations
-//! over every vertex: 26 s on a 20k-triangle hemisphere with 18 flipped triangles).
+//! over every vertex: 26 s on a 20k-triangle hemisphere with 17 flipped triangles).
 //!
 //! The vertices within a few rings of the flipped triangles (the free ones) are put at the
 //! weighted means of their neighbours, the others held: the Tutte embedding of that region with
 //! its surroundings as its boundary ([`solve_interior`], the same clamped cotangent weights).
 //! Outline vertices in the region are free too: a fold most often reaches the outline (where
-//! phase one's growth ends), and held there it stays folded (on the pieces of the dress, the cow
-//! head, the horse and the spot head, 3 of 31 folds were repaired with them held, 27 of 33 with
-//! them free).
-//! Nothing guarantees the new region no flipped triangle (its surroundings need not be convex,
-//! and an outline vertex has neighbours on one side only), so it is checked; when one is
-//! flipped the region grows ([`REPAIR_RINGS`]) until it holds more than [`LOCAL_REPAIR_SHARE`]
-//! of the vertices, and the repair gives up. The region is then
+//! phase one's growth ends), and held there it stays folded. They are placed in one of two ways
+//! ([`OutlinePlacement`]), the second tried when the first leaves a flip: like the others, at the
+//! weighted mean of their neighbours (which all lie on one side, so the outline is pulled in), or
+//! along the chord between the held outline vertices at the ends of their run, the other free
+//! vertices then placed inside. On the pieces of the dress, the cow head, the horse and the spot
+//! head, 3 of 31 folds were repaired with the outline held, 27 of 33 with the mean alone, 25 of
+//! 31 with the chord alone, and 28 of 32 with both.
+//!
+//! Nothing guarantees the new region no flipped triangle (its surroundings need not be convex),
+//! so it is checked; when one is flipped the region grows ([`REPAIR_RINGS`]) until it holds more
+//! than [`LOCAL_REPAIR_SHARE`] of the vertices, and the repair gives up. The region is then
 //! relaxed by the flip-free minimiser on its free vertices alone ([`flip_free_solve_moving`],
 //! [`ORIENTATION_BARRIER`], at most [`LOCAL_ITERATIONS`] Newton iterations): every triangle stays
 //! positively oriented, so the fast solver can then converge the whole pattern from it without
@@ -76,8 +80,19 @@ pub fn repaired_locally(
     None
 }
 
-/// The pattern with the `free` vertices placed afresh ([`solve_interior`]) and relaxed, when
-/// that leaves no triangle flipped (see the module documentation).
+/// How the free vertices of the outline are placed afresh.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum OutlinePlacement {
+    /// Like the others, at the weighted mean of their neighbours (which all lie on one side).
+    Mean,
+    /// On the chord between the held outline vertices at the ends of their run
+    /// ([`place_on_chords`]), before the other free vertices are placed.
+    Chord,
+}
+
+/// The pattern with the `free` vertices placed afresh ([`placed_afresh`], the outline's by
+/// [`OutlinePlacement::Mean`], else by [`OutlinePlacement::Chord`]) and relaxed, when that
+/// leaves no triangle flipped (see the module documentation).
 fn repaired_region(
     model: &FacetModel,
     springs: &SpringSystem,
@@ -85,20 +100,10 @@ fn repaired_region(
     free: &[bool],
     deadline: Deadline,
 ) -> Option<(Vec<DVec2>, usize)> {
-    let mut unknown = vec![u32::MAX; model.vertex_count()];
-    let mut count = 0;
-    for (slot, _) in unknown.iter_mut().zip(free).filter(|(_, f)| **f) {
-        *slot = count;
-        count += 1;
-    }
-    if count == 0 {
-        return None;
-    }
-    let mut repaired = positions.to_vec();
-    solve_interior(model, &unknown, count as usize, &[], &mut repaired).ok()?;
-    if flipped_triangles(model, &repaired) > 0 {
-        return None;
-    }
+    let mut repaired = [OutlinePlacement::Mean, OutlinePlacement::Chord]
+        .into_iter()
+        .filter_map(|placement| placed_afresh(model, positions, free, placement))
+        .find(|placed| flipped_triangles(model, placed) == 0)?;
     let settings = FlipFreeSettings {
         barrier: ORIENTATION_BARRIER,
         max_iterations: LOCAL_ITERATIONS,
@@ -107,6 +112,84 @@ fn repaired_region(
     };
     let outcome = flip_free_solve_moving(model, springs, &mut repaired, free, settings).ok()?;
     Some((repaired, outcome.iterations))
+}
+
+/// The pattern with the `free` vertices placed afresh: those of the outline by `placement`, the
+/// others at the weighted means of their neighbours ([`solve_interior`]); `None` when the system
+/// does not solve or a whole outline loop is free with [`OutlinePlacement::Chord`].
+fn placed_afresh(
+    model: &FacetModel,
+    positions: &[DVec2],
+    free: &[bool],
+    placement: OutlinePlacement,
+) -> Option<Vec<DVec2>> {
+    let mut placed = positions.to_vec();
+    let mut held = vec![false; model.vertex_count()];
+    if placement == OutlinePlacement::Chord {
+        for ring in model.boundary_loops() {
+            place_on_chords(model, ring, free, &mut placed)?;
+            for &v in ring {
+                held[v as usize] = true;
+            }
+        }
+    }
+    let mut unknown = vec![u32::MAX; model.vertex_count()];
+    let mut count = 0;
+    for (v, slot) in unknown.iter_mut().enumerate() {
+        if free[v] && !held[v] {
+            *slot = count;
+            count += 1;
+        }
+    }
+    if count > 0 {
+        solve_interior(model, &unknown, count as usize, &[], &mut placed).ok()?;
+    }
+    Some(placed)
+}
+
+/// Places each run of `free` vertices of the outline loop `ring` on the straight segment
+/// between the held vertices at its ends, in the order and at the spacing of their rest lengths
+/// (see the module documentation); `None` when the whole loop is free (no end to hold it by).
+fn place_on_chords(
+    model: &FacetModel,
+    ring: &[u32],
+    free: &[bool],
+    positions: &mut [DVec2],
+) -> Option<()> {
+    let is_free = |k: usize| free[ring[k % ring.len()] as usize];
+    let held = (0..ring.len()).find(|&k| !is_free(k))?;
+    let rest = |a: u32, b: u32| {
+        model
+            .find_edge(a, b)
+            .map_or(0.0, |e| model.rest_lengths()[e])
+    };
+    let mut k = held;
+    while k < held + ring.len() {
+        if !is_free(k + 1) {
+            k += 1;
+            continue;
+        }
+        // A run of free vertices from k + 1 to end − 1, between the held k and end.
+        let mut end = k + 1;
+        while is_free(end) {
+            end += 1;
+        }
+        let run: Vec<u32> = (k..=end).map(|j| ring[j % ring.len()]).collect();
+        let lengths: Vec<f64> = run.windows(2).map(|pair| rest(pair[0], pair[1])).collect();
+        let total: f64 = lengths.iter().sum();
+        let (from, to) = (
+            positions[run[0] as usize],
+            positions[run[run.len() - 1] as usize],
+        );
+        let mut travelled = 0.0;
+        for (j, &v) in run.iter().enumerate().skip(1).take(run.len() - 2) {
+            travelled += lengths[j - 1];
+            let fraction = if total > 0.0 { travelled / total } else { 0.5 };
+            positions[v as usize] = from.lerp(to, fraction);
+        }
+        k = end;
+    }
+    Some(())
 }
 
 /// Per vertex, whether it is a corner of one of `triangles` or within `rings` rings of one.
@@ -140,11 +223,15 @@ pub fn near_triangles(model: &FacetModel, triangles: &[usize], rings: usize) -> 
 mod tests {
     use std::f64::consts::PI;
 
+    use glam::DVec3;
+
+    use crate::cad::TriangleSoup;
     use crate::flatten::fast::{FastOptions, fast_solve};
     use crate::flatten::init_flatten::{InitRelease, NEIGHBOURHOOD_SWEEPS, init_flatten};
     use crate::flatten::injective::local::*;
     use crate::flatten::samples::{deep_bowl, sample};
     use crate::flatten::springs::PAPER_SPRING_CONSTANT;
+    use crate::mesh::validate;
     use crate::progress::NoProgress;
 
     fn springs(model: &FacetModel) -> SpringSystem {
@@ -224,6 +311,43 @@ mod tests {
             "a vertex far from the fold moved"
         );
         assert!((moved.len() as f64) <= LOCAL_REPAIR_SHARE * model.vertex_count() as f64);
+    }
+
+    #[test]
+    fn a_free_run_of_the_outline_goes_onto_the_chord_between_its_held_ends() {
+        // A 2 x 2 square of unit cells: 8 outline vertices, 1 mm apart along the outline.
+        let positions: Vec<DVec3> = (0..9)
+            .map(|i| DVec3::new((i % 3) as f64, (i / 3) as f64, 0.0))
+            .collect();
+        let mut triangles = Vec::new();
+        for y in 0..2u32 {
+            for x in 0..2u32 {
+                let v = 3 * y + x;
+                triangles.extend([[v, v + 1, v + 4], [v, v + 4, v + 3]]);
+            }
+        }
+        let model = validate(&TriangleSoup::new(positions, triangles))
+            .expect("valid")
+            .components
+            .remove(0);
+        let ring = model.boundary_loops()[0].clone();
+        let start: Vec<DVec2> = model.positions().iter().map(|p| p.truncate()).collect();
+        // Three consecutive outline vertices free, held ends 4 mm apart along the outline.
+        let mut free = vec![false; model.vertex_count()];
+        for &v in &ring[1..4] {
+            free[v as usize] = true;
+        }
+        let mut placed = start.clone();
+        place_on_chords(&model, &ring, &free, &mut placed).expect("held ends");
+        let (from, to) = (start[ring[0] as usize], start[ring[4] as usize]);
+        for (k, &v) in ring[1..4].iter().enumerate() {
+            let expected = from.lerp(to, (k + 1) as f64 / 4.0);
+            assert!(placed[v as usize].distance(expected) < 1e-12, "{k}");
+        }
+        let untouched = |v: &u32| placed[*v as usize] == start[*v as usize];
+        assert!(ring[4..].iter().chain(&ring[..1]).all(untouched));
+        let all_free = vec![true; model.vertex_count()];
+        assert!(place_on_chords(&model, &ring, &all_free, &mut placed).is_none());
     }
 
     #[test]
