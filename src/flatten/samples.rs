@@ -5,8 +5,18 @@ use std::f64::consts::PI;
 
 use glam::DVec3;
 
+use super::springs::{PAPER_SPRING_CONSTANT, SpringSystem};
 use crate::cad::TriangleSoup;
 use crate::mesh::FacetModel;
+
+/// The springs of `model` at the paper's constant, every edge of unit stiffness.
+pub(crate) fn uniform_springs(model: &FacetModel) -> SpringSystem {
+    SpringSystem::new(
+        model,
+        &vec![1.0; model.edges().len()],
+        PAPER_SPRING_CONSTANT,
+    )
+}
 
 /// The first component of the bundled sample mesh `name` (an OBJ or STL in `samples/`).
 pub(crate) fn sample(name: &str) -> FacetModel {

@@ -317,20 +317,11 @@ mod tests {
     use crate::flatten::fast::options::DEFAULT_ANDERSON_DEPTH;
     use crate::flatten::fast::solver::*;
     use crate::flatten::init_flatten::{InitRelease, NEIGHBOURHOOD_SWEEPS, init_flatten};
-    use crate::flatten::samples::sample;
-    use crate::flatten::springs::PAPER_SPRING_CONSTANT;
+    use crate::flatten::samples::{sample, uniform_springs};
     use crate::progress::NoProgress;
 
     /// Developable samples must come out isometric to this `E_S` and `E_C`.
     const DEVELOPABLE_ERROR: f64 = 1e-6;
-
-    fn springs(model: &FacetModel) -> SpringSystem {
-        SpringSystem::new(
-            model,
-            &vec![1.0; model.edges().len()],
-            PAPER_SPRING_CONSTANT,
-        )
-    }
 
     fn initial_pattern(model: &FacetModel, springs: &SpringSystem) -> Vec<DVec2> {
         let release = InitRelease::Neighbourhood {
@@ -342,7 +333,7 @@ mod tests {
     /// Solves from the phase-one pattern and checks the invariants every run must keep.
     fn solve_sample(name: &str) -> (FacetModel, Vec<DVec2>, FastOutcome) {
         let model = sample(name);
-        let springs = springs(&model);
+        let springs = uniform_springs(&model);
         let mut positions = initial_pattern(&model, &springs);
         let before = springs.energy(&positions);
         let outcome =
@@ -391,7 +382,7 @@ mod tests {
     #[test]
     fn a_distorted_start_reaches_the_same_minimum() {
         let (model, _, undistorted) = solve_sample("saddle.obj");
-        let springs = springs(&model);
+        let springs = uniform_springs(&model);
         let mut positions = initial_pattern(&model, &springs);
         for p in &mut positions {
             *p = DVec2::new(1.1 * p.x, 0.95 * p.y);
@@ -408,7 +399,7 @@ mod tests {
     #[test]
     fn the_solver_is_deterministic_and_reusable() {
         let model = sample("hemisphere.obj");
-        let springs = springs(&model);
+        let springs = uniform_springs(&model);
         let start = initial_pattern(&model, &springs);
         let solver = FastSolver::new(&model, &springs, FastOptions::default()).expect("factors");
         let (mut first, mut second) = (start.clone(), start);
@@ -425,7 +416,7 @@ mod tests {
     #[test]
     fn acceleration_reaches_the_plain_iteration_minimum_faster() {
         let model = sample("saddle.obj");
-        let springs = springs(&model);
+        let springs = uniform_springs(&model);
         let start = initial_pattern(&model, &springs);
         let run = |anderson_depth| {
             let mut positions = start.clone();

@@ -229,18 +229,9 @@ mod tests {
     use crate::flatten::fast::{FastOptions, fast_solve};
     use crate::flatten::init_flatten::{InitRelease, NEIGHBOURHOOD_SWEEPS, init_flatten};
     use crate::flatten::injective::local::*;
-    use crate::flatten::samples::{deep_bowl, sample};
-    use crate::flatten::springs::PAPER_SPRING_CONSTANT;
+    use crate::flatten::samples::{deep_bowl, sample, uniform_springs};
     use crate::mesh::validate;
     use crate::progress::NoProgress;
-
-    fn springs(model: &FacetModel) -> SpringSystem {
-        SpringSystem::new(
-            model,
-            &vec![1.0; model.edges().len()],
-            PAPER_SPRING_CONSTANT,
-        )
-    }
 
     /// The fast solver's pattern of `model` from phase one.
     fn fast_pattern(model: &FacetModel, springs: &SpringSystem) -> Vec<DVec2> {
@@ -265,7 +256,7 @@ mod tests {
     /// interior too) pushed out past its neighbours, folding part of its fan over.
     fn folded_hemisphere() -> (FacetModel, SpringSystem, Vec<DVec2>) {
         let model = sample("hemisphere.obj");
-        let springs = springs(&model);
+        let springs = uniform_springs(&model);
         let mut pattern = fast_pattern(&model, &springs);
         assert!(flipped(&model, &pattern).is_empty());
         let mut on_outline = vec![false; model.vertex_count()];
@@ -353,7 +344,7 @@ mod tests {
     #[test]
     fn a_pattern_without_flips_is_left_as_it_is() {
         let model = sample("hemisphere.obj");
-        let springs = springs(&model);
+        let springs = uniform_springs(&model);
         let pattern = fast_pattern(&model, &springs);
         let (again, iterations) =
             repaired_locally(&model, &springs, &pattern, Deadline::NONE).expect("nothing to do");
@@ -365,7 +356,7 @@ mod tests {
         // Phase one folds a bowl of 0.85 pi: placed afresh, the vertices near its flips come out
         // folded too, however far the region reaches within its share.
         let model = deep_bowl(0.85 * PI, 16, 48);
-        let springs = springs(&model);
+        let springs = uniform_springs(&model);
         let pattern = fast_pattern(&model, &springs);
         assert!(
             !flipped(&model, &pattern).is_empty(),

@@ -609,17 +609,8 @@ mod tests {
     use crate::flatten::init_flatten::{InitRelease, NEIGHBOURHOOD_SWEEPS, init_flatten};
     use crate::flatten::injective::solver::*;
     use crate::flatten::injective::tutte::tutte_embedding;
-    use crate::flatten::samples::{deep_bowl, deep_bowl_with_hole};
-    use crate::flatten::springs::PAPER_SPRING_CONSTANT;
+    use crate::flatten::samples::{deep_bowl, deep_bowl_with_hole, uniform_springs};
     use crate::progress::NoProgress;
-
-    fn springs(model: &FacetModel) -> SpringSystem {
-        SpringSystem::new(
-            model,
-            &vec![1.0; model.edges().len()],
-            PAPER_SPRING_CONSTANT,
-        )
-    }
 
     /// The Tutte start, which has no flipped triangle, and the flip-free flattening, which has
     /// none either.
@@ -644,7 +635,7 @@ mod tests {
     #[test]
     fn the_fast_solver_folds_a_deep_bowl_and_the_flip_free_flattening_does_not() {
         let model = deep_bowl(0.85 * PI, 16, 48);
-        let springs = springs(&model);
+        let springs = uniform_springs(&model);
         let release = InitRelease::Neighbourhood {
             sweeps: NEIGHBOURHOOD_SWEEPS,
         };
@@ -668,7 +659,7 @@ mod tests {
     #[test]
     fn each_stage_lowers_its_objective_and_no_iterate_flips() {
         let model = deep_bowl(0.8 * PI, 10, 32);
-        let springs = springs(&model);
+        let springs = uniform_springs(&model);
         let mut positions = tutte_embedding(&model).expect("a boundary");
         let mut energy = springs.energy(&positions);
         // One Newton iteration at a time: every iterate is checked.
@@ -698,7 +689,7 @@ mod tests {
     #[test]
     fn a_flipped_start_is_refused() {
         let model = deep_bowl(0.5 * PI, 4, 12);
-        let springs = springs(&model);
+        let springs = uniform_springs(&model);
         let mut positions = tutte_embedding(&model).expect("a boundary");
         for p in &mut positions {
             p.x = -p.x;
@@ -724,7 +715,7 @@ mod tests {
     fn a_part_with_a_hole_starts_and_ends_without_flips() {
         let model = deep_bowl_with_hole(0.85 * PI, 16, 48);
         assert_eq!(model.boundary_loops().len(), 2);
-        let springs = springs(&model);
+        let springs = uniform_springs(&model);
         let (start, _, outcome) = flattened_from_tutte(&model, &springs);
         assert!(outcome.energy < springs.energy(&start), "{outcome:?}");
     }
