@@ -19,6 +19,10 @@
 //!    ([`max_flip_free_step`], Smith and Schaefer 2015), then shortened until the objective falls
 //!    enough (Armijo): no iterate can flip a triangle.
 //!
+//! A pattern with only a few flipped triangles is first repaired where they are
+//! ([`repaired_locally`]: the vertices near them placed afresh and relaxed, the rest held); the
+//! whole flip-free flattening runs when that fails.
+//!
 //! See `docs/injective.md`.
 
 mod barrier;
