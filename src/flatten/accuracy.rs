@@ -118,14 +118,22 @@ pub fn squeezed_triangles(model: &FacetModel, pattern: &[DVec2], ratio: f64) -> 
 
 /// Number of triangles with non-positive signed flat area.
 pub fn flipped_triangles(model: &FacetModel, pattern: &[DVec2]) -> usize {
-    model
-        .triangles()
-        .iter()
-        .filter(|t| {
+    flipped(model, pattern).count()
+}
+
+/// The triangles with non-positive signed flat area, in order.
+pub fn flipped_faces(model: &FacetModel, pattern: &[DVec2]) -> Vec<usize> {
+    flipped(model, pattern).collect()
+}
+
+/// The triangles with non-positive signed flat area.
+fn flipped<'a>(model: &'a FacetModel, pattern: &'a [DVec2]) -> impl Iterator<Item = usize> + 'a {
+    (model.triangles().iter().enumerate())
+        .filter(|(_, t)| {
             let [a, b, c] = t.map(|v| pattern[v as usize]);
             signed_area(a, b, c) <= 0.0
         })
-        .count()
+        .map(|(f, _)| f)
 }
 
 /// True if two boundary segments that share no vertex intersect (touching counts).

@@ -29,7 +29,7 @@ use glam::DVec2;
 use super::barrier::ORIENTATION_BARRIER;
 use super::solver::{FlipFreeSettings, Outline, flip_free_solve_moving};
 use super::tutte::solve_interior;
-use crate::flatten::accuracy::{flipped_triangles, signed_area};
+use crate::flatten::accuracy::{flipped_faces, flipped_triangles};
 use crate::flatten::springs::SpringSystem;
 use crate::mesh::FacetModel;
 use crate::progress::Deadline;
@@ -53,13 +53,7 @@ pub fn repaired_locally(
     positions: &[DVec2],
     deadline: Deadline,
 ) -> Option<(Vec<DVec2>, usize)> {
-    let flipped: Vec<usize> = (model.triangles().iter().enumerate())
-        .filter(|(_, t)| {
-            let [a, b, c] = t.map(|v| positions[v as usize]);
-            signed_area(a, b, c) <= 0.0
-        })
-        .map(|(f, _)| f)
-        .collect();
+    let flipped = flipped_faces(model, positions);
     if flipped.is_empty() {
         return Some((positions.to_vec(), 0));
     }
@@ -243,22 +237,13 @@ mod tests {
         pattern
     }
 
-    fn flipped(model: &FacetModel, pattern: &[DVec2]) -> Vec<usize> {
-        (0..model.triangle_count())
-            .filter(|&f| {
-                let [a, b, c] = model.triangles()[f].map(|v| pattern[v as usize]);
-                signed_area(a, b, c) <= 0.0
-            })
-            .collect()
-    }
-
     /// The hemisphere sample's pattern with one interior vertex (all of whose neighbours are
     /// interior too) pushed out past its neighbours, folding part of its fan over.
     fn folded_hemisphere() -> (FacetModel, SpringSystem, Vec<DVec2>) {
         let model = sample("hemisphere.obj");
         let springs = uniform_springs(&model);
         let mut pattern = fast_pattern(&model, &springs);
-        assert!(flipped(&model, &pattern).is_empty());
+        assert!(flipped_faces(&model, &pattern).is_empty());
         let mut on_outline = vec![false; model.vertex_count()];
         for &v in model.boundary_loops().iter().flatten() {
             on_outline[v as usize] = true;
@@ -287,11 +272,11 @@ mod tests {
     #[test]
     fn a_fold_is_repaired_near_its_flips_and_the_rest_held() {
         let (model, springs, folded) = folded_hemisphere();
-        let flips = flipped(&model, &folded);
+        let flips = flipped_faces(&model, &folded);
         assert!(!flips.is_empty(), "the pushed vertex folds its fan");
         let (repaired, _) =
             repaired_locally(&model, &springs, &folded, Deadline::NONE).expect("repaired");
-        assert!(flipped(&model, &repaired).is_empty());
+        assert!(flipped_faces(&model, &repaired).is_empty());
         let widest = near_triangles(&model, &flips, REPAIR_RINGS[REPAIR_RINGS.len() - 1]);
         let moved: Vec<usize> = (0..model.vertex_count())
             .filter(|&v| repaired[v] != folded[v])
@@ -359,7 +344,7 @@ mod tests {
         let springs = uniform_springs(&model);
         let pattern = fast_pattern(&model, &springs);
         assert!(
-            !flipped(&model, &pattern).is_empty(),
+            !flipped_faces(&model, &pattern).is_empty(),
             "the fast solver folds this bowl"
         );
         assert!(repaired_locally(&model, &springs, &pattern, Deadline::NONE).is_none());
