@@ -209,15 +209,17 @@ fn build_edges(vertex_count: usize, triangles: &[[u32; 3]]) -> EdgeTables {
         (a.min(b), a.max(b))
     };
     let half_edges = 0..3 * triangles.len() as u32;
-    let (offsets, mut grouped) = compressed_rows(vertex_count, half_edges.map(|h| (ends(h).0, h)));
+    let (offsets, grouped) = compressed_rows(vertex_count, half_edges.map(|h| (ends(h).0, h)));
+    // Each half-edge with its higher vertex, so the sort compares plain pairs.
+    let mut keyed: Vec<(u32, u32)> = grouped.iter().map(|&h| (ends(h).1, h)).collect();
     let mut edges = Vec::with_capacity(grouped.len() / 2 + 1);
     let mut edge_faces: Vec<[u32; 2]> = Vec::with_capacity(grouped.len() / 2 + 1);
     let mut face_edges = vec![[NONE; 3]; triangles.len()];
-    for row in offsets.windows(2) {
-        let group = &mut grouped[row[0] as usize..row[1] as usize];
-        group.sort_unstable_by_key(|&h| (ends(h).1, h));
-        for &h in group.iter() {
-            let key = <[u32; 2]>::from(ends(h));
+    for (low, row) in offsets.windows(2).enumerate() {
+        let group = &mut keyed[row[0] as usize..row[1] as usize];
+        group.sort_unstable();
+        for &(high, h) in group.iter() {
+            let key = [low as u32, high];
             let face = h / 3;
             if edges.last() != Some(&key) {
                 edges.push(key);
