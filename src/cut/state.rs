@@ -23,7 +23,7 @@ pub(super) fn point_key(p: DVec3) -> PointKey {
 }
 
 /// The model being cut, with its stiffness and the way back to the input's vertices.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub(super) struct CutState {
     pub(super) model: FacetModel,
     pub(super) stiffness: Stiffness,

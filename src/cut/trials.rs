@@ -22,6 +22,7 @@ use crate::flatten::{
 use crate::progress::NoProgress;
 
 /// A cut that lowered the error.
+#[derive(Clone)]
 pub(super) struct Improvement {
     pub(super) state: CutState,
     pub(super) flattened: Flattened,
@@ -47,6 +48,7 @@ enum Shapes {
 }
 
 /// A candidate cut, made and flattened.
+#[derive(Clone)]
 struct Trial {
     improvement: Improvement,
     /// Its gain: [`f64::MAX`]` / L` when it meets the tolerance, else `ΔE / L^LENGTH_EXPONENT`.
@@ -101,11 +103,11 @@ fn best_cut(
         step_tolerance: fast.step_tolerance.max(TRIAL_STEP_TOLERANCE),
         ..fast
     });
-    let screened: Vec<Option<Trial>> = lines
+    let candidates: Vec<Option<Candidate>> = lines
         .into_par_iter()
-        .map(|line| screen(state, flattened, line, &screen_options, starts, shapes))
+        .map(|line| cut_candidate(state, &flattened.positions, line, starts, shapes))
         .collect::<Result<_, _>>()?;
-    let mut screened: Vec<Trial> = screened.into_iter().flatten().collect();
+    let mut screened = screen_all(candidates, flattened, &screen_options)?;
     let overlaps = |trial: &Trial| trial.improvement.flattened.stats.accuracy.overlap;
     screened.sort_by(|a, b| {
         overlaps(a)
@@ -234,22 +236,53 @@ fn with_fast(
     }
 }
 
-/// Cuts along `line` (straightened, [`cut_candidate`]) and flattens with `screen_options`;
-/// `None` if the line cannot be cut (it would cut a piece off, open nothing, or run along the
-/// boundary or a fold line) or the cut does not lower the error.
-fn screen(
-    state: &CutState,
+/// A crest line as cut ([`cut_candidate`]): the cut state, the start of its pattern and the line
+/// as cut, its vertices those of the cut state.
+type Candidate = (CutState, Vec<DVec2>, CrestLine);
+
+/// The screening of [`best_cut`]: each candidate flattened with `screen_options` and judged
+/// ([`screen`]), in parallel, the trials that lower the error in the candidates' order. Crest
+/// lines that straighten to the same cut (same line, same cut model and start) are flattened
+/// once: their trials are copies of the first one's, so the trial round sees what it would if
+/// each had been flattened.
+fn screen_all(
+    candidates: Vec<Option<Candidate>>,
     flattened: &Flattened,
-    line: CrestLine,
     screen_options: &FlattenOptions,
-    starts: &Starts<'_>,
-    shapes: Shapes,
+) -> Result<Vec<Trial>, CutError> {
+    let candidates: Vec<Candidate> = candidates.into_iter().flatten().collect();
+    let same_as: Vec<Option<usize>> = (0..candidates.len())
+        .map(|i| (0..i).find(|&j| same_cut(&candidates[j], &candidates[i])))
+        .collect();
+    let mut screened: Vec<Option<Option<Trial>>> = candidates
+        .into_par_iter()
+        .zip(same_as.par_iter())
+        .map(|(candidate, repeat)| match repeat {
+            Some(_) => Ok(None),
+            None => screen(candidate, flattened, screen_options).map(Some),
+        })
+        .collect::<Result<_, _>>()?;
+    for (i, repeat) in same_as.iter().enumerate() {
+        if let Some(first) = *repeat {
+            screened[i] = screened[first].clone();
+        }
+    }
+    Ok(screened.into_iter().flatten().flatten().collect())
+}
+
+/// Whether two candidates are the same cut: the same path and length in the same cut model
+/// with the same start (the path first, which tells most apart at once; the lines' estimated
+/// releases only ranked them).
+fn same_cut(a: &Candidate, b: &Candidate) -> bool {
+    a.2.vertices == b.2.vertices && a.2.length == b.2.length && a.1 == b.1 && a.0 == b.0
+}
+
+/// Flattens a cut candidate with `screen_options`; `None` if the cut does not lower the error.
+fn screen(
+    (next, start, line): Candidate,
+    flattened: &Flattened,
+    screen_options: &FlattenOptions,
 ) -> Result<Option<Trial>, CutError> {
-    let Some((next, start, line)) =
-        cut_candidate(state, &flattened.positions, line, starts, shapes)?
-    else {
-        return Ok(None);
-    };
     let candidate = reflatten(&next, &start, screen_options)?;
     let improvement = Improvement {
         state: next,
@@ -278,7 +311,7 @@ fn cut_candidate(
     line: CrestLine,
     starts: &Starts<'_>,
     shapes: Shapes,
-) -> Result<Option<(CutState, Vec<DVec2>, CrestLine)>, CutError> {
+) -> Result<Option<Candidate>, CutError> {
     let start = line.vertices[0];
     let straightened = if starts.tips.contains(&start) {
         extension(state, &line.vertices, line.length, starts.blocked)
