@@ -11,14 +11,17 @@
 //! (new indices appended in vertex order, so the result is deterministic). A path from the
 //! boundary into the interior thus duplicates every path vertex but its inner tip; a closed path
 //! or a tree cuts a closed surface open. The result is rebuilt through [`TriangleSoup`] and
-//! [`rebuild`], so every facet model invariant holds; rest lengths, face sources and fold lines
+//! [`rebuild_split`], which checks that it is still connected (every other facet model invariant
+//! holds by construction); rest lengths, face sources and fold lines
 //! are carried over, so `E_S` and `E_C` of the cut model measure the same surface.
 //!
 //! A cut that would separate the part into pieces is refused ([`CutError::Disconnects`]), and so
 //! is one that duplicates no vertex ([`CutError::OpensNothing`]: a single interior edge, whose two
 //! sides cannot be told apart in an indexed mesh).
 
-use crate::mesh::{FacetModel, FoldEdge, NONE, RebuildError, SourceLines, TriangleSoup, rebuild};
+use crate::mesh::{
+    FacetModel, FoldEdge, NONE, RebuildError, SourceLines, TriangleSoup, rebuild_split,
+};
 
 use super::errors::CutError;
 
@@ -70,7 +73,7 @@ pub fn split_along_edges(model: &FacetModel, cut_edges: &[usize]) -> Result<Spli
         source_lines: SourceLines::default(),
         texture: None,
     };
-    let mut cut_model = rebuild(soup).map_err(|error| match error {
+    let mut cut_model = rebuild_split(soup).map_err(|error| match error {
         RebuildError::Disconnected => CutError::Disconnects,
         RebuildError::Defect(what) => CutError::InvalidResult(what),
     })?;

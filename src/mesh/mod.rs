@@ -17,7 +17,7 @@ pub use crate::geometry::tolerance::DEGENERATE_AREA_RATIO;
 pub use chains::chain_edges;
 pub use defects::{Defect, MAXIMUM_COORDINATE, MeshDefects};
 pub use facet::{FacetModel, NONE};
-pub use rebuild::{RebuildError, rebuild};
+pub use rebuild::{RebuildError, rebuild, rebuild_split};
 pub use repair::{NAMED_WELDS, split_non_manifold, weld_duplicates};
 pub use rows::compressed_rows;
 #[cfg(test)]

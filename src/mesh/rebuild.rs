@@ -42,13 +42,30 @@ impl std::error::Error for RebuildError {}
 /// module documentation.
 pub fn rebuild(soup: TriangleSoup) -> Result<FacetModel, RebuildError> {
     check_triangles(&soup)?;
-    let folds: Vec<(u32, u32, u32)> = (soup.fold_edges.iter())
-        .map(|e| (e.vertices[0], e.vertices[1], e.fold_line))
-        .collect();
-    let model = FacetModel::from_checked(soup.positions, soup.triangles, soup.face_sources, &folds);
+    let model = with_adjacency(soup);
     check_edges(&model)?;
     check_fans(&model)?;
     check_connected(model)
+}
+
+/// The facet model of a facet model's faces with the vertices of some of them split: the faces
+/// around a vertex grouped into wedges (joined across edges at the vertex), each wedge but one
+/// given its own copy of the vertex at the same position, as a cut along edges does. The faces
+/// keep their corners' order and shape, every copy holds one wedge (one fan) and no edge gains
+/// a face, so every invariant but connectedness holds by construction: only that is checked
+/// (the rest too in debug builds). The model is in the soup's order, as [`rebuild`]'s.
+pub fn rebuild_split(soup: TriangleSoup) -> Result<FacetModel, RebuildError> {
+    let model = with_adjacency(soup);
+    debug_assert!(check_edges(&model).is_ok() && check_fans(&model).is_ok());
+    check_connected(model)
+}
+
+/// The soup's facet model, its invariants taken as checked.
+fn with_adjacency(soup: TriangleSoup) -> FacetModel {
+    let folds: Vec<(u32, u32, u32)> = (soup.fold_edges.iter())
+        .map(|e| (e.vertices[0], e.vertices[1], e.fold_line))
+        .collect();
+    FacetModel::from_checked(soup.positions, soup.triangles, soup.face_sources, &folds)
 }
 
 /// Every corner is a vertex, no triangle repeats one or has zero area, every vertex is used.
@@ -201,6 +218,38 @@ mod tests {
         let rebuilt = rebuild(soup.clone()).expect("a valid grid");
         let validated = validate(&soup).expect("a valid grid").components.remove(0);
         assert_eq!(rebuilt, validated);
+    }
+
+    /// The grid with the corners `vertices` of faces `faces` replaced by copies of them.
+    fn with_copies(mut soup: TriangleSoup, vertices: &[u32], faces: &[usize]) -> TriangleSoup {
+        let first_copy = soup.positions.len() as u32;
+        for &v in vertices {
+            soup.positions.push(soup.positions[v as usize]);
+        }
+        for &face in faces {
+            for corner in &mut soup.triangles[face] {
+                if let Some(k) = vertices.iter().position(|v| v == corner) {
+                    *corner = first_copy + k as u32;
+                }
+            }
+        }
+        soup
+    }
+
+    #[test]
+    fn a_slit_rebuilds_as_the_checked_rebuild_does() {
+        // A slit along edge 3-4 from the left side: vertex 3 is split between face 1 and faces
+        // 4 and 5; the tip, vertex 4, is not.
+        let slit = with_copies(grid(), &[3], &[4, 5]);
+        let rebuilt = rebuild(slit.clone()).expect("a slit grid is a facet model");
+        assert_eq!(rebuild_split(slit), Ok(rebuilt));
+    }
+
+    #[test]
+    fn a_split_that_cuts_the_grid_in_two_is_refused_as_disconnected() {
+        // A cut along the middle row, 3-4-5, from side to side.
+        let halves = with_copies(grid(), &[3, 4, 5], &[4, 5, 6, 7]);
+        assert_eq!(rebuild_split(halves), Err(RebuildError::Disconnected));
     }
 
     #[test]
