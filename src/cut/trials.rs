@@ -2,6 +2,8 @@
 //! flattened briefly (screening), the most promising flattened on (trials), and the one of
 //! largest gain kept; with the rules that say which pattern is better.
 
+use std::sync::Arc;
+
 use glam::DVec2;
 use rayon::prelude::*;
 
@@ -16,8 +18,8 @@ use super::paths::{Adjacency, path_length};
 use super::smooth_cut::{Straightened, extension, smooth_cut};
 use super::state::CutState;
 use crate::flatten::{
-    Accuracy, FastOptions, FlattenOptions, Flattened, SpringSystem, StopReason, flatten_from,
-    flatten_unrepaired,
+    Accuracy, FastOptions, FillOrder, FlattenOptions, Flattened, SpringSystem, StopReason,
+    flatten_from, flatten_unrepaired,
 };
 use crate::progress::NoProgress;
 
@@ -98,6 +100,19 @@ fn best_cut(
     shapes: Shapes,
 ) -> Result<Option<Improvement>, CutError> {
     let lines = candidate_lines(state, flattened, flatten_options, options, starts);
+    // Every candidate is the state with vertices appended: its Laplacian is factored in the
+    // state's elimination order, extended, instead of being ordered afresh.
+    let springs = SpringSystem::new(
+        &state.model,
+        state.stiffness.factors(),
+        flatten_options.spring_constant,
+    );
+    let flatten_options = &FlattenOptions {
+        fill_order: FillOrder::of(state.model.vertex_count(), &springs)
+            .ok()
+            .map(Arc::new),
+        ..flatten_options.clone()
+    };
     let screen_options = with_fast(flatten_options, |fast| FastOptions {
         max_iterations: fast.max_iterations.min(SCREEN_ITERATIONS),
         step_tolerance: fast.step_tolerance.max(TRIAL_STEP_TOLERANCE),

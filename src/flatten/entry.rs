@@ -11,7 +11,7 @@ use super::accuracy::{
 };
 use super::energy_release::{EnergyRelease, ReleaseOutcome, ReleaseParameters, StopReason};
 use super::errors::FlattenError;
-use super::fast::{FastOptions, fast_solve};
+use super::fast::{FastOptions, FastSolver};
 use super::flattened::{FlattenStats, Flattened};
 use super::init_flatten::{InitRelease, NEIGHBOURHOOD_SWEEPS, init_flatten};
 use super::injective::{
@@ -253,14 +253,15 @@ fn minimise(
         deadline: options.deadline,
         ..options.fast
     };
-    let fast = fast_solve(model, springs, positions, fast_options)?;
+    let order = options.fill_order.as_deref();
+    let fast = FastSolver::in_order(model, springs, fast_options, order)?.solve(positions);
     if repair == Repair::None || flipped_triangles(model, positions) == 0 {
         return Ok((fast.iterations, fast.stop_reason));
     }
     if let Some((mut repaired, newton)) =
         repaired_locally(model, springs, positions, options.deadline)
     {
-        let again = fast_solve(model, springs, &mut repaired, fast_options)?;
+        let again = FastSolver::in_order(model, springs, fast_options, order)?.solve(&mut repaired);
         // The fast solver keeps positive triangles positive; checked all the same.
         if flipped_triangles(model, &repaired) == 0 {
             *positions = repaired;

@@ -38,7 +38,7 @@ pub use entry::{
     with_squeezed_triangles_opened,
 };
 pub use errors::FlattenError;
-pub use fast::{FastError, FastOptions, FastOutcome, FastSolver, fast_solve};
+pub use fast::{FastError, FastOptions, FastOutcome, FastSolver, FillOrder, fast_solve};
 pub use flattened::{FlattenStats, Flattened};
 pub use init_flatten::{InitRelease, init_flatten};
 pub use options::{FlattenOptions, Solver};

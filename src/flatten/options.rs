@@ -1,10 +1,12 @@
 //! Options of the flatten stage: the solver and its parameters, with their defaults.
 
+use std::sync::Arc;
+
 use serde::{Deserialize, Serialize};
 
 use super::accuracy::DEFAULT_TOLERANCE;
 use super::energy_release::{PAPER_ENERGY_VARIATION, PAPER_STEP_BUDGET, PAPER_TIME_STEP};
-use super::fast::FastOptions;
+use super::fast::{FastOptions, FillOrder};
 use super::init_flatten::PAPER_INIT_RELEASE_STEPS;
 use super::springs::PAPER_SPRING_CONSTANT;
 use crate::progress::Deadline;
@@ -43,6 +45,11 @@ pub struct FlattenOptions {
     /// the pipeline from a part's time limit; none by default, and never echoed.
     #[serde(skip)]
     pub deadline: Deadline,
+    /// The fast solver's elimination order, for models made from the order's model by appending
+    /// vertices (the cut loop's candidates: [`FillOrder`]); faer's AMD orders each model afresh
+    /// when none is given (the default) or the model has fewer vertices. Never echoed.
+    #[serde(skip)]
+    pub fill_order: Option<Arc<FillOrder>>,
 }
 
 impl Default for FlattenOptions {
@@ -57,6 +64,7 @@ impl Default for FlattenOptions {
             init_release_steps: PAPER_INIT_RELEASE_STEPS,
             fast: FastOptions::default(),
             deadline: Deadline::NONE,
+            fill_order: None,
         }
     }
 }

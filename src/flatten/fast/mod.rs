@@ -13,7 +13,8 @@
 //! `r_ij = d_ij (P_i − P_j) / |P_i − P_j|` (its current direction, its rest length); the global
 //! step minimises `Σ ½ C_ij |P_i − P_j − r_ij|²` over the positions, a linear system `L P = b`
 //! with the spring Laplacian `L` (weights `C_ij`), which is constant: it is factored once by
-//! faer's sparse Cholesky with one vertex held (the energy does not change under translation),
+//! faer's sparse Cholesky with one vertex held (the energy does not change under translation;
+//! AMD ordering, or a [`FillOrder`] handed down from a model this one was cut from),
 //! and each iteration costs one forward and back substitution for the two coordinates. The local
 //! step can only lower the energy (it is the minimum over the directions) and so can the global
 //! step, so the plain iteration `G` never raises it. Anderson acceleration (type II, depth `m`,
@@ -53,7 +54,7 @@ mod laplacian;
 mod options;
 mod solver;
 
-pub use laplacian::FastError;
+pub use laplacian::{FastError, FillOrder};
 pub use options::{
     DEFAULT_ANDERSON_DEPTH, DEFAULT_ENERGY_TOLERANCE, DEFAULT_MAX_ITERATIONS,
     DEFAULT_STEP_TOLERANCE, ENERGY_WINDOW, FastOptions,

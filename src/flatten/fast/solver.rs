@@ -7,7 +7,9 @@ use rayon::prelude::*;
 
 use super::anderson::Anderson;
 use super::chunked::{CHUNK, rms_distance};
-use super::laplacian::{FastError, HELD_VERTEX, LaplacianFactor, factor_laplacian, unknown_vertex};
+use super::laplacian::{
+    FastError, FillOrder, HELD_VERTEX, LaplacianFactor, factor_laplacian, unknown_vertex,
+};
 use super::options::{ENERGY_WINDOW, FastOptions};
 use crate::flatten::accuracy::signed_area;
 use crate::flatten::energy_release::StopReason;
@@ -57,8 +59,19 @@ impl<'a> FastSolver<'a> {
         springs: &'a SpringSystem,
         options: FastOptions,
     ) -> Result<Self, FastError> {
+        Self::in_order(model, springs, options, None)
+    }
+
+    /// As [`FastSolver::new`], the Laplacian factored in the elimination order `order` gives it
+    /// when given (a model made from the order's by appending vertices: [`FillOrder`]).
+    pub fn in_order(
+        model: &'a FacetModel,
+        springs: &'a SpringSystem,
+        options: FastOptions,
+        order: Option<&FillOrder>,
+    ) -> Result<Self, FastError> {
         let (incident_offsets, incident) = vertex_springs(model.vertex_count(), springs);
-        let factor = factor_laplacian(model.vertex_count(), springs)?;
+        let factor = factor_laplacian(model.vertex_count(), springs, order)?;
         let total: f64 = springs.rest_lengths.iter().sum();
         Ok(Self {
             model,
