@@ -99,14 +99,14 @@ fn best_cut(
     starts: &Starts<'_>,
     shapes: Shapes,
 ) -> Result<Option<Improvement>, CutError> {
-    let lines = candidate_lines(state, flattened, flatten_options, options, starts);
-    // Every candidate is the state with vertices appended: its Laplacian is factored in the
-    // state's elimination order, extended, instead of being ordered afresh.
     let springs = SpringSystem::new(
         &state.model,
         state.stiffness.factors(),
         flatten_options.spring_constant,
     );
+    let lines = candidate_lines(state, flattened, &springs, options, starts);
+    // Every candidate is the state with vertices appended: its Laplacian is factored in the
+    // state's elimination order, extended, instead of being ordered afresh.
     let flatten_options = &FlattenOptions {
         fill_order: FillOrder::of(state.model.vertex_count(), &springs)
             .ok()
@@ -202,19 +202,14 @@ fn best_trial(
 /// energy peaks where the pattern is compressed and a cut there would overlap), both as planning
 /// maps ([`density`]: energy per unit area smoothed over a length tied to the part's size, so
 /// the lines do not depend on the mesh); without repeats, an extension of an earlier cut or a
-/// new cut only while new cuts are allowed.
+/// new cut only while new cuts are allowed. `springs` are the state's.
 fn candidate_lines(
     state: &CutState,
     flattened: &Flattened,
-    flatten_options: &FlattenOptions,
+    springs: &SpringSystem,
     options: &CutOptions,
     starts: &Starts<'_>,
 ) -> Vec<CrestLine> {
-    let springs = SpringSystem::new(
-        &state.model,
-        state.stiffness.factors(),
-        flatten_options.spring_constant,
-    );
     let adjacency = Adjacency::new(&state.model);
     let areas = density::vertex_areas(&state.model);
     let map_of = |energies: Vec<f64>| planning_map(&state.model, &adjacency, &areas, &energies);
@@ -251,9 +246,16 @@ fn with_fast(
     }
 }
 
-/// A crest line as cut ([`cut_candidate`]): the cut state, the start of its pattern and the line
-/// as cut, its vertices those of the cut state.
-type Candidate = (CutState, Vec<DVec2>, CrestLine);
+/// A crest line as cut ([`cut_candidate`]).
+#[derive(PartialEq)]
+struct Candidate {
+    /// The state cut along the line.
+    state: CutState,
+    /// The start of its pattern: each vertex where the pattern before the cut had it.
+    start: Vec<DVec2>,
+    /// The line as cut, its vertices those of `state`.
+    line: CrestLine,
+}
 
 /// The screening of [`best_cut`]: each candidate flattened with `screen_options` and judged
 /// ([`screen`]), in parallel, the trials that lower the error in the candidates' order. Crest
@@ -289,18 +291,21 @@ fn screen_all(
 /// with the same start (the path first, which tells most apart at once; the lines' estimated
 /// releases only ranked them).
 fn same_cut(a: &Candidate, b: &Candidate) -> bool {
-    a.2.vertices == b.2.vertices && a.2.length == b.2.length && a.1 == b.1 && a.0 == b.0
+    a.line.vertices == b.line.vertices
+        && a.line.length == b.line.length
+        && a.start == b.start
+        && a.state == b.state
 }
 
 /// Flattens a cut candidate with `screen_options`; `None` if the cut does not lower the error.
 fn screen(
-    (next, start, line): Candidate,
+    Candidate { state, start, line }: Candidate,
     flattened: &Flattened,
     screen_options: &FlattenOptions,
 ) -> Result<Option<Trial>, CutError> {
-    let candidate = reflatten(&next, &start, screen_options)?;
+    let candidate = reflatten(&state, &start, screen_options)?;
     let improvement = Improvement {
-        state: next,
+        state,
         flattened: candidate,
         line,
     };
@@ -312,9 +317,8 @@ fn screen(
     ))
 }
 
-/// The state cut along a candidate line, the start positions of its pattern (from the pattern
-/// `positions` of `state`: each copy where its original was) and the line as cut, its vertices
-/// those of the cut state. The line is cut along its geodesic straightening ([`smooth_cut`]:
+/// The candidate of a crest line: `state` cut along it, the start of its pattern (from the
+/// pattern `positions` of `state`: each copy where its original was) and the line as cut. The line is cut along its geodesic straightening ([`smooth_cut`]:
 /// crossing faces, the mesh refined along it), or when it extends a cut, straight on from that
 /// cut for its length ([`straight_extension`]), or along its edges when they are already
 /// straight. A line whose straightening is refused is cut along its edges only when `shapes`
@@ -354,7 +358,11 @@ fn cut_candidate(
                 .iter()
                 .map(|&v| start_of[v as usize])
                 .collect();
-            Ok(Some((next, start, line)))
+            Ok(Some(Candidate {
+                state: next,
+                start,
+                line,
+            }))
         }
         Err(error) if uncuttable(&error) => Ok(None),
         Err(error) => Err(error),

@@ -253,15 +253,15 @@ fn minimise(
         deadline: options.deadline,
         ..options.fast
     };
-    let order = options.fill_order.as_deref();
-    let fast = FastSolver::in_order(model, springs, fast_options, order)?.solve(positions);
+    let solver = FastSolver::in_order(model, springs, fast_options, options.fill_order.as_deref())?;
+    let fast = solver.solve(positions);
     if repair == Repair::None || flipped_triangles(model, positions) == 0 {
         return Ok((fast.iterations, fast.stop_reason));
     }
     if let Some((mut repaired, newton)) =
         repaired_locally(model, springs, positions, options.deadline)
     {
-        let again = FastSolver::in_order(model, springs, fast_options, order)?.solve(&mut repaired);
+        let again = solver.solve(&mut repaired);
         // The fast solver keeps positive triangles positive; checked all the same.
         if flipped_triangles(model, &repaired) == 0 {
             *positions = repaired;

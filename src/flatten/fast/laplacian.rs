@@ -75,9 +75,7 @@ impl FillOrder {
             SymmetricOrdering::Amd,
             Default::default(),
         )
-        .map_err(|error| FastError::Factorisation {
-            reason: format!("{error:?}"),
-        })?;
+        .map_err(factorisation_error)?;
         let mut rank = vec![0; vertex_count];
         match symbolic.perm() {
             Some(perm) => {
@@ -146,11 +144,15 @@ fn reduced_laplacian(
         }
     }
     let unknowns = vertex_count - 1;
-    SparseColMat::<u32, f64>::try_new_from_triplets(unknowns, unknowns, &entries).map_err(|error| {
-        FastError::Factorisation {
-            reason: format!("{error:?}"),
-        }
-    })
+    SparseColMat::<u32, f64>::try_new_from_triplets(unknowns, unknowns, &entries)
+        .map_err(factorisation_error)
+}
+
+/// The fast solver's error for what faer reported.
+fn factorisation_error(error: impl std::fmt::Debug) -> FastError {
+    FastError::Factorisation {
+        reason: format!("{error:?}"),
+    }
 }
 
 /// Factors the spring Laplacian (weights `C_ij`) without the held vertex's row and column, in the
@@ -160,7 +162,6 @@ pub(super) fn factor_laplacian(
     springs: &SpringSystem,
     order: Option<&FillOrder>,
 ) -> Result<LaplacianFactor, FastError> {
-    let failure = |reason: String| FastError::Factorisation { reason };
     let matrix = reduced_laplacian(vertex_count, springs)?;
     let places = order.and_then(|order| order.unknowns_in_order(vertex_count, springs));
     let ordering = match &places {
@@ -171,7 +172,7 @@ pub(super) fn factor_laplacian(
     };
     let symbolic =
         factorize_symbolic_cholesky(matrix.symbolic(), Side::Lower, ordering, Default::default())
-            .map_err(|error| failure(format!("{error:?}")))?;
+            .map_err(factorisation_error)?;
     let mut values = vec![0.0; symbolic.len_val()];
     // Sequential, as the substitutions: on 2 shared cores faer's rayon factorisation was slower
     // (400k fender, whole flatten: 3.4-4.0 s sequential against 3.4-4.3 s with rayon).
@@ -187,7 +188,7 @@ pub(super) fn factor_laplacian(
             MemStack::new(&mut MemBuffer::new(scratch)),
             Default::default(),
         )
-        .map_err(|error| failure(format!("{error:?}")))?;
+        .map_err(factorisation_error)?;
     Ok(LaplacianFactor { symbolic, values })
 }
 
@@ -201,8 +202,9 @@ mod tests {
     /// The hemisphere's springs, and those among its vertices but the last `appended`: the
     /// model an order is made for, and the hemisphere as a model made from it by appending them.
     fn hemisphere_and_parent(appended: usize) -> (usize, SpringSystem, usize, SpringSystem) {
-        let springs = uniform_springs(&sample("hemisphere.obj"));
-        let count = 1 + springs.edges.iter().flatten().max().copied().unwrap_or(0) as usize;
+        let model = sample("hemisphere.obj");
+        let springs = uniform_springs(&model);
+        let count = model.vertex_count();
         let known = count - appended;
         let kept: Vec<usize> = (0..springs.len())
             .filter(|&e| springs.edges[e].iter().all(|&v| (v as usize) < known))
