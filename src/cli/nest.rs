@@ -53,7 +53,8 @@ pub struct NestArgs {
     #[arg(long, value_name = "N", default_value_t = BenchmarkConfig::default().seed)]
     seed: u64,
     /// Allowed rotations for every part: a list of degrees ("0,90,180"), a step ("step:15") or
-    /// "free" (24 angles, every 15°; not a continuous search). For patterns, measured from the
+    /// "free" (any angle: the first layouts try 24, every 15°, and the search through overlap
+    /// turns parts continuously between them). For patterns, measured from the
     /// pattern's minimum-area bounding rectangle, default 0,90,180,270 (as `flatcut run`); for
     /// instances, overriding theirs.
     #[arg(long, value_name = "LIST|step:DEG|free", value_parser = parse_rotations)]

@@ -38,7 +38,8 @@ pub struct RunArgs {
     #[arg(long, value_name = "N", default_value_t = NestingConfig::default().seed)]
     seed: u64,
     /// Allowed rotations, measured from the pattern's minimum-area bounding rectangle: a list of
-    /// degrees ("0,180"), a step ("step:15") or "free" (24 angles, every 15°); default
+    /// degrees ("0,180"), a step ("step:15") or "free" (any angle: sampled every 15°, turned
+    /// continuously between by the search through overlap); default
     /// 0,90,180,270. A part with a grain is only turned to keep it along x.
     #[arg(long, value_name = "LIST|step:DEG|free", value_parser = parse_rotations)]
     rotations: Option<Rotations>,

@@ -35,6 +35,40 @@ const SIMPLIFY_AREA_RATIO: f32 = 0.002;
 /// Index of an oriented shape in the [`ShapeLibrary`].
 pub type ShapeId = usize;
 
+/// An oriented shape of the [`ShapeLibrary`] turned further by `turn` radians, counter-clockwise
+/// about its own origin: 0 (upright) for every part the construction places, any angle for a
+/// part free to rotate that the search through overlap turns.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pose {
+    /// The oriented shape.
+    pub shape: ShapeId,
+    /// The further turn, radians.
+    pub turn: f64,
+}
+
+impl Pose {
+    /// The oriented shape `shape` as registered, not turned.
+    pub fn upright(shape: ShapeId) -> Self {
+        Self { shape, turn: 0.0 }
+    }
+
+    /// Whether the pose is the oriented shape as registered.
+    pub fn is_upright(&self) -> bool {
+        self.turn == 0.0
+    }
+
+    /// jagua-rs's transformation of the pose translated by `translation`: the turn (when there is
+    /// one), then the translation.
+    fn transformation(&self, translation: DVec2) -> Transformation {
+        let moved = (translation.x as f32, translation.y as f32);
+        if self.is_upright() {
+            Transformation::from_translation(moved)
+        } else {
+            Transformation::from_rotation(self.turn as f32).translate(moved)
+        }
+    }
+}
+
 /// A broad-phase + narrow-phase collision engine over one rectangular container.
 ///
 /// Implementations must be deterministic: the same calls give the same answers.
@@ -42,8 +76,8 @@ pub trait CollisionEngine: Clone + Send + Sync {
     /// Whether `shape` translated by `translation` lies inside the container and clear of every
     /// inserted part (with the gap). Counts one query.
     fn fits(&mut self, shape: ShapeId, translation: DVec2) -> bool;
-    /// Registers a part under the caller's `key` (unique among inserted parts).
-    fn insert(&mut self, key: u32, shape: ShapeId, translation: DVec2);
+    /// Registers a part in `pose` under the caller's `key` (unique among inserted parts).
+    fn insert(&mut self, key: u32, pose: Pose, translation: DVec2);
     /// Removes the part registered under `key`; does nothing if there is none.
     fn remove(&mut self, key: u32);
     /// Number of [`CollisionEngine::fits`] queries answered so far.
@@ -107,6 +141,19 @@ impl ShapeLibrary {
         (
             DVec2::new(f64::from(bbox.x_min), f64::from(bbox.y_min)),
             DVec2::new(f64::from(bbox.x_max), f64::from(bbox.y_max)),
+        )
+    }
+
+    /// Bounding box (min, max) of an inflated shape turned by `turn` radians about its origin
+    /// (a [`Pose`]'s), in the shape's own coordinates.
+    pub fn turned_bounds(&self, shape: ShapeId, turn: f64) -> (DVec2, DVec2) {
+        let rotation = DVec2::from_angle(turn);
+        (self.shapes[shape].vertices().iter()).fold(
+            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+            |(min, max), vertex| {
+                let point = rotation.rotate(DVec2::new(f64::from(vertex.0), f64::from(vertex.1)));
+                (min.min(point), max.max(point))
+            },
         )
     }
 }
@@ -231,10 +278,10 @@ impl JaguaEngine {
         })
     }
 
-    fn translated(&mut self, shape: ShapeId, translation: DVec2) -> &SPolygon {
-        let transform =
-            Transformation::from_translation((translation.x as f32, translation.y as f32));
-        self.scratch[shape].transform_from(&self.library.shapes[shape], &transform)
+    /// The shape of `pose` translated by `translation`, in the pose's scratch copy.
+    fn placed(&mut self, pose: Pose, translation: DVec2) -> &SPolygon {
+        let transform = pose.transformation(translation);
+        self.scratch[pose.shape].transform_from(&self.library.shapes[pose.shape], &transform)
     }
 }
 
@@ -254,8 +301,8 @@ impl CollisionEngine for JaguaEngine {
         !self.engine.detect_poly_collision(placed, &NoFilter)
     }
 
-    fn insert(&mut self, key: u32, shape: ShapeId, translation: DVec2) {
-        let placed = Arc::new(self.translated(shape, translation).clone());
+    fn insert(&mut self, key: u32, pose: Pose, translation: DVec2) {
+        let placed = Arc::new(self.placed(pose, translation).clone());
         self.engine
             .register_hazard(Hazard::new(Entity::Part(key), Arc::clone(&placed)));
         let hazard_key = (self.engine)
@@ -444,23 +491,22 @@ impl HazardFilter<Entity> for Ignore {
 }
 
 impl JaguaEngine {
-    /// Weighted overlap of `shape` translated by `translation` with the container's edge and the
+    /// Weighted overlap of `pose` translated by `translation` with the container's edge and the
     /// inserted parts: the sum over every obstacle it collides with of `weight(obstacle)` times
     /// the obstacle's overlap (mm²; see [`JaguaEngine::overlaps`]). Stops as soon as the sum
     /// exceeds `bound` and returns the partial sum (then above `bound`). 0 exactly when
-    /// [`CollisionEngine::fits`] would say yes. Counts one query.
+    /// [`CollisionEngine::fits`] would say yes (for an upright pose). Counts one query.
     pub fn overlap(
         &mut self,
-        shape: ShapeId,
+        pose: Pose,
         translation: DVec2,
         bound: f64,
         weight: impl Fn(Obstacle) -> f64,
     ) -> f64 {
         self.queries += 1;
-        let transform =
-            Transformation::from_translation((translation.x as f32, translation.y as f32));
+        let transform = pose.transformation(translation);
         let placed: &SPolygon =
-            self.scratch[shape].transform_from(&self.library.shapes[shape], &transform);
+            self.scratch[pose.shape].transform_from(&self.library.shapes[pose.shape], &transform);
         let engine = &self.engine;
         let parts = &self.parts;
         let inside = self.inside;
@@ -479,20 +525,19 @@ impl JaguaEngine {
         total
     }
 
-    /// Every obstacle that `shape` translated by `translation` collides with and its unweighted
+    /// Every obstacle that `pose` translated by `translation` collides with and its unweighted
     /// overlap (mm²), in the order of the obstacle (edge first, then by key), ignoring the part
     /// inserted under `ignore` (the part itself, measured in place). Counts one query.
     pub fn overlaps(
         &mut self,
-        shape: ShapeId,
+        pose: Pose,
         translation: DVec2,
         ignore: Option<u32>,
     ) -> Vec<(Obstacle, f64)> {
         self.queries += 1;
-        let transform =
-            Transformation::from_translation((translation.x as f32, translation.y as f32));
+        let transform = pose.transformation(translation);
         let placed: &SPolygon =
-            self.scratch[shape].transform_from(&self.library.shapes[shape], &transform);
+            self.scratch[pose.shape].transform_from(&self.library.shapes[pose.shape], &transform);
         self.collector.clear();
         self.engine
             .collect_poly_collisions(placed, &Ignore(ignore), &mut self.collector);
@@ -517,14 +562,11 @@ impl JaguaEngine {
     /// `key`, estimated from their poles (a lower bound; see [`pole_depth`]); 0 without that part.
     #[cfg(test)]
     pub fn depth_into(&mut self, shape: ShapeId, translation: DVec2, key: u32) -> f64 {
-        let transform =
-            Transformation::from_translation((translation.x as f32, translation.y as f32));
-        let placed: &SPolygon =
-            self.scratch[shape].transform_from(&self.library.shapes[shape], &transform);
-        let Some(Some((_, other))) = self.parts.get(key as usize) else {
+        let Some(Some((_, other))) = self.parts.get(key as usize).cloned() else {
             return 0.0;
         };
-        pole_depth(measured_poles(placed), measured_poles(other))
+        let placed = self.placed(Pose::upright(shape), translation);
+        pole_depth(measured_poles(placed), measured_poles(&other))
     }
 
     fn overlap_with(parts: &[Option<(HazKey, Arc<SPolygon>)>], placed: &SPolygon, key: u32) -> f64 {
@@ -572,7 +614,7 @@ mod tests {
         let inflation = library.inflation();
         let mut engine =
             JaguaEngine::new(Arc::clone(&library), DVec2::ZERO, DVec2::new(100.0, 100.0)).unwrap();
-        engine.insert(7, 0, DVec2::new(20.0, 20.0));
+        engine.insert(7, Pose::upright(0), DVec2::new(20.0, 20.0));
         for offset in [1.0, 4.0, 9.0] {
             let at = DVec2::new(20.0 + offset, 20.0);
             // Overlap width of the two squares, each inflated by `inflation` on every side.
@@ -582,7 +624,7 @@ mod tests {
                 (depth - width).abs() < 1e-3,
                 "offset {offset}: {depth} vs {width}"
             );
-            let overlaps = engine.overlaps(0, at, None);
+            let overlaps = engine.overlaps(Pose::upright(0), at, None);
             assert_eq!(overlaps.len(), 1);
             assert_eq!(overlaps[0].0, Obstacle::Part(7));
             // Raw: the poles at least the inscribed circles' penetration times their radius, the
@@ -594,17 +636,72 @@ mod tests {
             assert!(!engine.fits(0, at));
         }
         // Deeper overlap, larger measure; clear, zero.
-        let shallow = engine.overlap(0, DVec2::new(28.0, 20.0), f64::INFINITY, |_| 1.0);
-        let deep = engine.overlap(0, DVec2::new(24.0, 20.0), f64::INFINITY, |_| 1.0);
+        let shallow = engine.overlap(
+            Pose::upright(0),
+            DVec2::new(28.0, 20.0),
+            f64::INFINITY,
+            |_| 1.0,
+        );
+        let deep = engine.overlap(
+            Pose::upright(0),
+            DVec2::new(24.0, 20.0),
+            f64::INFINITY,
+            |_| 1.0,
+        );
         assert!(deep > shallow && shallow > 0.0);
         assert_eq!(
-            engine.overlap(0, DVec2::new(50.0, 50.0), f64::INFINITY, |_| 1.0),
+            engine.overlap(
+                Pose::upright(0),
+                DVec2::new(50.0, 50.0),
+                f64::INFINITY,
+                |_| 1.0
+            ),
             0.0
         );
         // Weights scale it; the bound stops it early (the partial sum exceeds the bound).
-        let doubled = engine.overlap(0, DVec2::new(24.0, 20.0), f64::INFINITY, |_| 2.0);
+        let doubled = engine.overlap(
+            Pose::upright(0),
+            DVec2::new(24.0, 20.0),
+            f64::INFINITY,
+            |_| 2.0,
+        );
         assert!((doubled - 2.0 * deep).abs() < 1e-9 * deep.max(1.0));
-        assert!(engine.overlap(0, DVec2::new(24.0, 20.0), 1.0, |_| 1.0) > 1.0);
+        assert!(engine.overlap(Pose::upright(0), DVec2::new(24.0, 20.0), 1.0, |_| 1.0) > 1.0);
+    }
+
+    /// A pose turned by 45° is the shape rotated about its origin: a 10 mm square so turned
+    /// spans ±10/√2 mm along x and 10·√2 mm along y (up to the inflation), and at a translation
+    /// where the upright square clears a square beside it, its left corner reaches into it.
+    #[test]
+    fn a_turned_pose_is_the_shape_rotated_about_its_origin() {
+        let library = Arc::new(ShapeLibrary::new(&[square(10.0)], 0.0, 100.0).unwrap());
+        let turned = Pose {
+            shape: 0,
+            turn: std::f64::consts::FRAC_PI_4,
+        };
+        let (min, max) = library.turned_bounds(0, turned.turn);
+        let half_diagonal = 10.0 / 2f64.sqrt();
+        let slack = 2.0 * library.inflation();
+        assert!((min.x + half_diagonal).abs() < slack, "{min}");
+        assert!((max.x - half_diagonal).abs() < slack, "{max}");
+        assert!(min.y.abs() < slack && (max.y - 2.0 * half_diagonal).abs() < slack);
+        let mut engine =
+            JaguaEngine::new(Arc::clone(&library), DVec2::ZERO, DVec2::new(100.0, 100.0)).unwrap();
+        engine.insert(7, Pose::upright(0), DVec2::new(20.0, 20.0));
+        let beside = DVec2::new(35.0, 20.0);
+        assert_eq!(
+            engine.overlap(Pose::upright(0), beside, f64::INFINITY, |_| 1.0),
+            0.0
+        );
+        let overlaps = engine.overlaps(turned, beside, None);
+        assert_eq!(overlaps.len(), 1);
+        assert_eq!(overlaps[0].0, Obstacle::Part(7));
+        assert!(overlaps[0].1 > 0.0);
+        // Turned on the far side of its own corner, it clears the square again.
+        assert_eq!(
+            engine.overlap(turned, DVec2::new(45.0, 20.0), f64::INFINITY, |_| 1.0),
+            0.0
+        );
     }
 
     #[test]
@@ -612,7 +709,7 @@ mod tests {
         let library = Arc::new(ShapeLibrary::new(&[square(10.0)], 0.0, 100.0).unwrap());
         let mut engine =
             JaguaEngine::new(Arc::clone(&library), DVec2::ZERO, DVec2::new(100.0, 100.0)).unwrap();
-        let overlaps = engine.overlaps(0, DVec2::new(93.0, 40.0), None);
+        let overlaps = engine.overlaps(Pose::upright(0), DVec2::new(93.0, 40.0), None);
         assert_eq!(overlaps.len(), 1);
         assert_eq!(overlaps[0].0, Obstacle::Edge);
         // 3 mm out (plus twice the inflation), over the square's 10 mm height, sized by the
@@ -620,7 +717,12 @@ mod tests {
         let expected = sized(30.0, 100.0);
         assert!((overlaps[0].1 - expected).abs() < 0.2, "{}", overlaps[0].1);
         assert_eq!(
-            engine.overlap(0, DVec2::new(40.0, 40.0), f64::INFINITY, |_| 1.0),
+            engine.overlap(
+                Pose::upright(0),
+                DVec2::new(40.0, 40.0),
+                f64::INFINITY,
+                |_| 1.0
+            ),
             0.0
         );
     }

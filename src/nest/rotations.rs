@@ -26,7 +26,8 @@ pub enum Rotations {
     Fixed(Vec<f64>),
     /// Every multiple of this step in [0, 360).
     Step(f64),
-    /// Any angle; the search tries [`FREE_ROTATION_SAMPLES`] evenly spaced ones.
+    /// Any angle: the construction tries [`FREE_ROTATION_SAMPLES`] evenly spaced ones, and the
+    /// search through overlap turns parts continuously between them.
     Free,
 }
 

@@ -146,12 +146,12 @@ impl Problem<'_> {
         .expect("the strip holds every part");
         let mut placed = Vec::with_capacity(parts.len());
         for part in parts {
-            engine.insert(part.copy as u32, part.shape, part.translation);
+            engine.insert(part.copy as u32, part.pose, part.translation);
             placed.push(Some(Placed {
                 bin: 0,
-                shape: part.shape,
+                pose: part.pose,
                 translation: part.translation,
-                right: part.translation.x + self.orientations[part.shape].max.x,
+                right: part.translation.x + self.bounds(part.pose).1.x,
             }));
         }
         Solution {
@@ -168,7 +168,7 @@ pub(super) fn parts_of(solution: &Solution<JaguaEngine>) -> Vec<Part> {
         .filter_map(|(placed, &copy)| {
             placed.map(|placed| Part {
                 copy,
-                shape: placed.shape,
+                pose: placed.pose,
                 translation: placed.translation,
             })
         })
@@ -190,8 +190,11 @@ fn half_normal(random: &mut SplitMix64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::nest::NestItem;
+    use crate::nest::collision::Pose;
     use crate::nest::layout::StopReason;
     use crate::nest::options::NestOptions;
+    use crate::nest::rotations::Rotations;
     use crate::nest::stock::Stock;
     use crate::nest::verify::tests::square;
     use crate::nest::verify::verify;
@@ -209,7 +212,7 @@ mod tests {
         (0..4)
             .map(|copy| Part {
                 copy,
-                shape: problem.item_shapes[0][0],
+                pose: Pose::upright(problem.item_shapes[0][0]),
                 translation: at(copy as f64),
             })
             .collect()
@@ -242,6 +245,60 @@ mod tests {
         let violations = verify(&items, &layout);
         assert!(violations.is_empty(), "{violations:?}");
         assert!(layout.used_length <= 40.0 + 1e-9);
+    }
+
+    /// A bar 13.6 × 0.2 mm free to rotate, on a strip 8.45 mm wide cut to 11.2 mm: it fits only
+    /// turned by 35.9° to 37.5° (or those plus 180°, or mirrored about either axis), between the
+    /// sampled orientations every 15°, so the separator must turn it continuously. On the same
+    /// strip a bar limited to the 24 sampled orientations cannot be separated.
+    #[test]
+    fn the_separator_turns_a_part_free_to_rotate_between_its_sampled_orientations() {
+        let bar = |rotations: Rotations| NestItem {
+            name: "bar".to_string(),
+            outer: vec![
+                DVec2::ZERO,
+                DVec2::new(13.6, 0.0),
+                DVec2::new(13.6, 0.2),
+                DVec2::new(0.0, 0.2),
+            ],
+            holes: Vec::new(),
+            quantity: 1,
+            rotations,
+            mirror_allowed: false,
+            grain_degrees: None,
+        };
+        let limits = Limits {
+            rounds: 200,
+            strikes: 5,
+        };
+        let separated = |item: NestItem| {
+            let items = vec![item];
+            let options = roll(8.45);
+            let problem = Problem::new(&items, &options).expect("valid problem");
+            let start = vec![Part {
+                copy: 0,
+                pose: Pose::upright(problem.item_shapes[0][0]),
+                translation: DVec2::new(0.1, 0.1),
+            }];
+            let mut separator = Separator::new(&problem, start, 11.2);
+            let loss = separator.separate(limits, &mut SplitMix64(3), 20_000_000, &mut |_| false);
+            let solution = problem.solution_of(&separator.parts, separator.used_length());
+            let fill = problem.fill_holes();
+            let layout = problem.layout(&solution, &fill, 0, 0, StopReason::WorkBudget);
+            let violations = verify(&items, &layout);
+            (loss, layout, violations)
+        };
+        let (loss, layout, violations) = separated(bar(Rotations::Free));
+        assert_eq!(loss, 0.0);
+        assert!(violations.is_empty(), "{violations:?}");
+        assert!(layout.used_length <= 11.2, "{}", layout.used_length);
+        let angle = layout.sheets[0].placements[0]
+            .rotation_degrees
+            .rem_euclid(180.0);
+        let tilt = angle.min(180.0 - angle);
+        assert!((35.8..=37.6).contains(&tilt), "turned by {angle}°");
+        let (loss, ..) = separated(bar(Rotations::Step(15.0)));
+        assert!(loss > 0.0);
     }
 
     /// Compression of a loose layout (four 10 mm squares in one row on a roll wide enough for two
@@ -279,7 +336,7 @@ mod tests {
         let parts: Vec<Part> = (0..6)
             .map(|copy| Part {
                 copy,
-                shape: problem.item_shapes[0][0],
+                pose: Pose::upright(problem.item_shapes[0][0]),
                 translation: DVec2::new(0.1 + 12.0 * copy as f64, 0.1),
             })
             .collect();
@@ -291,7 +348,7 @@ mod tests {
             let places: Vec<(usize, [u64; 2])> = (compressed.placed.iter().flatten())
                 .map(|placed| {
                     let t = placed.translation;
-                    (placed.shape, [t.x.to_bits(), t.y.to_bits()])
+                    (placed.pose.shape, [t.x.to_bits(), t.y.to_bits()])
                 })
                 .collect();
             (places, work)

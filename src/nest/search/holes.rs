@@ -20,7 +20,7 @@ use glam::DVec2;
 use super::compaction::{COMPACTION_STEP_FRACTION, compact};
 use super::problem::Problem;
 use crate::geometry::{bounding_box, signed_area};
-use crate::nest::collision::{CollisionEngine, JaguaEngine, ShapeId};
+use crate::nest::collision::{CollisionEngine, JaguaEngine, Pose, ShapeId};
 use crate::nest::layout::Placement;
 
 /// Grid intervals per axis (so `HOLE_GRID + 1` points) tried for a copy in a hole.
@@ -68,7 +68,7 @@ impl Problem<'_> {
                     }
                     match self.position_in_hole(&mut engine, host_item, guest_item, hole) {
                         Some((shape, translation)) => {
-                            engine.insert(guest as u32, shape, translation);
+                            engine.insert(guest as u32, Pose::upright(shape), translation);
                             is_guest[guest] = true;
                             guests[host].push(Guest {
                                 copy: guest,
@@ -124,9 +124,13 @@ impl Problem<'_> {
     }
 
     /// Whether a guest in oriented shape `shape`, relative to its host, has an allowed pose
-    /// whatever allowed pose the host (a copy of `host_item`) takes.
+    /// whatever allowed pose the host (a copy of `host_item`) takes: a host free to rotate, which
+    /// the search through overlap turns to any angle, only takes guests free to rotate too.
     fn allowed_under_every_host_pose(&self, host_item: usize, shape: ShapeId) -> bool {
         let guest = &self.orientations[shape];
+        if self.turns[host_item] && !self.turns[guest.item] {
+            return false;
+        }
         let relative = Placement {
             item: guest.item,
             copy: 0,

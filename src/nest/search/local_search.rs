@@ -10,7 +10,7 @@ use super::placement::Pass;
 use super::problem::{LENGTH_TOLERANCE_RELATIVE, Problem};
 use super::random::SplitMix64;
 use super::solution::{Placed, Solution};
-use crate::nest::collision::{CollisionEngine, JaguaEngine};
+use crate::nest::collision::{CollisionEngine, JaguaEngine, Pose};
 use crate::nest::errors::NestError;
 use crate::nest::layout::{NestLayout, StopReason};
 use crate::progress::Progress;
@@ -224,11 +224,12 @@ impl Problem<'_> {
             if moved_right >= right - tolerance {
                 return;
             }
-            engine.insert(copy as u32, shape, translation);
+            let pose = Pose::upright(shape);
+            engine.insert(copy as u32, pose, translation);
             best.bins[0] = engine;
             best.placed[position] = Some(Placed {
                 bin: 0,
-                shape,
+                pose,
                 translation,
                 right: moved_right,
             });

@@ -5,7 +5,7 @@ use super::holes::Guest;
 use super::problem::Problem;
 use super::solution::Solution;
 use crate::nest::collision::JaguaEngine;
-use crate::nest::layout::{NestLayout, Placement, SheetLayout, StopReason};
+use crate::nest::layout::{NestLayout, SheetLayout, StopReason};
 
 impl Problem<'_> {
     /// Converts a solution into the public layout, measured in exact geometry.
@@ -32,14 +32,7 @@ impl Problem<'_> {
             {
                 let copy_index = solution.order[position];
                 let copy = self.copies[copy_index];
-                let orientation = &self.orientations[placed.shape];
-                let placement = Placement {
-                    item: copy.item,
-                    copy: copy.copy,
-                    rotation_degrees: orientation.rotation_degrees,
-                    mirrored: orientation.mirrored,
-                    translation: placed.translation,
-                };
+                let placement = self.placement(copy, placed.pose, placed.translation);
                 let item = &self.items[copy.item];
                 far_edge = placement
                     .transform_ring(&item.outer)

@@ -10,7 +10,7 @@ use super::compaction::{COMPACTION_STEP_FRACTION, compact};
 use super::problem::{CLEARANCE_RELATIVE, LENGTH_TOLERANCE_RELATIVE, Problem};
 use super::random::SplitMix64;
 use super::solution::{Placed, Solution};
-use crate::nest::collision::{CollisionEngine, JaguaEngine, ShapeId};
+use crate::nest::collision::{CollisionEngine, JaguaEngine, Pose, ShapeId};
 
 /// Random positions tried per orientation of a copy.
 pub const SAMPLES_PER_ORIENTATION: usize = 200;
@@ -65,7 +65,7 @@ impl Problem<'_> {
                 {
                     found = Some(Placed {
                         bin,
-                        shape,
+                        pose: Pose::upright(shape),
                         translation,
                         right,
                     });
@@ -80,7 +80,7 @@ impl Problem<'_> {
                 let work = spent(&solution.bins);
                 return (None, work);
             };
-            solution.bins[placed.bin].insert(copy as u32, placed.shape, placed.translation);
+            solution.bins[placed.bin].insert(copy as u32, placed.pose, placed.translation);
             fronts[placed.bin] = fronts[placed.bin].max(placed.right);
             solution.placed.push(Some(placed));
         }

@@ -8,11 +8,12 @@ use glam::DVec2;
 
 use super::validation::{rotation_error, too_large, validate_outline, validate_stock};
 use crate::geometry::{bounding_box, signed_area};
-use crate::nest::collision::{ShapeId, ShapeLibrary};
+use crate::nest::collision::{Pose, ShapeId, ShapeLibrary};
 use crate::nest::errors::NestError;
 use crate::nest::item::NestItem;
 use crate::nest::layout::Placement;
 use crate::nest::options::NestOptions;
+use crate::nest::rotations::{FREE_ROTATION_SAMPLES, Rotations};
 
 /// Clearance (relative to the stock scale) kept from the stock edge and from the front, above the
 /// shapes' inflation, so that a candidate is not rejected for touching after f32 rounding.
@@ -20,6 +21,10 @@ pub(super) const CLEARANCE_RELATIVE: f64 = 1e-6;
 /// Two lengths closer than this (relative to the stock scale) are equal when the search compares
 /// right edges, bottom edges and used lengths; squared, two areas left out.
 pub(super) const LENGTH_TOLERANCE_RELATIVE: f64 = 1e-9;
+/// How far the search through overlap turns a part free to rotate from its nearest sampled
+/// orientation, either way, radians: half the step between the [`FREE_ROTATION_SAMPLES`]
+/// orientations, so that a sampled orientation and a turn reach every angle.
+pub(super) const TURN_RANGE: f64 = std::f64::consts::PI / FREE_ROTATION_SAMPLES as f64;
 
 /// One copy of an item in one orientation, in the item's rotated frame.
 #[derive(Debug, Clone)]
@@ -45,6 +50,9 @@ pub(crate) struct Problem<'a> {
     pub(super) options: &'a NestOptions,
     pub(super) orientations: Vec<Orientation>,
     pub(super) item_shapes: Vec<Vec<ShapeId>>,
+    /// Per item, whether it is free to rotate ([`Rotations::Free`], no grain): the search
+    /// through overlap then turns it to any angle, not only to its sampled orientations.
+    pub(super) turns: Vec<bool>,
     pub(super) copies: Vec<PartCopy>,
     pub(super) library: Arc<ShapeLibrary>,
     /// Stock extent along y (sheet height or roll width) and, for sheets, along x.
@@ -138,16 +146,50 @@ impl<'a> Problem<'a> {
                 .then(a.item.cmp(&b.item))
                 .then(a.copy.cmp(&b.copy))
         });
+        let turns = (items.iter())
+            .map(|item| item.grain_degrees.is_none() && item.rotations == Rotations::Free)
+            .collect();
         Ok(Self {
             items,
             options,
             orientations,
             item_shapes,
+            turns,
             copies,
             library: Arc::new(library),
             height,
             sheet_width,
             scale,
         })
+    }
+}
+
+impl Problem<'_> {
+    /// Bounding box (min, max) of the inflated shape of `pose`, in its own coordinates (the
+    /// orientation's, for an upright pose).
+    pub(super) fn bounds(&self, pose: Pose) -> (DVec2, DVec2) {
+        if pose.is_upright() {
+            let orientation = &self.orientations[pose.shape];
+            (orientation.min, orientation.max)
+        } else {
+            self.library.turned_bounds(pose.shape, pose.turn)
+        }
+    }
+
+    /// The placement of `copy` in `pose` translated by `translation`.
+    pub(super) fn placement(&self, copy: PartCopy, pose: Pose, translation: DVec2) -> Placement {
+        let orientation = &self.orientations[pose.shape];
+        let rotation_degrees = if pose.is_upright() {
+            orientation.rotation_degrees
+        } else {
+            (orientation.rotation_degrees + pose.turn.to_degrees()).rem_euclid(360.0)
+        };
+        Placement {
+            item: copy.item,
+            copy: copy.copy,
+            rotation_degrees,
+            mirrored: orientation.mirrored,
+            translation,
+        }
     }
 }

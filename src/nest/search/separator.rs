@@ -15,11 +15,13 @@ use std::sync::Arc;
 use glam::DVec2;
 use rayon::prelude::*;
 
-use super::problem::{CLEARANCE_RELATIVE, Problem};
+use super::problem::{CLEARANCE_RELATIVE, Problem, TURN_RANGE};
 use super::random::SplitMix64;
-use crate::nest::collision::{CollisionEngine, JaguaEngine, Obstacle, ShapeId};
+use crate::nest::collision::{CollisionEngine, JaguaEngine, Obstacle, Pose};
 
-/// Random positions tried anywhere in the strip per move, in a random allowed orientation.
+/// Random positions tried anywhere in the strip per move, in a random allowed orientation (for
+/// a part free to rotate, half of them turned by a random angle within [`TURN_RANGE`] of it, the
+/// other half upright: parts that fit best square to each other keep finding those poses).
 pub const GLOBAL_SAMPLES: usize = 24;
 /// Random positions tried near the part's position per move (its orientation or another).
 pub const LOCAL_SAMPLES: usize = 24;
@@ -28,6 +30,11 @@ pub const LOCAL_SAMPLES: usize = 24;
 pub const REFINED: usize = 3;
 /// First step of the coordinate descent, as a fraction of the part's bounding box (0.25 did worse).
 pub const DESCENT_FIRST_STEP: f64 = 0.1;
+/// First turn of the coordinate descent of a part free to rotate, radians per unit of
+/// [`DESCENT_FIRST_STEP`]: a turn by `DESCENT_FIRST_STEP × DESCENT_TURN` (5.7°) moves the far
+/// end of a part about half as far as the first translation step. It grows and halves with the
+/// translation step.
+pub const DESCENT_TURN: f64 = 1.0;
 /// Growth of the coordinate descent's step after a step that lowered the overlap (it halves after
 /// one that did not), so that a part slides far along a long slope in few queries. (1 before: the
 /// step only halved; 1.25 and 2 did worse on shirts than 1.5.)
@@ -55,7 +62,7 @@ pub const OVERLAP_QUERY_WORK: u64 = 2;
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Part {
     pub(super) copy: usize,
-    pub(super) shape: ShapeId,
+    pub(super) pose: Pose,
     pub(super) translation: DVec2,
 }
 
@@ -125,7 +132,7 @@ impl<'p, 'a> Separator<'p, 'a> {
         )
         .expect("the strip is longer than the gap");
         for (index, part) in parts.iter().enumerate() {
-            engine.insert(index as u32, part.shape, part.translation);
+            engine.insert(index as u32, part.pose, part.translation);
         }
         engine
     }
@@ -160,13 +167,13 @@ impl<'p, 'a> Separator<'p, 'a> {
     /// Right end of the parts (inflated outlines).
     pub(super) fn used_length(&self) -> f64 {
         (self.parts.iter())
-            .map(|part| part.translation.x + self.problem.orientations[part.shape].max.x)
+            .map(|part| part.translation.x + self.problem.bounds(part.pose).1.x)
             .fold(0.0, f64::max)
     }
 
-    /// Range of translations that keep `shape` inside the strip.
-    fn range(&self, shape: ShapeId) -> (DVec2, DVec2) {
-        strip_range(self.problem, self.length, shape)
+    /// Range of translations that keep `pose` inside the strip.
+    fn range(&self, pose: Pose) -> (DVec2, DVec2) {
+        strip_range(self.problem, self.length, pose)
     }
 
     /// Cuts the strip to `length`: the parts whose centre lies right of `split` move left by the
@@ -176,11 +183,11 @@ impl<'p, 'a> Separator<'p, 'a> {
         let mut parts = self.parts.clone();
         self.length = length;
         for part in &mut parts {
-            let orientation = &self.problem.orientations[part.shape];
-            if part.translation.x + (orientation.min.x + orientation.max.x) / 2.0 > split {
+            let (min, max) = self.problem.bounds(part.pose);
+            if part.translation.x + (min.x + max.x) / 2.0 > split {
                 part.translation.x -= delta;
             }
-            let (low, high) = self.range(part.shape);
+            let (low, high) = self.range(part.pose);
             part.translation = part.translation.clamp(low, high);
         }
         self.reset(&parts, length, true);
@@ -219,15 +226,15 @@ impl<'p, 'a> Separator<'p, 'a> {
             others[random.below(others.len())]
         };
         let centre = |part: &Part| {
-            let orientation = &problem.orientations[part.shape];
-            (orientation.min + orientation.max) / 2.0
+            let (min, max) = problem.bounds(part.pose);
+            (min + max) / 2.0
         };
         let mut parts = self.parts.clone();
         let (a, b) = (parts[first], parts[second]);
         parts[first].translation = b.translation + centre(&b) - centre(&a);
         parts[second].translation = a.translation + centre(&a) - centre(&b);
         for index in [first, second] {
-            let (low, high) = self.range(parts[index].shape);
+            let (low, high) = self.range(parts[index].pose);
             parts[index].translation = parts[index].translation.clamp(low, high);
         }
         self.reset(&parts, self.length, false);
@@ -412,20 +419,21 @@ fn move_part(
     let part = parts[index];
     let item = problem.copies[part.copy].item;
     let shapes = &problem.item_shapes[item];
+    let turns = problem.turns[item];
     engine.remove(index as u32);
     let n = parts.len();
     let weight = move |obstacle: Obstacle| match obstacle {
         Obstacle::Edge => weights[n * n + index],
         Obstacle::Part(other) => weights[index * n + other as usize],
     };
-    let this_range = |shape: ShapeId| strip_range(problem, length, shape);
-    let mut evaluate = |shape: ShapeId, translation: DVec2, bound: f64| {
-        engine.overlap(shape, translation, bound, weight)
+    let this_range = |pose: Pose| strip_range(problem, length, pose);
+    let mut evaluate = |pose: Pose, translation: DVec2, bound: f64| {
+        engine.overlap(pose, translation, bound, weight)
     };
     let current = (
-        part.shape,
+        part.pose,
         part.translation,
-        evaluate(part.shape, part.translation, f64::INFINITY),
+        evaluate(part.pose, part.translation, f64::INFINITY),
     );
     // The REFINED least overlapping positions so far (the current one among them), least first.
     let mut candidates = vec![current];
@@ -436,17 +444,26 @@ fn move_part(
             candidates[candidates.len() - 1].2
         }
     };
-    let current_size = problem.orientations[part.shape].max - problem.orientations[part.shape].min;
+    let current_size = {
+        let (min, max) = problem.bounds(part.pose);
+        max - min
+    };
     for sample in 0..GLOBAL_SAMPLES + LOCAL_SAMPLES {
         if candidates[0].2 <= 0.0 {
             break;
         }
-        let shape = if sample < GLOBAL_SAMPLES || random.below(4) == 0 {
-            shapes[random.below(shapes.len())]
+        let pose = if sample < GLOBAL_SAMPLES || random.below(4) == 0 {
+            let shape = shapes[random.below(shapes.len())];
+            let turn = if turns && random.below(2) == 0 {
+                (2.0 * random.unit() - 1.0) * TURN_RANGE
+            } else {
+                0.0
+            };
+            Pose { shape, turn }
         } else {
-            part.shape
+            part.pose
         };
-        let (low, high) = this_range(shape);
+        let (low, high) = this_range(pose);
         let translation = if sample < GLOBAL_SAMPLES {
             low + DVec2::new(random.unit(), random.unit()) * (high - low)
         } else {
@@ -454,10 +471,10 @@ fn move_part(
             (part.translation + jitter).clamp(low, high)
         };
         let limit = bound(&candidates);
-        let overlap = evaluate(shape, translation, limit);
+        let overlap = evaluate(pose, translation, limit);
         if overlap < limit {
             let rank = candidates.partition_point(|candidate| candidate.2 <= overlap);
-            candidates.insert(rank, (shape, translation, overlap));
+            candidates.insert(rank, (pose, translation, overlap));
             candidates.truncate(REFINED);
         }
     }
@@ -466,64 +483,113 @@ fn move_part(
         if best.2 <= 0.0 {
             break;
         }
-        let refined = descend(problem, length, candidate, random, &mut evaluate);
+        let refined = descend(problem, length, candidate, turns, random, &mut evaluate);
         if refined.2 < best.2 {
             best = refined;
         }
     }
-    parts[index].shape = best.0;
+    parts[index].pose = best.0;
     parts[index].translation = best.1;
     engine.insert(index as u32, best.0, best.1);
 }
 
-/// A candidate position of a moving part: its orientation, translation and weighted overlap.
-type Candidate = (ShapeId, DVec2, f64);
+/// A candidate position of a moving part: its pose, translation and weighted overlap.
+type Candidate = (Pose, DVec2, f64);
 
-/// Coordinate descent from `start`: a step along ±x or ±y (tried from a random one of the four,
-/// so that no direction is favoured) is taken when it lowers the overlap, then the step grows by
-/// [`DESCENT_GROWTH`]; when none does, it halves, down to 1/1000 of the part's size. Each
-/// evaluation is bounded by the overlap of the current position.
+/// A move of the coordinate descent: a translation, or (for a part free to rotate) a turn.
+#[derive(Debug, Clone, Copy)]
+enum Step {
+    /// Along this unit direction, by the translation step.
+    Along(DVec2),
+    /// Counter-clockwise about the part's centre by the turn step, times this sign.
+    Turn(f64),
+}
+
+/// Coordinate descent from `start`: a step along ±x or ±y, or for a part free to rotate
+/// (`turns`) a turn either way about its centre (tried from a random one, so that no move is
+/// favoured) is taken when it lowers the overlap, then the steps grow by [`DESCENT_GROWTH`];
+/// when none does, they halve, down to 1/1000 of the part's size. Each evaluation is bounded by
+/// the overlap of the current position.
 fn descend(
     problem: &Problem,
     length: f64,
     start: Candidate,
+    turns: bool,
     random: &mut SplitMix64,
-    evaluate: &mut impl FnMut(ShapeId, DVec2, f64) -> f64,
+    evaluate: &mut impl FnMut(Pose, DVec2, f64) -> f64,
 ) -> Candidate {
     let mut best = start;
-    let (low, high) = strip_range(problem, length, best.0);
-    let size = problem.orientations[best.0].max - problem.orientations[best.0].min;
+    let mut range = strip_range(problem, length, best.0);
+    let size = {
+        let (min, max) = problem.bounds(best.0);
+        max - min
+    };
     let mut step = size * DESCENT_FIRST_STEP;
-    let mut directions = [DVec2::X, DVec2::NEG_X, DVec2::Y, DVec2::NEG_Y];
+    let mut turn_step = DESCENT_FIRST_STEP * DESCENT_TURN;
+    let translations = [DVec2::X, DVec2::NEG_X, DVec2::Y, DVec2::NEG_Y].map(Step::Along);
+    let mut moves: Vec<Step> = translations.to_vec();
+    if turns {
+        moves.extend([Step::Turn(1.0), Step::Turn(-1.0)]);
+    }
     while best.2 > 0.0 && step.max_element() > size.max_element() * 1e-3 {
         let mut moved = false;
-        let first = random.below(4);
-        directions.rotate_left(first);
-        for direction in directions {
-            let translation = (best.1 + direction * step).clamp(low, high);
-            let overlap = evaluate(best.0, translation, best.2);
+        let first = random.below(moves.len());
+        moves.rotate_left(first);
+        for &candidate_step in &moves {
+            let (pose, translation) = match candidate_step {
+                Step::Along(direction) => {
+                    (best.0, (best.1 + direction * step).clamp(range.0, range.1))
+                }
+                Step::Turn(sign) => turned(problem, length, (best.0, best.1), sign * turn_step),
+            };
+            let overlap = evaluate(pose, translation, best.2);
             if overlap < best.2 {
-                best = (best.0, translation, overlap);
+                if pose != best.0 {
+                    range = strip_range(problem, length, pose);
+                }
+                best = (pose, translation, overlap);
                 moved = true;
                 break;
             }
         }
-        step *= if moved { DESCENT_GROWTH } else { 0.5 };
+        let factor = if moved { DESCENT_GROWTH } else { 0.5 };
+        step *= factor;
+        turn_step *= factor;
     }
     best
+}
+
+/// The pose and translation of a part at `(pose, translation)` turned further by `angle`
+/// radians about the centre of its bounding box, kept inside a strip `length` long.
+fn turned(
+    problem: &Problem,
+    length: f64,
+    (pose, translation): (Pose, DVec2),
+    angle: f64,
+) -> (Pose, DVec2) {
+    let (min, max) = problem.bounds(pose);
+    let centre = (min + max) / 2.0;
+    let turned = Pose {
+        turn: pose.turn + angle,
+        ..pose
+    };
+    let moved = translation + centre - DVec2::from_angle(angle).rotate(centre);
+    let (low, high) = strip_range(problem, length, turned);
+    (turned, moved.clamp(low, high))
 }
 
 /// Moves part `index` in `engine` from `current` to `target`, when they differ.
 fn move_to(engine: &mut JaguaEngine, index: usize, current: &Part, target: &Part) {
     if !same_place(current, target) {
         engine.remove(index as u32);
-        engine.insert(index as u32, target.shape, target.translation);
+        engine.insert(index as u32, target.pose, target.translation);
     }
 }
 
-/// Whether two parts lie at the same place in the same orientation (bit for bit).
+/// Whether two parts lie at the same place in the same pose (bit for bit).
 fn same_place(a: &Part, b: &Part) -> bool {
-    a.shape == b.shape
+    a.pose.shape == b.pose.shape
+        && a.pose.turn.to_bits() == b.pose.turn.to_bits()
         && a.translation.x.to_bits() == b.translation.x.to_bits()
         && a.translation.y.to_bits() == b.translation.y.to_bits()
 }
@@ -533,7 +599,7 @@ fn same_place(a: &Part, b: &Part) -> bool {
 fn collisions_of(engine: &mut JaguaEngine, parts: &[Part]) -> Vec<Collision> {
     let mut found = Vec::new();
     for (index, part) in parts.iter().enumerate() {
-        let overlaps = engine.overlaps(part.shape, part.translation, Some(index as u32));
+        let overlaps = engine.overlaps(part.pose, part.translation, Some(index as u32));
         for (obstacle, overlap) in overlaps {
             if matches!(obstacle, Obstacle::Part(other) if (other as usize) < index) {
                 continue;
@@ -566,7 +632,7 @@ fn collisions_after(
         .collect();
     for &index in moved {
         let part = parts[index];
-        let overlaps = engine.overlaps(part.shape, part.translation, Some(index as u32));
+        let overlaps = engine.overlaps(part.pose, part.translation, Some(index as u32));
         for (obstacle, overlap) in overlaps {
             match obstacle {
                 Obstacle::Edge => found.push((index, obstacle, overlap)),
@@ -591,12 +657,12 @@ fn collisions_after(
     found
 }
 
-/// Range of translations that keep `shape` inside a strip `length` long.
-pub(super) fn strip_range(problem: &Problem, length: f64, shape: ShapeId) -> (DVec2, DVec2) {
+/// Range of translations that keep `pose` inside a strip `length` long.
+pub(super) fn strip_range(problem: &Problem, length: f64, pose: Pose) -> (DVec2, DVec2) {
     let inset = problem.library.inflation() + CLEARANCE_RELATIVE * problem.scale;
-    let orientation = &problem.orientations[shape];
-    let low = DVec2::splat(inset) - orientation.min;
-    let high = DVec2::new(length, problem.height) - DVec2::splat(inset) - orientation.max;
+    let (min, max) = problem.bounds(pose);
+    let low = DVec2::splat(inset) - min;
+    let high = DVec2::new(length, problem.height) - DVec2::splat(inset) - max;
     (low, high.max(low))
 }
 
@@ -625,7 +691,7 @@ mod tests {
         let parts: Vec<Part> = (0..8)
             .map(|copy| Part {
                 copy,
-                shape: problem.item_shapes[0][0],
+                pose: Pose::upright(problem.item_shapes[0][0]),
                 translation: DVec2::new(1.0 + 3.0 * copy as f64, 1.0 + (copy % 3) as f64),
             })
             .collect();

@@ -20,7 +20,7 @@ use super::problem::{LENGTH_TOLERANCE_RELATIVE, Problem};
 use super::random::SplitMix64;
 use super::separator::{Limits, Part, Separator, strip_range};
 use super::solution::{Placed, Solution};
-use crate::nest::collision::{CollisionEngine, JaguaEngine, ShapeId};
+use crate::nest::collision::{CollisionEngine, JaguaEngine, Pose, ShapeId};
 
 /// Largest share of the budget of the search through overlap spent on emptying the last sheet.
 pub const SHEET_REDUCTION_SHARE: f64 = 0.5;
@@ -176,7 +176,7 @@ impl Problem<'_> {
         let area = |part: &Part| self.items[self.copies[part.copy].item].area();
         let alone_right = |part: &Part| {
             let alone = self.alone_at_left(part);
-            alone.translation.x + self.orientations[alone.shape].max.x
+            alone.translation.x + self.bounds(alone.pose).1.x
         };
         let mut traded = false;
         'trades: while sheets.len() > 1 {
@@ -205,14 +205,14 @@ impl Problem<'_> {
             });
             for (sheet, index) in offers {
                 let narrow = sheets[sheet][index];
-                let (low, high) = strip_range(self, width, wide.shape);
+                let (low, high) = strip_range(self, width, wide.pose);
                 let mut earlier = sheets[sheet].clone();
                 earlier[index] = Part {
                     translation: low + DVec2::new(random.unit(), random.unit()) * (high - low),
                     ..wide
                 };
                 let turned = self.alone_at_left(&narrow);
-                let (low, high) = strip_range(self, right, turned.shape);
+                let (low, high) = strip_range(self, right, turned.pose);
                 let mut later = sheets[last].clone();
                 later[widest] = Part {
                     translation: wide.translation.clamp(low, high),
@@ -256,10 +256,11 @@ impl Problem<'_> {
         let shapes = &self.item_shapes[self.copies[part.copy].item];
         let shape = (shapes.iter().copied())
             .min_by(|&a, &b| extent(a).total_cmp(&extent(b)).then(a.cmp(&b)))
-            .unwrap_or(part.shape);
+            .unwrap_or(part.pose.shape);
+        let pose = Pose::upright(shape);
         Part {
-            shape,
-            translation: strip_range(self, width, shape).0,
+            pose,
+            translation: strip_range(self, width, pose).0,
             ..*part
         }
     }
@@ -295,7 +296,7 @@ impl Problem<'_> {
             if *work >= budget || stop(*work) {
                 return false;
             }
-            let (low, high) = strip_range(self, width, part.shape);
+            let (low, high) = strip_range(self, width, part.pose);
             let mut trial = sheets[target].clone();
             trial.push(Part {
                 translation: low + DVec2::new(random.unit(), random.unit()) * (high - low),
@@ -318,7 +319,7 @@ impl Problem<'_> {
     /// Right end of the parts of the last of `sheets` (inflated outlines).
     fn sheet_length(&self, sheets: &[Vec<Part>]) -> f64 {
         (sheets.last().into_iter().flatten())
-            .map(|part| part.translation.x + self.orientations[part.shape].max.x)
+            .map(|part| part.translation.x + self.bounds(part.pose).1.x)
             .fold(0.0, f64::max)
     }
 
@@ -334,13 +335,13 @@ impl Problem<'_> {
             )
             .expect("the sheet holds its parts");
             for part in parts {
-                engine.insert(part.copy as u32, part.shape, part.translation);
+                engine.insert(part.copy as u32, part.pose, part.translation);
                 solution.order.push(part.copy);
                 solution.placed.push(Some(Placed {
                     bin,
-                    shape: part.shape,
+                    pose: part.pose,
                     translation: part.translation,
-                    right: part.translation.x + self.orientations[part.shape].max.x,
+                    right: part.translation.x + self.bounds(part.pose).1.x,
                 }));
             }
             solution.bins.push(engine);
@@ -373,7 +374,7 @@ mod tests {
     fn square_at(problem: &Problem, copy: usize, x: f64, y: f64) -> Part {
         Part {
             copy,
-            shape: problem.item_shapes[0][0],
+            pose: Pose::upright(problem.item_shapes[0][0]),
             translation: DVec2::new(x, y),
         }
     }
@@ -441,7 +442,7 @@ mod tests {
         };
         let at = |copy: usize, x: f64, y: f64| Part {
             copy,
-            shape: problem.item_shapes[problem.copies[copy].item][0],
+            pose: Pose::upright(problem.item_shapes[problem.copies[copy].item][0]),
             translation: DVec2::new(x, y),
         };
         let (bar, square) = (copy_of(0), copy_of(1));

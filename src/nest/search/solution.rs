@@ -3,13 +3,13 @@
 
 use glam::DVec2;
 
-use crate::nest::collision::ShapeId;
+use crate::nest::collision::Pose;
 
 /// A copy as placed in a solution.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Placed {
     pub(super) bin: usize,
-    pub(super) shape: ShapeId,
+    pub(super) pose: Pose,
     pub(super) translation: DVec2,
     /// Right edge of the inflated shape.
     pub(super) right: f64,
