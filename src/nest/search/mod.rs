@@ -4,7 +4,8 @@
 //! 1. **Constructive bottom-left placement.** Copies are taken in a sequence (initially by
 //!    decreasing area). Each copy goes to the first sheet where it fits (always the one roll), at
 //!    the position that minimises its right edge, then its bottom edge. Per allowed orientation:
-//!    [`SAMPLES_PER_ORIENTATION`](placement::SAMPLES_PER_ORIENTATION) seeded uniform samples left of the current front (right of the
+//!    [`SAMPLES_PER_ORIENTATION`](placement::SAMPLES_PER_ORIENTATION) seeded uniform samples (shared among the orientations of
+//!    a copy with more than [`SAMPLED_ORIENTATIONS`](placement::SAMPLED_ORIENTATIONS)) left of the current front (right of the
 //!    front everything fits, so the front itself, at the bottom and at the top, is the fallback);
 //!    the [`COMPACTED_CANDIDATES`](placement::COMPACTED_CANDIDATES) fitting samples with the lowest right edge are slid left and down
 //!    (steps, then bisection) until they touch.

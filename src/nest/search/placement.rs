@@ -12,8 +12,12 @@ use super::random::SplitMix64;
 use super::solution::{Placed, Solution};
 use crate::nest::collision::{CollisionEngine, JaguaEngine, Pose, ShapeId};
 
-/// Random positions tried per orientation of a copy.
+/// Random positions tried per orientation of a copy with at most [`SAMPLED_ORIENTATIONS`]
+/// orientations.
 pub const SAMPLES_PER_ORIENTATION: usize = 200;
+/// A copy with more orientations than this (free rotation: 24) shares the samples of this many
+/// among them, so that a layout costs about what one of four orientations costs.
+pub const SAMPLED_ORIENTATIONS: usize = 4;
 /// How many of the fitting samples (those with the lowest right edge) are compacted.
 pub const COMPACTED_CANDIDATES: usize = 4;
 /// Samples are drawn over the height range widened by this fraction on each side and clamped, so
@@ -100,7 +104,8 @@ impl Problem<'_> {
     }
 
     /// Lowest-right-edge position found for a copy of `item` in one bin: (shape, translation,
-    /// right edge). Per orientation: [`SAMPLES_PER_ORIENTATION`] uniform samples left of the front
+    /// right edge). Per orientation: [`SAMPLES_PER_ORIENTATION`] uniform samples (shared among the
+    /// orientations when there are more than [`SAMPLED_ORIENTATIONS`]) left of the front
     /// (beyond it everything fits, so the front itself is the fallback), the
     /// [`COMPACTED_CANDIDATES`] lowest right edges among those that fit are slid left and down
     /// until they touch, and the best is kept (lowest right edge, then lowest bottom).
@@ -116,7 +121,10 @@ impl Problem<'_> {
         let inset = self.library.inflation() + clearance;
         let tolerance = LENGTH_TOLERANCE_RELATIVE * self.scale;
         let mut best: Option<(ShapeId, DVec2, f64, f64)> = None;
-        for &shape in &self.item_shapes[item] {
+        let shapes = &self.item_shapes[item];
+        let samples =
+            SAMPLES_PER_ORIENTATION * SAMPLED_ORIENTATIONS.min(shapes.len()) / shapes.len();
+        for &shape in shapes {
             let orientation = &self.orientations[shape];
             let size = orientation.max - orientation.min;
             let (u_low, v_low) = (inset, inset);
@@ -136,7 +144,7 @@ impl Problem<'_> {
                 }
             }
             let span = v_high - v_low;
-            for _ in 0..SAMPLES_PER_ORIENTATION {
+            for _ in 0..samples {
                 let u = u_low + random.unit() * (reach - u_low);
                 let widened = v_low - EDGE_SAMPLE_FRACTION * span
                     + random.unit() * (1.0 + 2.0 * EDGE_SAMPLE_FRACTION) * span;
