@@ -228,6 +228,45 @@ mod tests {
         );
     }
 
+    /// Trapezoids free to rotate, nested on sheets: the search through overlap turns some of
+    /// them between the sampled orientations (every 15°), and the layout passes the independent
+    /// check and repeats for the same seed and work.
+    #[test]
+    fn parts_free_to_rotate_are_turned_between_the_sampled_angles_on_sheets() {
+        let trapezoid = NestItem {
+            name: "trapezoid".to_string(),
+            outer: vec![
+                DVec2::ZERO,
+                DVec2::new(11.0, 0.0),
+                DVec2::new(8.0, 6.0),
+                DVec2::new(2.0, 6.0),
+            ],
+            holes: Vec::new(),
+            quantity: 14,
+            rotations: Rotations::Free,
+            mirror_allowed: false,
+            grain_degrees: None,
+        };
+        let items = [trapezoid];
+        let stock = Stock::Sheets {
+            width: 40.0,
+            height: 30.0,
+        };
+        let chosen = options(stock, 0.0, 1_500_000);
+        let layout = checked(&items, &chosen);
+        assert_eq!(layout, checked(&items, &chosen));
+        let off_the_grid = |placement: &Placement| {
+            let from_grid = placement.rotation_degrees.rem_euclid(15.0);
+            from_grid.min(15.0 - from_grid) > 1e-3
+        };
+        let placements = layout.sheets.iter().flat_map(|sheet| &sheet.placements);
+        assert!(
+            placements.clone().any(off_the_grid),
+            "{:?}",
+            placements.map(|p| p.rotation_degrees).collect::<Vec<_>>()
+        );
+    }
+
     #[test]
     fn same_seed_gives_the_same_layout() {
         let items = [
