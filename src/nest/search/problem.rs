@@ -53,6 +53,9 @@ pub(crate) struct Problem<'a> {
     /// Per item, whether it is free to rotate ([`Rotations::Free`], no grain): the search
     /// through overlap then turns it to any angle, not only to its sampled orientations.
     pub(super) turns: Vec<bool>,
+    /// Per item, its oriented shapes square to the stock (rotations that are multiples of 90°),
+    /// which the search through overlap favours for parts free to rotate.
+    pub(super) square_shapes: Vec<Vec<ShapeId>>,
     pub(super) copies: Vec<PartCopy>,
     pub(super) library: Arc<ShapeLibrary>,
     /// Stock extent along y (sheet height or roll width) and, for sheets, along x.
@@ -149,12 +152,23 @@ impl<'a> Problem<'a> {
         let turns = (items.iter())
             .map(|item| item.grain_degrees.is_none() && item.rotations == Rotations::Free)
             .collect();
+        let square_shapes = (item_shapes.iter())
+            .map(|shapes| {
+                (shapes.iter().copied())
+                    .filter(|&shape| {
+                        let quarter_turns = orientations[shape].rotation_degrees / 90.0;
+                        (quarter_turns - quarter_turns.round()).abs() < 1e-9
+                    })
+                    .collect()
+            })
+            .collect();
         Ok(Self {
             items,
             options,
             orientations,
             item_shapes,
             turns,
+            square_shapes,
             copies,
             library: Arc::new(library),
             height,

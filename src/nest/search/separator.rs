@@ -19,9 +19,8 @@ use super::problem::{CLEARANCE_RELATIVE, Problem, TURN_RANGE};
 use super::random::SplitMix64;
 use crate::nest::collision::{CollisionEngine, JaguaEngine, Obstacle, Pose};
 
-/// Random positions tried anywhere in the strip per move, in a random allowed orientation (for
-/// a part free to rotate, half of them turned by a random angle within [`TURN_RANGE`] of it, the
-/// other half upright: parts that fit best square to each other keep finding those poses).
+/// Random positions tried anywhere in the strip per move, in a random allowed orientation (for a
+/// part free to rotate, see `new_orientation`).
 pub const GLOBAL_SAMPLES: usize = 24;
 /// Random positions tried near the part's position per move (its orientation or another).
 pub const LOCAL_SAMPLES: usize = 24;
@@ -418,7 +417,6 @@ fn move_part(
     } = shared;
     let part = parts[index];
     let item = problem.copies[part.copy].item;
-    let shapes = &problem.item_shapes[item];
     let turns = problem.turns[item];
     engine.remove(index as u32);
     let n = parts.len();
@@ -453,13 +451,7 @@ fn move_part(
             break;
         }
         let pose = if sample < GLOBAL_SAMPLES || random.below(4) == 0 {
-            let shape = shapes[random.below(shapes.len())];
-            let turn = if turns && random.below(2) == 0 {
-                (2.0 * random.unit() - 1.0) * TURN_RANGE
-            } else {
-                0.0
-            };
-            Pose { shape, turn }
+            new_orientation(problem, item, random)
         } else {
             part.pose
         };
@@ -491,6 +483,24 @@ fn move_part(
     parts[index].pose = best.0;
     parts[index].translation = best.1;
     engine.insert(index as u32, best.0, best.1);
+}
+
+/// A pose in a random allowed orientation of `item`: for a part free to rotate, half the time an
+/// orientation square to the stock, upright (parts that fit best square to each other keep
+/// finding those poses), else any sampled orientation turned by a random angle within
+/// [`TURN_RANGE`] of it, so that every angle can be drawn.
+fn new_orientation(problem: &Problem, item: usize, random: &mut SplitMix64) -> Pose {
+    let (shapes, square) = (&problem.item_shapes[item], &problem.square_shapes[item]);
+    if !problem.turns[item] {
+        return Pose::upright(shapes[random.below(shapes.len())]);
+    }
+    if !square.is_empty() && random.below(2) == 0 {
+        return Pose::upright(square[random.below(square.len())]);
+    }
+    Pose {
+        shape: shapes[random.below(shapes.len())],
+        turn: (2.0 * random.unit() - 1.0) * TURN_RANGE,
+    }
 }
 
 /// A candidate position of a moving part: its pose, translation and weighted overlap.
