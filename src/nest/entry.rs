@@ -233,20 +233,13 @@ mod tests {
     /// check and repeats for the same seed and work.
     #[test]
     fn parts_free_to_rotate_are_turned_between_the_sampled_angles_on_sheets() {
-        let trapezoid = NestItem {
-            name: "trapezoid".to_string(),
-            outer: vec![
-                DVec2::ZERO,
-                DVec2::new(11.0, 0.0),
-                DVec2::new(8.0, 6.0),
-                DVec2::new(2.0, 6.0),
-            ],
-            holes: Vec::new(),
-            quantity: 14,
-            rotations: Rotations::Free,
-            mirror_allowed: false,
-            grain_degrees: None,
-        };
+        let outer = vec![
+            DVec2::ZERO,
+            DVec2::new(11.0, 0.0),
+            DVec2::new(8.0, 6.0),
+            DVec2::new(2.0, 6.0),
+        ];
+        let trapezoid = verify::tests::polygon("trapezoid", outer, 14, Rotations::Free);
         let items = [trapezoid];
         let stock = Stock::Sheets {
             width: 40.0,

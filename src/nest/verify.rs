@@ -438,17 +438,28 @@ pub(crate) mod tests {
     /// A square item of side `side` mm, in `quantity`, upright only (a fixture other nest tests
     /// share).
     pub(crate) fn square(name: &str, side: f64, quantity: u32) -> NestItem {
+        let outer = vec![
+            DVec2::ZERO,
+            DVec2::new(side, 0.0),
+            DVec2::new(side, side),
+            DVec2::new(0.0, side),
+        ];
+        polygon(name, outer, quantity, Rotations::Fixed(vec![0.0]))
+    }
+
+    /// An item with the ring `outer`, no hole, no mirroring and no grain.
+    pub(crate) fn polygon(
+        name: &str,
+        outer: Vec<DVec2>,
+        quantity: u32,
+        rotations: Rotations,
+    ) -> NestItem {
         NestItem {
             name: name.to_string(),
-            outer: vec![
-                DVec2::ZERO,
-                DVec2::new(side, 0.0),
-                DVec2::new(side, side),
-                DVec2::new(0.0, side),
-            ],
+            outer,
             holes: Vec::new(),
             quantity,
-            rotations: Rotations::Fixed(vec![0.0]),
+            rotations,
             mirror_allowed: false,
             grain_degrees: None,
         }

@@ -196,7 +196,7 @@ mod tests {
     use crate::nest::options::NestOptions;
     use crate::nest::rotations::Rotations;
     use crate::nest::stock::Stock;
-    use crate::nest::verify::tests::square;
+    use crate::nest::verify::tests::{polygon, square};
     use crate::nest::verify::verify;
 
     /// Nesting on a roll `width` wide, every other option the default.
@@ -253,19 +253,14 @@ mod tests {
     /// strip a bar limited to the 24 sampled orientations cannot be separated.
     #[test]
     fn the_separator_turns_a_part_free_to_rotate_between_its_sampled_orientations() {
-        let bar = |rotations: Rotations| NestItem {
-            name: "bar".to_string(),
-            outer: vec![
+        let bar = |rotations: Rotations| {
+            let outer = vec![
                 DVec2::ZERO,
                 DVec2::new(13.6, 0.0),
                 DVec2::new(13.6, 0.2),
                 DVec2::new(0.0, 0.2),
-            ],
-            holes: Vec::new(),
-            quantity: 1,
-            rotations,
-            mirror_allowed: false,
-            grain_degrees: None,
+            ];
+            polygon("bar", outer, 1, rotations)
         };
         let limits = Limits {
             rounds: 200,
