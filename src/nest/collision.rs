@@ -277,12 +277,18 @@ impl JaguaEngine {
             parts: Vec::new(),
         })
     }
+}
 
-    /// The shape of `pose` translated by `translation`, in the pose's scratch copy.
-    fn placed(&mut self, pose: Pose, translation: DVec2) -> &SPolygon {
-        let transform = pose.transformation(translation);
-        self.scratch[pose.shape].transform_from(&self.library.shapes[pose.shape], &transform)
-    }
+/// The library's shape of `pose` translated by `translation`, made in its `scratch` copy (one
+/// per shape: no allocation per query).
+fn place<'s>(
+    scratch: &'s mut [SPolygon],
+    library: &ShapeLibrary,
+    pose: Pose,
+    translation: DVec2,
+) -> &'s SPolygon {
+    let transform = pose.transformation(translation);
+    scratch[pose.shape].transform_from(&library.shapes[pose.shape], &transform)
 }
 
 impl CollisionEngine for JaguaEngine {
@@ -302,7 +308,7 @@ impl CollisionEngine for JaguaEngine {
     }
 
     fn insert(&mut self, key: u32, pose: Pose, translation: DVec2) {
-        let placed = Arc::new(self.placed(pose, translation).clone());
+        let placed = Arc::new(place(&mut self.scratch, &self.library, pose, translation).clone());
         self.engine
             .register_hazard(Hazard::new(Entity::Part(key), Arc::clone(&placed)));
         let hazard_key = (self.engine)
@@ -504,9 +510,7 @@ impl JaguaEngine {
         weight: impl Fn(Obstacle) -> f64,
     ) -> f64 {
         self.queries += 1;
-        let transform = pose.transformation(translation);
-        let placed: &SPolygon =
-            self.scratch[pose.shape].transform_from(&self.library.shapes[pose.shape], &transform);
+        let placed = place(&mut self.scratch, &self.library, pose, translation);
         let engine = &self.engine;
         let parts = &self.parts;
         let inside = self.inside;
@@ -535,9 +539,7 @@ impl JaguaEngine {
         ignore: Option<u32>,
     ) -> Vec<(Obstacle, f64)> {
         self.queries += 1;
-        let transform = pose.transformation(translation);
-        let placed: &SPolygon =
-            self.scratch[pose.shape].transform_from(&self.library.shapes[pose.shape], &transform);
+        let placed = place(&mut self.scratch, &self.library, pose, translation);
         self.collector.clear();
         self.engine
             .collect_poly_collisions(placed, &Ignore(ignore), &mut self.collector);
@@ -562,11 +564,16 @@ impl JaguaEngine {
     /// `key`, estimated from their poles (a lower bound; see [`pole_depth`]); 0 without that part.
     #[cfg(test)]
     pub fn depth_into(&mut self, shape: ShapeId, translation: DVec2, key: u32) -> f64 {
-        let Some(Some((_, other))) = self.parts.get(key as usize).cloned() else {
+        let placed = place(
+            &mut self.scratch,
+            &self.library,
+            Pose::upright(shape),
+            translation,
+        );
+        let Some(Some((_, other))) = self.parts.get(key as usize) else {
             return 0.0;
         };
-        let placed = self.placed(Pose::upright(shape), translation);
-        pole_depth(measured_poles(placed), measured_poles(&other))
+        pole_depth(measured_poles(placed), measured_poles(other))
     }
 
     fn overlap_with(parts: &[Option<(HazKey, Arc<SPolygon>)>], placed: &SPolygon, key: u32) -> f64 {

@@ -161,15 +161,8 @@ impl Problem<'_> {
         guests[copy]
             .iter()
             .map(|guest| {
-                let orientation = &self.orientations[guest.shape];
-                let key = self.copies[guest.copy];
-                host.compose(&Placement {
-                    item: key.item,
-                    copy: key.copy,
-                    rotation_degrees: orientation.rotation_degrees,
-                    mirrored: orientation.mirrored,
-                    translation: guest.translation,
-                })
+                let copy = self.copies[guest.copy];
+                host.compose(&self.placement(copy, Pose::upright(guest.shape), guest.translation))
             })
             .collect()
     }
