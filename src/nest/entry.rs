@@ -50,7 +50,7 @@ mod tests {
             holes: Vec::new(),
             quantity,
             rotations,
-            mirror_allowed: false,
+            mirror: None,
             grain_degrees: None,
         }
     }
@@ -155,7 +155,7 @@ mod tests {
         let mut item = rectangle(5.0, 3.0, 1, Rotations::Fixed(vec![0.0]));
         item.grain_degrees = Some(30.0);
         assert_eq!(item.poses(), Some(vec![(150.0, false), (330.0, false)]));
-        item.mirror_allowed = true;
+        item.mirror = Some(item.rotations.clone());
         let poses = item.poses().expect("valid grain");
         assert_eq!(poses.len(), 4);
         for (rotation, mirrored) in poses {

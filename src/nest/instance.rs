@@ -1,4 +1,4 @@
-//! Reader of ESICUP strip-packing instances in the JSON form of jagua-rs 0.7 and sparrow:
+//! Reader of ESICUP strip-packing instances in the JSON forms of jagua-rs and sparrow:
 //!
 //! ```json
 //! {"name": "shirts", "strip_height": 40.0,
@@ -6,10 +6,17 @@
 //!             "shape": {"type": "simple_polygon", "data": [[0.0, 0.0], [7.0, 1.0], ...]}}]}
 //! ```
 //!
-//! `strip_height` is the roll width (extent along y). A missing `allowed_orientations` means any
-//! rotation ([`Rotations::Free`]). Shapes are `simple_polygon` (`data`: the ring) or `polygon`
-//! (`data`: `{"outer": ring, "inner": [rings]}`). A repeated closing point is dropped. The serde
-//! types stay in this file; the rest of the crate sees [`NestItem`]s.
+//! `strip_height` is the roll width (extent along y). An item's rotations are given either by
+//! `allowed_orientations` (jagua-rs 0.7 and the published instances: a list of degrees, `[]`
+//! meaning `[0]`, missing meaning any rotation, [`Rotations::Free`]) or by jagua-rs's newer
+//! `orientation` object: `{"rotation": {"mode": "discrete", "angles": [0, 180]} | {"mode":
+//! "stepped", "step": 90} | {"mode": "continuous"}, "reflection_axes": [90]}`. A reflection axis
+//! at `a` degrees through the item's origin, then a rotation `r`, is the mirror x → −x then the
+//! rotation `r + 2a + 180`: the item's [`NestItem::mirror`] rotations. An item with both forms,
+//! an unknown mode or an unknown orientation field is refused, never read as free rotation.
+//! Shapes are `simple_polygon` (`data`: the ring) or `polygon` (`data`: `{"outer": ring,
+//! "inner": [rings]}`). A repeated closing point is dropped. The serde types stay in this file;
+//! the rest of the crate sees [`NestItem`]s.
 
 use std::path::Path;
 
@@ -43,8 +50,29 @@ struct ExternalItem {
     id: u64,
     demand: u32,
     allowed_orientations: Option<Vec<f64>>,
+    orientation: Option<ExternalOrientation>,
     shape: ExternalShape,
 }
+
+/// jagua-rs's `orientation` object: the rotations, and the axes the item may be reflected about.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ExternalOrientation {
+    rotation: ExternalRotation,
+    #[serde(default)]
+    reflection_axes: Vec<f64>,
+}
+
+#[derive(Deserialize)]
+#[serde(tag = "mode", rename_all = "snake_case", deny_unknown_fields)]
+enum ExternalRotation {
+    Discrete { angles: Vec<f64> },
+    Stepped { step: f64 },
+    Continuous {},
+}
+
+/// Most angles an `orientation` may list or a step may expand to (jagua-rs's limit).
+const MAX_ORIENTATION_ANGLES: usize = 65_536;
 
 #[derive(Deserialize)]
 #[serde(tag = "type", content = "data", rename_all = "snake_case")]
@@ -82,6 +110,9 @@ pub fn parse_instance(text: &str) -> Result<Instance, String> {
         .items
         .into_iter()
         .map(|item| {
+            let name = format!("{}/{}", external.name, item.id);
+            let (rotations, mirror) = item_rotations(item.allowed_orientations, item.orientation)
+                .map_err(|reason| format!("item {}: {reason}", item.id))?;
             let (outer, holes) = match item.shape {
                 ExternalShape::SimplePolygon(ring) => (ring_points(&ring), Vec::new()),
                 ExternalShape::Polygon { outer, inner } => (
@@ -89,24 +120,97 @@ pub fn parse_instance(text: &str) -> Result<Instance, String> {
                     inner.iter().map(|ring| ring_points(ring)).collect(),
                 ),
             };
-            NestItem {
-                name: format!("{}/{}", external.name, item.id),
+            Ok(NestItem {
+                name,
                 outer,
                 holes,
                 quantity: item.demand,
-                rotations: item
-                    .allowed_orientations
-                    .map_or(Rotations::Free, Rotations::Fixed),
-                mirror_allowed: false,
+                rotations,
+                mirror,
                 grain_degrees: None,
-            }
+            })
         })
-        .collect();
+        .collect::<Result<_, String>>()?;
     Ok(Instance {
         name: external.name,
         items,
         strip_height: external.strip_height,
     })
+}
+
+/// An item's rotations, and those of its mirrored copies (`None`: not mirrored), from either
+/// form of the instance file.
+fn item_rotations(
+    allowed_orientations: Option<Vec<f64>>,
+    orientation: Option<ExternalOrientation>,
+) -> Result<(Rotations, Option<Rotations>), String> {
+    match (allowed_orientations, orientation) {
+        (Some(_), Some(_)) => {
+            Err("give either `allowed_orientations` or `orientation`, not both".to_string())
+        }
+        (None, None) => Ok((Rotations::Free, None)),
+        (Some(angles), None) if angles.is_empty() => Ok((Rotations::Fixed(vec![0.0]), None)),
+        (Some(angles), None) => Ok((Rotations::Fixed(angles), None)),
+        (None, Some(orientation)) => {
+            let rotations = match orientation.rotation {
+                ExternalRotation::Discrete { angles } => discrete(angles)?,
+                ExternalRotation::Stepped { step } => stepped(step)?,
+                ExternalRotation::Continuous {} => Rotations::Free,
+            };
+            let mirror = reflected(&rotations, &orientation.reflection_axes)?;
+            Ok((rotations, mirror))
+        }
+    }
+}
+
+/// A `discrete` rotation: a finite, nonempty list of at most [`MAX_ORIENTATION_ANGLES`].
+fn discrete(angles: Vec<f64>) -> Result<Rotations, String> {
+    if angles.is_empty() || angles.len() > MAX_ORIENTATION_ANGLES {
+        return Err(format!(
+            "a discrete rotation lists {} angles: give 1 to {MAX_ORIENTATION_ANGLES}",
+            angles.len()
+        ));
+    }
+    if let Some(angle) = angles.iter().find(|angle| !angle.is_finite()) {
+        return Err(format!("the rotation angle {angle} is not a finite number"));
+    }
+    Ok(Rotations::Fixed(angles))
+}
+
+/// A `stepped` rotation: its step must divide 360° (as jagua-rs requires: 90 and 0.1 do, 7 does
+/// not) into at most [`MAX_ORIENTATION_ANGLES`] rotations.
+fn stepped(step: f64) -> Result<Rotations, String> {
+    let count = (360.0 / step).round();
+    let divides = step > 0.0
+        && step <= 360.0
+        && (count * step - 360.0).abs() <= 360.0 * f64::from(f32::EPSILON);
+    if !divides || count > MAX_ORIENTATION_ANGLES as f64 {
+        return Err(format!(
+            "the rotation step {step}° does not divide 360° into at most \
+             {MAX_ORIENTATION_ANGLES} rotations"
+        ));
+    }
+    Ok(Rotations::Step(360.0 / count))
+}
+
+/// The rotations of the copies mirrored (x → −x) before their rotation, for reflections about
+/// `axes` (degrees, through the item's origin) before `rotations`: a reflection about the axis at
+/// `a` equals the mirror x → −x followed by a turn of `2a + 180`. `None` without axes.
+fn reflected(rotations: &Rotations, axes: &[f64]) -> Result<Option<Rotations>, String> {
+    if axes.len() > MAX_ORIENTATION_ANGLES {
+        return Err(format!(
+            "{} reflection axes: give at most {MAX_ORIENTATION_ANGLES}",
+            axes.len()
+        ));
+    }
+    if let Some(axis) = axes.iter().find(|axis| !axis.is_finite()) {
+        return Err(format!("the reflection axis {axis} is not a finite number"));
+    }
+    let turned: Vec<Rotations> = axes
+        .iter()
+        .map(|axis| rotations.turned_by(2.0 * axis + 180.0))
+        .collect();
+    Ok(Rotations::union(&turned))
 }
 
 /// A last point closer than this to the first (relative to the ring's extent) closes the ring.
@@ -149,6 +253,103 @@ mod tests {
         );
         assert_eq!(instance.items[1].rotations, Rotations::Free);
         assert!((instance.items[1].area() - 32.0).abs() < 1e-12);
+    }
+
+    /// An instance whose items take jagua-rs's `orientation` object.
+    fn oriented(orientation: &str) -> Result<Instance, String> {
+        parse_instance(&format!(
+            r#"{{"name": "o", "strip_height": 10, "items": [{{"id": 0, "demand": 1,
+                "orientation": {orientation},
+                "shape": {{"type": "simple_polygon", "data": [[2,3],[8,3],[8,5],[5,5],[5,9],[2,9]]}}}}]}}"#
+        ))
+    }
+
+    #[test]
+    fn reads_jagua_orientation_objects() {
+        let item = |orientation| oriented(orientation).expect("valid").items.remove(0);
+        let discrete = item(r#"{"rotation": {"mode": "discrete", "angles": [15, 195]}}"#);
+        assert_eq!(discrete.rotations, Rotations::Fixed(vec![15.0, 195.0]));
+        assert_eq!(discrete.mirror, None);
+        let stepped = item(r#"{"rotation": {"mode": "stepped", "step": 90}}"#);
+        assert_eq!(
+            stepped.rotations.angles(),
+            Some(vec![0.0, 90.0, 180.0, 270.0])
+        );
+        let continuous = item(r#"{"rotation": {"mode": "continuous"}, "reflection_axes": [0]}"#);
+        assert_eq!(continuous.rotations, Rotations::Free);
+        assert_eq!(continuous.mirror, Some(Rotations::Free));
+        assert!(continuous.turns_freely());
+        // jagua-rs's example: fixed at 0°, reflected about the y axis. The mirrored copy is the
+        // mirror x → −x unturned; about the x axis it is that mirror turned by 180°.
+        let y_axis =
+            item(r#"{"rotation": {"mode": "discrete", "angles": [0]}, "reflection_axes": [90]}"#);
+        assert_eq!(y_axis.poses(), Some(vec![(0.0, false), (0.0, true)]));
+        let x_axis =
+            item(r#"{"rotation": {"mode": "discrete", "angles": [0]}, "reflection_axes": [0]}"#);
+        assert_eq!(x_axis.poses(), Some(vec![(0.0, false), (180.0, true)]));
+        assert!(!x_axis.allows(0.0, true) && x_axis.allows(180.0, true));
+        // A step whose multiples hold the reflection's turn stays a step.
+        let stepped_mirror =
+            item(r#"{"rotation": {"mode": "stepped", "step": 90}, "reflection_axes": [45]}"#);
+        assert_eq!(stepped_mirror.mirror, Some(Rotations::Step(90.0)));
+        // Both axes are alternatives, not successive reflections: no unmirrored 180° turn.
+        let both = item(
+            r#"{"rotation": {"mode": "discrete", "angles": [0]}, "reflection_axes": [0, 90]}"#,
+        );
+        assert_eq!(
+            both.mirror.as_ref().and_then(Rotations::angles),
+            Some(vec![0.0, 180.0])
+        );
+        assert!(!both.allows(180.0, false));
+    }
+
+    #[test]
+    fn refuses_orientations_it_cannot_read_rather_than_freeing_them() {
+        for (orientation, expected) in [
+            (r#"{"rotation": {"mode": "spiral"}}"#, "unknown variant"),
+            (
+                r#"{"rotation": {"mode": "discrete", "angles": []}}"#,
+                "1 to 65536",
+            ),
+            (
+                r#"{"rotation": {"mode": "stepped", "step": 7}}"#,
+                "does not divide 360",
+            ),
+            (
+                r#"{"rotation": {"mode": "stepped", "step": 0}}"#,
+                "does not divide 360",
+            ),
+            (
+                r#"{"rotation": {"mode": "continuous", "step": 5}}"#,
+                "unknown field",
+            ),
+            (
+                r#"{"rotation": {"mode": "continuous"}, "mirror": true}"#,
+                "unknown field",
+            ),
+            (r#"{"reflection_axes": [0]}"#, "missing field `rotation`"),
+        ] {
+            let error = oriented(orientation).expect_err(orientation);
+            assert!(error.contains(expected), "{orientation}: {error}");
+        }
+        let both = parse_instance(
+            r#"{"name": "b", "strip_height": 10, "items": [{"id": 3, "demand": 1,
+                "allowed_orientations": [0], "orientation": {"rotation": {"mode": "continuous"}},
+                "shape": {"type": "simple_polygon", "data": [[0,0],[1,0],[0,1]]}}]}"#,
+        )
+        .expect_err("both forms");
+        assert!(
+            both.contains("item 3") && both.contains("not both"),
+            "{both}"
+        );
+    }
+
+    #[test]
+    fn an_empty_orientation_list_means_unturned() {
+        let text = r#"{"name": "e", "strip_height": 10, "items": [{"id": 0, "demand": 1,
+            "allowed_orientations": [], "shape": {"type": "simple_polygon", "data": [[0,0],[1,0],[0,1]]}}]}"#;
+        let instance = parse_instance(text).expect("valid");
+        assert_eq!(instance.items[0].rotations, Rotations::Fixed(vec![0.0]));
     }
 
     #[test]

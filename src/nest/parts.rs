@@ -54,8 +54,8 @@ fn nest_item(
             .collect(),
         quantity: drawing.quantity,
         rotations: aligned_rotations(rotations, &outer),
+        mirror: mirror_allowed.then(|| aligned_rotations(rotations, &outer)),
         outer,
-        mirror_allowed,
         grain_degrees: pattern.grain_degrees,
     })
 }

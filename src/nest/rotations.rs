@@ -68,6 +68,46 @@ impl Rotations {
         Some(angles)
     }
 
+    /// These rotations each followed by a turn of `offset` degrees: a step stays a step when the
+    /// offset is one of its multiples, free stays free. Invalid rotations stay as they are, for
+    /// the search to report.
+    pub fn turned_by(&self, offset: f64) -> Rotations {
+        match self {
+            Rotations::Free => Rotations::Free,
+            Rotations::Step(step)
+                if angle_distance((offset / step).round() * step, offset)
+                    < ANGLE_TOLERANCE_DEGREES =>
+            {
+                self.clone()
+            }
+            _ => self.angles().map_or_else(
+                || self.clone(),
+                |angles| Rotations::Fixed(angles.iter().map(|angle| angle + offset).collect()),
+            ),
+        }
+    }
+
+    /// Every rotation of any of `sets`: `None` when there is none, free when one is free, the
+    /// set itself when all are the same, else the list of all their angles. Invalid rotations
+    /// are kept (the first of them) for the search to report.
+    pub fn union(sets: &[Rotations]) -> Option<Rotations> {
+        let first = sets.first()?;
+        if sets.iter().all(|set| set == first) {
+            return Some(first.clone());
+        }
+        if sets.contains(&Rotations::Free) {
+            return Some(Rotations::Free);
+        }
+        let mut all = Vec::new();
+        for set in sets {
+            match set.angles() {
+                Some(angles) => all.extend(angles),
+                None => return Some(set.clone()),
+            }
+        }
+        Some(Rotations::Fixed(all))
+    }
+
     /// Whether `angle` (degrees) is one of the allowed rotations, within [`ANGLE_TOLERANCE_DEGREES`].
     pub fn allows(&self, angle: f64) -> bool {
         match self {

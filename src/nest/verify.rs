@@ -460,7 +460,7 @@ pub(crate) mod tests {
             holes: Vec::new(),
             quantity,
             rotations,
-            mirror_allowed: false,
+            mirror: None,
             grain_degrees: None,
         }
     }

@@ -35,11 +35,12 @@ pub struct BenchmarkConfig {
     pub work_limit: Option<u64>,
     /// Seed of the search; default [`DEFAULT_SEED`].
     pub seed: u64,
-    /// Rotations for every item, overriding the instances'; `None` keeps theirs.
+    /// Rotations for every item, mirrored or not, overriding the instances'; `None` keeps theirs.
     pub rotations: Option<Rotations>,
     /// Whether small items may go inside the holes of larger ones.
     pub in_holes: bool,
-    /// Whether items may be mirrored.
+    /// Whether every item may be mirrored, at its rotations (besides any mirroring its instance
+    /// allows).
     pub mirror: bool,
 }
 
@@ -93,10 +94,7 @@ pub fn nest_benchmark(
         items.extend(instance.items);
     }
     for item in &mut items {
-        if let Some(rotations) = &config.rotations {
-            item.rotations = rotations.clone();
-        }
-        item.mirror_allowed = config.mirror;
+        override_poses(item, config.rotations.as_ref(), config.mirror);
     }
     let stock = match (config.stock, strip_height) {
         (Some(stock), _) => stock,
@@ -164,6 +162,22 @@ pub fn write_benchmark(
     Ok(report.write(directory)?)
 }
 
+/// Applies the command line's poses to an instance item: `rotations` (when given) replaces its
+/// rotations, mirrored or not; `mirror` adds its rotations to those of its mirrored copies.
+fn override_poses(item: &mut NestItem, rotations: Option<&Rotations>, mirror: bool) {
+    if let Some(rotations) = rotations {
+        item.rotations = rotations.clone();
+        if item.mirror.is_some() {
+            item.mirror = Some(rotations.clone());
+        }
+    }
+    if mirror {
+        let mut sets: Vec<Rotations> = item.mirror.take().into_iter().collect();
+        sets.push(item.rotations.clone());
+        item.mirror = Rotations::union(&sets);
+    }
+}
+
 /// The drawing of a benchmark item: its outline and holes in millimetres, nothing else.
 fn item_drawing(item: &NestItem) -> PartDrawing {
     PartDrawing {
@@ -176,5 +190,48 @@ fn item_drawing(item: &NestItem) -> PartDrawing {
         fold_lines: Vec::new(),
         grain: None,
         bends: Vec::new(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec2;
+
+    use super::*;
+
+    fn triangle(mirror: Option<Rotations>) -> NestItem {
+        NestItem {
+            name: "t".to_string(),
+            outer: vec![DVec2::ZERO, DVec2::X, DVec2::Y],
+            holes: Vec::new(),
+            quantity: 1,
+            rotations: Rotations::Fixed(vec![0.0]),
+            mirror,
+            grain_degrees: None,
+        }
+    }
+
+    #[test]
+    fn command_line_poses_override_or_extend_the_instances() {
+        // Neither option: the instance's own poses stand.
+        let mut item = triangle(Some(Rotations::Fixed(vec![180.0])));
+        override_poses(&mut item, None, false);
+        assert_eq!(item.poses(), Some(vec![(0.0, false), (180.0, true)]));
+        // `--mirror` adds the rotations to the mirrored copy's own.
+        override_poses(&mut item, None, true);
+        assert_eq!(
+            item.poses(),
+            Some(vec![(0.0, false), (0.0, true), (180.0, true)])
+        );
+        // `--rotations` replaces both; an item never mirrored stays so.
+        let step = Rotations::Step(90.0);
+        override_poses(&mut item, Some(&step), false);
+        assert_eq!(
+            (&item.rotations, &item.mirror),
+            (&step, &Some(step.clone()))
+        );
+        let mut plain = triangle(None);
+        override_poses(&mut plain, Some(&step), false);
+        assert_eq!(plain.mirror, None);
     }
 }

@@ -13,7 +13,7 @@ use crate::nest::errors::NestError;
 use crate::nest::item::NestItem;
 use crate::nest::layout::Placement;
 use crate::nest::options::NestOptions;
-use crate::nest::rotations::{FREE_ROTATION_SAMPLES, Rotations};
+use crate::nest::rotations::FREE_ROTATION_SAMPLES;
 
 /// Clearance (relative to the stock scale) kept from the stock edge and from the front, above the
 /// shapes' inflation, so that a candidate is not rejected for touching after f32 rounding.
@@ -50,7 +50,7 @@ pub(crate) struct Problem<'a> {
     pub(super) options: &'a NestOptions,
     pub(super) orientations: Vec<Orientation>,
     pub(super) item_shapes: Vec<Vec<ShapeId>>,
-    /// Per item, whether it is free to rotate ([`Rotations::Free`], no grain): the search
+    /// Per item, whether it is free to rotate ([`NestItem::turns_freely`]): the search
     /// through overlap then turns it to any angle, not only to its sampled orientations.
     pub(super) turns: Vec<bool>,
     /// Per item, its oriented shapes square to the stock (rotations that are multiples of 90°),
@@ -149,9 +149,7 @@ impl<'a> Problem<'a> {
                 .then(a.item.cmp(&b.item))
                 .then(a.copy.cmp(&b.copy))
         });
-        let turns = (items.iter())
-            .map(|item| item.grain_degrees.is_none() && item.rotations == Rotations::Free)
-            .collect();
+        let turns = (items.iter()).map(NestItem::turns_freely).collect();
         let square_shapes = (item_shapes.iter())
             .map(|shapes| {
                 (shapes.iter().copied())
