@@ -15,8 +15,11 @@
 //! rotation `r + 2a + 180`: the item's [`NestItem::mirror`] rotations. An item with both forms,
 //! an unknown mode or an unknown orientation field is refused, never read as free rotation.
 //! Shapes are `simple_polygon` (`data`: the ring) or `polygon` (`data`: `{"outer": ring,
-//! "inner": [rings]}`). A repeated closing point is dropped. The serde types stay in this file;
-//! the rest of the crate sees [`NestItem`]s.
+//! "inner": [rings]}`). A repeated closing point is dropped. jagua-rs's first, capitalised form
+//! (`{"Name", "Items": [{"Demand", "AllowedOrientations", "Shape": {"Type": "SimplePolygon",
+//! "Data"}}], "Strip": {"Height"}}`), which older copies of the instances (swim) still carry, is
+//! read too, its items numbered in file order. The serde types stay in this file; the rest of the
+//! crate sees [`NestItem`]s.
 
 use std::path::Path;
 
@@ -71,6 +74,60 @@ enum ExternalRotation {
     Continuous {},
 }
 
+/// An instance in jagua-rs's first, capitalised form.
+#[derive(Deserialize)]
+#[serde(rename_all = "PascalCase")]
+struct LegacyInstance {
+    name: String,
+    items: Vec<LegacyItem>,
+    strip: LegacyStrip,
+}
+
+#[derive(Deserialize)]
+#[serde(rename_all = "PascalCase")]
+struct LegacyStrip {
+    height: f64,
+}
+
+#[derive(Deserialize)]
+#[serde(rename_all = "PascalCase")]
+struct LegacyItem {
+    demand: u32,
+    allowed_orientations: Option<Vec<f64>>,
+    shape: LegacyShape,
+}
+
+#[derive(Deserialize)]
+#[serde(tag = "Type", content = "Data")]
+enum LegacyShape {
+    SimplePolygon(Vec<[f64; 2]>),
+}
+
+impl From<LegacyInstance> for ExternalInstance {
+    fn from(legacy: LegacyInstance) -> Self {
+        let items = legacy
+            .items
+            .into_iter()
+            .zip(0..)
+            .map(|(item, id)| {
+                let LegacyShape::SimplePolygon(ring) = item.shape;
+                ExternalItem {
+                    id,
+                    demand: item.demand,
+                    allowed_orientations: item.allowed_orientations,
+                    orientation: None,
+                    shape: ExternalShape::SimplePolygon(ring),
+                }
+            })
+            .collect();
+        ExternalInstance {
+            name: legacy.name,
+            items,
+            strip_height: legacy.strip.height,
+        }
+    }
+}
+
 /// Most angles an `orientation` may list or a step may expand to (jagua-rs's limit).
 const MAX_ORIENTATION_ANGLES: usize = 65_536;
 
@@ -98,8 +155,16 @@ pub fn read_instance(path: &Path) -> Result<Instance, NestError> {
 
 /// Parses instance JSON text; the error is a message for the user.
 pub fn parse_instance(text: &str) -> Result<Instance, String> {
-    let external: ExternalInstance =
-        serde_json::from_str(text).map_err(|error| format!("not an ESICUP instance: {error}"))?;
+    let external = serde_json::from_str::<ExternalInstance>(text).or_else(|error| {
+        serde_json::from_str::<LegacyInstance>(text)
+            .map(ExternalInstance::from)
+            .map_err(|legacy_error| {
+                format!(
+                    "not an ESICUP instance: {error} (nor in jagua-rs's older capitalised form: \
+                     {legacy_error})"
+                )
+            })
+    })?;
     if !external.strip_height.is_finite() || external.strip_height <= 0.0 {
         return Err(format!(
             "strip_height is {}: it must be positive",
@@ -350,6 +415,32 @@ mod tests {
             "allowed_orientations": [], "shape": {"type": "simple_polygon", "data": [[0,0],[1,0],[0,1]]}}]}"#;
         let instance = parse_instance(text).expect("valid");
         assert_eq!(instance.items[0].rotations, Rotations::Fixed(vec![0.0]));
+    }
+
+    #[test]
+    fn reads_the_older_capitalised_form_numbering_items_in_file_order() {
+        let text = r#"{"Name": "old", "Strip": {"Height": 12.0}, "Items": [
+            {"Demand": 3, "DemandMax": 3, "AllowedOrientations": [0.0, 180.0],
+             "Shape": {"Type": "SimplePolygon", "Data": [[0,0],[5,0],[5,2],[0,2]]}},
+            {"Demand": 1, "Shape": {"Type": "SimplePolygon", "Data": [[0,0],[3,0],[0,4]]}}]}"#;
+        let instance = parse_instance(text).expect("valid instance");
+        assert_eq!(instance.name, "old");
+        assert_eq!(instance.strip_height, 12.0);
+        let names: Vec<&str> = instance
+            .items
+            .iter()
+            .map(|item| item.name.as_str())
+            .collect();
+        assert_eq!(names, ["old/0", "old/1"]);
+        assert_eq!(instance.items[0].quantity, 3);
+        assert_eq!(
+            instance.items[0].rotations,
+            Rotations::Fixed(vec![0.0, 180.0])
+        );
+        assert_eq!(instance.items[1].rotations, Rotations::Free);
+        assert!((instance.items[1].area() - 6.0).abs() < 1e-12);
+        let broken = parse_instance(r#"{"Name": "old", "Items": []}"#).expect_err("no strip");
+        assert!(broken.contains("Strip"), "{broken}");
     }
 
     #[test]
