@@ -198,16 +198,14 @@ mod tests {
     use glam::DVec2;
 
     use super::*;
+    use crate::nest::verify::tests::polygon;
 
+    /// A triangle fixed at 0°, whose mirrored copies take `mirror`.
     fn triangle(mirror: Option<Rotations>) -> NestItem {
+        let outer = vec![DVec2::ZERO, DVec2::X, DVec2::Y];
         NestItem {
-            name: "t".to_string(),
-            outer: vec![DVec2::ZERO, DVec2::X, DVec2::Y],
-            holes: Vec::new(),
-            quantity: 1,
-            rotations: Rotations::Fixed(vec![0.0]),
             mirror,
-            grain_degrees: None,
+            ..polygon("t", outer, 1, Rotations::Fixed(vec![0.0]))
         }
     }
 
