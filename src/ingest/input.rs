@@ -10,6 +10,7 @@ use super::part::{looks_like_part, read_part_text};
 use super::ply::{looks_like_ply, parse_ply};
 use super::step::{looks_like_step, read_step};
 use super::stl::{looks_like_stl, parse_stl};
+use super::text::without_byte_order_mark;
 use crate::cad::{Brep, PartModel, TriangleSoup};
 use crate::units::Units;
 
@@ -31,8 +32,10 @@ pub enum InputKind {
 }
 
 impl InputKind {
-    /// Detects the kind from the file's extension, then its first bytes.
+    /// Detects the kind from the file's extension, then its first bytes (after a UTF-8
+    /// byte-order mark).
     pub fn detect(path: &Path, bytes: &[u8]) -> Result<Self, IngestError> {
+        let text = without_byte_order_mark(bytes);
         let extension = path
             .extension()
             .and_then(|e| e.to_str())
@@ -44,12 +47,12 @@ impl InputKind {
             Some("off") => Ok(Self::Off),
             Some("toml") => Ok(Self::Part),
             Some("step" | "stp") => Ok(Self::Step),
-            _ if looks_like_step(bytes) => Ok(Self::Step),
-            _ if looks_like_ply(bytes) => Ok(Self::Ply),
-            _ if looks_like_off(bytes) => Ok(Self::Off),
-            _ if looks_like_part(bytes) => Ok(Self::Part),
-            _ if looks_like_stl(bytes) => Ok(Self::Stl),
-            _ if looks_like_obj(bytes) => Ok(Self::Obj),
+            _ if looks_like_step(text) => Ok(Self::Step),
+            _ if looks_like_ply(text) => Ok(Self::Ply),
+            _ if looks_like_off(text) => Ok(Self::Off),
+            _ if looks_like_part(text) => Ok(Self::Part),
+            _ if looks_like_stl(bytes) || looks_like_stl(text) => Ok(Self::Stl),
+            _ if looks_like_obj(text) => Ok(Self::Obj),
             _ => Err(IngestError::UnknownKind {
                 path: path.to_path_buf(),
             }),
@@ -102,11 +105,12 @@ fn mesh_from_bytes(
     bytes: &[u8],
     units: Units,
 ) -> Result<MeshInput, IngestError> {
+    let text = without_byte_order_mark(bytes);
     let soup = match kind {
-        InputKind::Obj => parse_obj(bytes),
+        InputKind::Obj => parse_obj(text),
         InputKind::Stl => parse_stl(bytes),
-        InputKind::Ply => parse_ply(bytes),
-        InputKind::Off => parse_off(bytes),
+        InputKind::Ply => parse_ply(text),
+        InputKind::Off => parse_off(text),
         InputKind::Part | InputKind::Step => {
             return Err(IngestError::NotAMesh {
                 path: path.to_path_buf(),
@@ -137,8 +141,14 @@ pub enum Input {
 pub fn read_input(path: &Path, units: Units) -> Result<Input, IngestError> {
     let bytes = read_bytes(path)?;
     match InputKind::detect(path, &bytes)? {
-        InputKind::Part => Ok(Input::Part(Box::new(read_part_text(path, &bytes)?))),
-        InputKind::Step => Ok(Input::Step(read_step(path, &bytes)?)),
+        InputKind::Part => Ok(Input::Part(Box::new(read_part_text(
+            path,
+            without_byte_order_mark(&bytes),
+        )?))),
+        InputKind::Step => Ok(Input::Step(read_step(
+            path,
+            without_byte_order_mark(&bytes),
+        )?)),
         kind => mesh_from_bytes(path, kind, &bytes, units).map(Input::Mesh),
     }
 }
@@ -162,5 +172,38 @@ mod tests {
             Some(InputKind::Part)
         );
         assert_eq!(detect("a", b"hello"), None);
+    }
+
+    /// A UTF-8 byte-order mark before the first statement is not part of it: an OBJ keeps its
+    /// first vertex, OFF and PLY their keyword, an ASCII STL (here in upper case) its `solid`;
+    /// each reads as the same square of two triangles, detected by content too.
+    #[test]
+    fn a_byte_order_mark_is_not_read_as_text() {
+        let files: [(&str, &str); 4] = [
+            ("obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"),
+            ("off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n"),
+            (
+                "ply",
+                "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n",
+            ),
+            (
+                "stl",
+                "SOLID SQUARE\nFACET NORMAL 0 0 1\nOUTER LOOP\nVERTEX 0 0 0\nVERTEX 1 0 0\nVERTEX 1 1 0\nENDLOOP\nENDFACET\nFACET NORMAL 0 0 1\nOUTER LOOP\nVERTEX 0 0 0\nVERTEX 1 1 0\nVERTEX 0 1 0\nENDLOOP\nENDFACET\nENDSOLID\n",
+            ),
+        ];
+        let directory = std::env::temp_dir().join(format!("flatcut-bom-{}", std::process::id()));
+        std::fs::create_dir_all(&directory).unwrap();
+        for (extension, text) in files {
+            let bytes = [b"\xEF\xBB\xBF".as_slice(), text.as_bytes()].concat();
+            for name in [format!("square.{extension}"), format!("square-{extension}")] {
+                let path = directory.join(name);
+                std::fs::write(&path, &bytes).unwrap();
+                let mesh = read_mesh(&path, Units::Millimetres)
+                    .unwrap_or_else(|error| panic!("{}: {error}", path.display()));
+                assert_eq!(mesh.soup.positions.len(), 4, "{}", path.display());
+                assert_eq!(mesh.soup.triangles.len(), 2, "{}", path.display());
+            }
+        }
+        std::fs::remove_dir_all(&directory).unwrap();
     }
 }

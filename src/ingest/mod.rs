@@ -11,8 +11,10 @@ mod obj;
 mod off;
 mod part;
 mod ply;
+mod polygon;
 mod step;
 mod stl;
+mod text;
 
 pub use crate::geometry::tolerance::STL_WELD_TOLERANCE;
 pub use cut_sidecar::{

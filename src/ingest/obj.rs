@@ -1,11 +1,12 @@
 //! Wavefront OBJ: `v` positions, `vt` texture points and `f` faces (forms `i`, `i/t`, `i/t/n`,
-//! `i//n`, negative indices relative to the end); polygons are fan-triangulated from their first
-//! corner. The texture points are kept when every face gives one per corner (a garment's sewing
+//! `i//n`, negative indices relative to the end); polygons are made into triangles by
+//! [`polygon_triangles`] (a convex one fanned from its first corner). The texture points are kept when every face gives one per corner (a garment's sewing
 //! pattern). Other statements (`vn`, `g`, `o`, `s`, `usemtl`, `mtllib`, ...) are ignored.
 
 use glam::{DVec2, DVec3};
 
 use super::errors::FormatDefect;
+use super::polygon::polygon_triangles;
 use crate::cad::{SourceLines, TextureCorners, TriangleSoup};
 
 /// True when the bytes look like an OBJ file: text whose statements start with `v ` or `f `.
@@ -52,11 +53,16 @@ pub fn parse_obj(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
                     });
                 }
                 every_corner_textured &= corners.iter().all(|c| c.texture.is_some());
-                for k in 1..corners.len() - 1 {
-                    let fan = [&corners[0], &corners[k], &corners[k + 1]];
-                    triangles.push(fan.map(|c| c.vertex));
+                let points: Vec<DVec3> = (corners.iter())
+                    .map(|c| positions[c.vertex as usize])
+                    .collect();
+                for triangle in polygon_triangles(&points) {
+                    let corners = triangle.map(|k| &corners[k]);
+                    triangles.push(corners.map(|c| c.vertex));
                     if every_corner_textured {
-                        texture.corners.push(fan.map(|c| c.texture.unwrap_or(0)));
+                        texture
+                            .corners
+                            .push(corners.map(|c| c.texture.unwrap_or(0)));
                     }
                     lines.triangles.push(line as u32);
                 }

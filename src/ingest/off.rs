@@ -1,12 +1,14 @@
 //! OFF (Object File Format, as Geomview, CGAL and many mesh datasets write it): an `OFF` line,
 //! the counts `vertices faces edges`, the vertices `x y z`, then the faces `n i₁ … iₙ` with
-//! 0-based indices; polygons are fan-triangulated from their first corner, colours after a
+//! 0-based indices; polygons are made into triangles by `polygon_triangles` (a convex one fanned
+//! from its first corner), colours after a
 //! face's indices and `#` comments are ignored. The `COFF` and `NOFF` variants read the same
 //! (their extra numbers per vertex are ignored).
 
 use glam::DVec3;
 
 use super::errors::FormatDefect;
+use super::polygon::polygon_triangles;
 use crate::cad::{SourceLines, TriangleSoup};
 
 /// True when the bytes start like an OFF file.
@@ -109,8 +111,11 @@ pub fn parse_off(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
                 format!("the face lists fewer than its {count} vertices"),
             ));
         }
-        for k in 1..count - 1 {
-            triangles.push([corners[0], corners[k], corners[k + 1]]);
+        let points: Vec<DVec3> = (corners.iter())
+            .map(|&index| positions[index as usize])
+            .collect();
+        for triangle in polygon_triangles(&points) {
+            triangles.push(triangle.map(|k| corners[k]));
             source_lines.triangles.push(line as u32);
         }
     }

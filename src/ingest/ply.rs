@@ -1,13 +1,14 @@
 //! PLY (Stanford polygon files), ASCII and binary of either byte order, as scanners and
 //! photogrammetry tools write them: the `vertex` element's `x`, `y`, `z` and the `face`
-//! element's index list (`vertex_indices` or `vertex_index`); polygons are fan-triangulated from
-//! their first corner. A `tristrips` element's index lists are triangle strips (`-1` starts a
+//! element's index list (`vertex_indices` or `vertex_index`); polygons are made into triangles by
+//! `polygon_triangles` (a convex one fanned from its first corner). A `tristrips` element's index lists are triangle strips (`-1` starts a
 //! new strip; every other triangle of a strip is turned so all face the same way). Every other
 //! element and property (normals, colours, edges, materials) is read past and ignored.
 
 use glam::DVec3;
 
 use super::errors::FormatDefect;
+use super::polygon::polygon_triangles;
 use crate::cad::TriangleSoup;
 
 /// True when the bytes start like a PLY file.
@@ -34,12 +35,11 @@ pub fn parse_ply(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
                 positions = read_vertices(&mut body, element, axes)?;
             }
             Role::Faces(list) => {
-                let faces = read_faces(&mut body, element, list, positions.len(), face_corners)?;
+                let faces = read_faces(&mut body, element, list, &positions, face_corners)?;
                 triangles.extend(faces);
             }
             Role::Strips(list) => {
-                let strips =
-                    read_faces(&mut body, element, list, positions.len(), strip_triangles)?;
+                let strips = read_faces(&mut body, element, list, &positions, strip_triangles)?;
                 triangles.extend(strips);
             }
             Role::Other => skip_element(&mut body, element)?,
@@ -462,15 +462,15 @@ fn read_vertices(
 }
 
 /// Makes one record's index list into triangles, given the vertex count and the record's index.
-type Triangulate = fn(&[f64], usize, usize) -> Result<Vec<[u32; 3]>, FormatDefect>;
+type Triangulate = fn(&[f64], &[DVec3], usize) -> Result<Vec<[u32; 3]>, FormatDefect>;
 
 /// The triangles of a `face` or `tristrips` element, each record's index list made into
-/// triangles by `triangulate` (given the list, the vertex count and the record).
+/// triangles by `triangulate` (given the list, the vertices and the record).
 fn read_faces(
     body: &mut Body<'_>,
     element: &Element,
     list_property: usize,
-    vertices: usize,
+    vertices: &[DVec3],
     triangulate: Triangulate,
 ) -> Result<Vec<[u32; 3]>, FormatDefect> {
     check_count(body, element)?;
@@ -493,15 +493,18 @@ fn read_faces(
     Ok(triangles)
 }
 
-/// A polygon's triangles, fanned from its first corner.
+/// A polygon's triangles ([`polygon_triangles`]: a convex one fanned from its first corner).
 fn face_corners(
     items: &[f64],
-    vertices: usize,
+    vertices: &[DVec3],
     record: usize,
 ) -> Result<Vec<[u32; 3]>, FormatDefect> {
-    let corners = polygon_corners(items, vertices, record)?;
-    Ok((1..corners.len() - 1)
-        .map(|k| [corners[0], corners[k], corners[k + 1]])
+    let corners = polygon_corners(items, vertices.len(), record)?;
+    let points: Vec<DVec3> = (corners.iter())
+        .map(|&index| vertices[index as usize])
+        .collect();
+    Ok((polygon_triangles(&points).into_iter())
+        .map(|triangle| triangle.map(|k| corners[k]))
         .collect())
 }
 
@@ -510,12 +513,12 @@ fn face_corners(
 /// keeps the strip's orientation. A strip of fewer than 3 indices makes no triangle.
 fn strip_triangles(
     items: &[f64],
-    vertices: usize,
+    vertices: &[DVec3],
     record: usize,
 ) -> Result<Vec<[u32; 3]>, FormatDefect> {
     let mut triangles = Vec::new();
     for strip in items.split(|&index| index == -1.0) {
-        let corners = checked_indices(strip, vertices, record, "triangle strip")?;
+        let corners = checked_indices(strip, vertices.len(), record, "triangle strip")?;
         for k in 0..corners.len().saturating_sub(2) {
             let [a, b, c] = [corners[k], corners[k + 1], corners[k + 2]];
             triangles.push(if k % 2 == 0 { [a, b, c] } else { [b, a, c] });

@@ -5,6 +5,7 @@
 use glam::DVec3;
 
 use super::errors::FormatDefect;
+use super::text::without_byte_order_mark;
 use crate::cad::TriangleSoup;
 use crate::geometry::tolerance::STL_WELD_TOLERANCE;
 use crate::geometry::weld::PointWelder;
@@ -14,7 +15,15 @@ const BINARY_TRIANGLE: usize = 50;
 
 /// True when the bytes are a binary STL (size matches the count) or start like an ASCII one.
 pub(crate) fn looks_like_stl(bytes: &[u8]) -> bool {
-    is_binary(bytes) || bytes.trim_ascii_start().starts_with(b"solid")
+    is_binary(bytes) || starts_like_ascii(bytes)
+}
+
+/// Whether the bytes start (after white space and a UTF-8 byte-order mark) with `solid`, in any
+/// case.
+fn starts_like_ascii(bytes: &[u8]) -> bool {
+    let head = without_byte_order_mark(bytes).trim_ascii_start();
+    head.get(..5)
+        .is_some_and(|word| word.eq_ignore_ascii_case(b"solid"))
 }
 
 fn binary_count(bytes: &[u8]) -> Option<usize> {
@@ -30,8 +39,8 @@ fn is_binary(bytes: &[u8]) -> bool {
 pub fn parse_stl(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
     let corners = if is_binary(bytes) {
         parse_binary(bytes)?
-    } else if bytes.trim_ascii_start().starts_with(b"solid") {
-        parse_ascii(bytes)?
+    } else if starts_like_ascii(bytes) {
+        parse_ascii(without_byte_order_mark(bytes))?
     } else {
         let message = match binary_count(bytes) {
             Some(n) => format!(
@@ -73,7 +82,7 @@ fn parse_ascii(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, FormatDefect> {
     for (index, raw) in text.lines().enumerate() {
         let line = index + 1;
         let mut words = raw.split_whitespace();
-        match words.next() {
+        match words.next().map(str::to_ascii_lowercase).as_deref() {
             Some("vertex") => {
                 let mut coordinate = || -> Result<f64, FormatDefect> {
                     let word = words.next().unwrap_or("");
