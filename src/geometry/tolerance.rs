@@ -24,6 +24,11 @@ pub const SLIVER_AREA_RATIO: f64 = 1e-10;
 /// Corners of STL triangles closer than this fraction of the bounding-box diagonal are welded.
 pub const STL_WELD_TOLERANCE: f64 = 1e-9;
 
+/// Vertices of a mesh closer than this fraction of its bounding-box diagonal are at the same point
+/// to the triangle-soup check and to `--repair`'s weld: an unwelded export carries rounding noise
+/// (a file written from single precision, or with a few decimals, or each corner recomputed).
+pub const MESH_WELD_RATIO: f64 = 1e-7;
+
 /// Vertices of different tessellated faces closer than this fraction of the part's bounding
 /// diagonal are welded.
 pub const WELD_TOLERANCE_RATIO: f64 = 1e-7;

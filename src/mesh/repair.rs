@@ -3,11 +3,10 @@
 //! two triangles and vertices joining separate fans split apart, so that every edge has at most
 //! two triangles and every vertex one fan. Positions never move.
 
-use std::collections::BTreeMap;
-
 use super::defects::Defect;
 use super::validate::{
-    HalfEdge, corner, corner_fans, edge_groups, is_usable, manifold_pairs, sorted_half_edges,
+    HalfEdge, PointsNearlyEqual, corner, corner_fans, edge_groups, is_usable, manifold_pairs,
+    sorted_half_edges,
 };
 use crate::cad::TriangleSoup;
 
@@ -15,19 +14,18 @@ use crate::cad::TriangleSoup;
 /// ([`Defect::MoreWelded`]), since a triangle soup welds every vertex it has.
 pub const NAMED_WELDS: usize = 10;
 
-/// The soup with every vertex that lies exactly on an earlier one replaced by it in the
-/// triangles (the duplicate is then used by no triangle and dropped by validation), and one
-/// [`Defect::WeldedVertex`] per duplicate for the first [`NAMED_WELDS`], one
-/// [`Defect::MoreWelded`] for the others. Vertex numbers do not change.
+/// The soup with every vertex that lies on an earlier one (within
+/// [`MESH_WELD_RATIO`](crate::geometry::tolerance::MESH_WELD_RATIO) of the bounding diagonal)
+/// replaced by it in the triangles (the duplicate is then used by no triangle and dropped by
+/// validation), and one [`Defect::WeldedVertex`] per duplicate for the first [`NAMED_WELDS`], one
+/// [`Defect::MoreWelded`] for the others. Vertex numbers and positions do not change.
 pub fn weld_duplicates(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
-    let mut first_at: BTreeMap<[u64; 3], u32> = BTreeMap::new();
+    let mut points = PointsNearlyEqual::new(&soup.positions);
     let mut representative: Vec<u32> = (0..soup.positions.len() as u32).collect();
     let mut warnings = Vec::new();
-    for (v, p) in soup.positions.iter().enumerate() {
-        // +0.0 for -0.0, so that the two zeros weld.
-        let key = p.to_array().map(|c| (c + 0.0).to_bits());
-        let first = *first_at.entry(key).or_insert(v as u32);
-        if first != v as u32 && p.is_finite() {
+    for v in 0..soup.positions.len() {
+        let first = points.first_at(v as u32);
+        if first != v as u32 {
             representative[v] = first;
             warnings.push(Defect::WeldedVertex {
                 vertex: v,
@@ -309,13 +307,15 @@ mod tests {
         );
     }
 
+    /// Two triangles with vertices of their own, one corner off its twin by rounding noise
+    /// (1e-9 of the size): refused as a soup, welded by `--repair`.
     #[test]
     fn duplicates_are_welded_into_the_first_vertex_at_their_point() {
         let positions = vec![
             DVec3::new(0.0, 0.0, 0.0),
             DVec3::new(1.0, 0.0, 0.0),
             DVec3::new(0.0, 1.0, 0.0),
-            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0 + 1e-9, 0.0, -1e-9),
             DVec3::new(1.0, 1.0, -0.0),
             DVec3::new(0.0, 1.0, 0.0),
         ];
@@ -339,6 +339,12 @@ mod tests {
             ]
         );
         assert_eq!(validate(&welded).expect("valid").components.len(), 1);
+        let mut apart = soup.clone();
+        apart.positions[3].x = 1.0 + 1e-5;
+        assert_eq!(
+            weld_duplicates(&apart).0.triangles,
+            vec![[0, 1, 2], [3, 4, 2]]
+        );
     }
 
     /// A strip of unwelded triangles, each with vertices of its own: the first welds are named,

@@ -9,14 +9,13 @@
 //! vertices whose faces form more than one fan, non-orientable surfaces, and a triangle soup (most
 //! triangles with vertices of their own, lying on other triangles' vertices: `--repair` welds it).
 
-use std::collections::HashMap;
-
 use glam::DVec3;
 
 use super::defects::{Defect, MAXIMUM_COORDINATE, MeshDefects};
 use super::facet::{FacetModel, NONE};
 use crate::cad::TriangleSoup;
-use crate::geometry::tolerance::has_zero_area;
+use crate::geometry::tolerance::{MESH_WELD_RATIO, has_zero_area};
+use crate::geometry::weld::PointWelder;
 
 /// Share of the triangles that, sharing no edge with another but a point with another's vertex,
 /// make a mesh a triangle soup to refuse (a few such triangles are pieces of their own, as a
@@ -188,14 +187,10 @@ pub fn check_welded(soup: &TriangleSoup) -> Result<(), MeshDefects> {
             has_neighbour[half.2 as usize] = true;
         }
     }
-    let mut at_point: HashMap<[u64; 3], u32> = HashMap::new();
+    let mut points = PointsNearlyEqual::new(&soup.positions);
     let mut shared = vec![false; count];
     for &vertex in triangles.iter().flatten() {
-        // +0.0 for -0.0, so that the two zeros are one point.
-        let key = soup.positions[vertex as usize]
-            .to_array()
-            .map(|c| (c + 0.0).to_bits());
-        let first = *at_point.entry(key).or_insert(vertex);
+        let first = points.first_at(vertex);
         if first != vertex {
             shared[vertex as usize] = true;
             shared[first as usize] = true;
@@ -213,6 +208,46 @@ pub fn check_welded(soup: &TriangleSoup) -> Result<(), MeshDefects> {
         first: usable[isolated[0]],
     };
     Err(refusal(soup, vec![unwelded]))
+}
+
+/// The vertices of a mesh by point: two vertices closer than [`MESH_WELD_RATIO`] times the
+/// diagonal of the finite positions' bounding box are at one point, represented by the first one
+/// asked about (a vertex with a non-finite position is its own point).
+pub(crate) struct PointsNearlyEqual<'a> {
+    positions: &'a [DVec3],
+    welder: PointWelder,
+    /// The vertex representing each point of the welder.
+    firsts: Vec<u32>,
+}
+
+impl<'a> PointsNearlyEqual<'a> {
+    /// The points of `positions`, none asked about yet.
+    pub(crate) fn new(positions: &'a [DVec3]) -> Self {
+        let (min, max) = (positions.iter().filter(|p| p.is_finite())).fold(
+            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+            |(min, max), &p| (min.min(p), max.max(p)),
+        );
+        let diagonal = if min.is_finite() {
+            (max - min).length()
+        } else {
+            0.0
+        };
+        let tolerance = (MESH_WELD_RATIO * diagonal).max(f64::MIN_POSITIVE);
+        Self {
+            positions,
+            welder: PointWelder::new(min.min(DVec3::ZERO), tolerance),
+            firsts: Vec::new(),
+        }
+    }
+
+    /// The first vertex asked about at `vertex`'s point (`vertex` itself if it is the first).
+    pub(crate) fn first_at(&mut self, vertex: u32) -> u32 {
+        let point = self.welder.insert(self.positions[vertex as usize]) as usize;
+        if point == self.firsts.len() {
+            self.firsts.push(vertex);
+        }
+        self.firsts[point]
+    }
 }
 
 /// Propagates a consistent orientation over each component (breadth first from its lowest face),
