@@ -20,7 +20,7 @@ use jagua_rs::collision_detection::{CDEConfig, CDEngine};
 use jagua_rs::geometry::Transformation;
 use jagua_rs::geometry::fail_fast::SPSurrogateConfig;
 use jagua_rs::geometry::geo_enums::GeoPosition;
-use jagua_rs::geometry::geo_traits::TransformableFrom;
+use jagua_rs::geometry::geo_traits::{CollidesWith, TransformableFrom};
 use jagua_rs::geometry::primitives::{Circle, Point, Rect, SPolygon};
 use jagua_rs::geometry::shape_modification::{ShapeModifyMode, offset_shape, simplify_shape};
 
@@ -142,6 +142,20 @@ impl ShapeLibrary {
             DVec2::new(f64::from(bbox.x_min), f64::from(bbox.y_min)),
             DVec2::new(f64::from(bbox.x_max), f64::from(bbox.y_max)),
         )
+    }
+
+    /// The centre of an inflated shape's pole of inaccessibility (the centre of its largest
+    /// inscribed circle: a point well inside it) for `pose` translated by `translation`.
+    pub fn inner_point(&self, pose: Pose, translation: DVec2) -> DVec2 {
+        let centre = self.shapes[pose.shape].poi().center;
+        let local = DVec2::new(f64::from(centre.0), f64::from(centre.1));
+        DVec2::from_angle(pose.turn).rotate(local) + translation
+    }
+
+    /// Whether `point` lies inside the inflated shape of `pose` translated by `translation`.
+    pub fn contains(&self, pose: Pose, translation: DVec2, point: DVec2) -> bool {
+        let local = DVec2::from_angle(-pose.turn).rotate(point - translation);
+        self.shapes[pose.shape].collides_with(&Point(local.x as f32, local.y as f32))
     }
 
     /// Bounding box (min, max) of an inflated shape turned by `turn` radians about its origin

@@ -236,7 +236,39 @@ impl<'p, 'a> Separator<'p, 'a> {
             let (low, high) = self.range(parts[index].pose);
             parts[index].translation = parts[index].translation.clamp(low, high);
         }
+        for (swapped, old) in [(first, a), (second, b)] {
+            self.carry_covered_parts(&mut parts, swapped, old.translation, [first, second]);
+        }
         self.reset(&parts, self.length, false);
+    }
+
+    /// After the swap of a disruption: the parts (other than the two `swapped`) whose inner point
+    /// the part `moved` now covers move back by its displacement from `old` (they keep their
+    /// place relative to it, around the part that took its old place), so that a large part
+    /// swapped with a small one does not land on the small one's neighbours: they move with it.
+    fn carry_covered_parts(
+        &self,
+        parts: &mut [Part],
+        moved: usize,
+        old: DVec2,
+        swapped: [usize; 2],
+    ) {
+        let library = &self.problem.library;
+        let cover = parts[moved];
+        let displacement = cover.translation - old;
+        for index in 0..parts.len() {
+            let part = parts[index];
+            let covered = !swapped.contains(&index)
+                && library.contains(
+                    cover.pose,
+                    cover.translation,
+                    library.inner_point(part.pose, part.translation),
+                );
+            if covered {
+                let (low, high) = self.range(part.pose);
+                parts[index].translation = (part.translation - displacement).clamp(low, high);
+            }
+        }
     }
 
     /// Every collision of the layout: (part, obstacle, overlap), each pair once.
@@ -721,6 +753,37 @@ mod tests {
                 assert_eq!((updated.0, updated.1), (full.0, full.1));
                 assert!((updated.2 - full.2).abs() <= 1e-9 * full.2.max(1.0));
             }
+        }
+    }
+
+    /// A disruption swapping the 10 mm square with one of three 2 mm squares in a row beside it
+    /// carries the small squares the large one lands on back into its old place: whichever small
+    /// square is drawn, the disrupted layout has no collision (without the carry, the large
+    /// square would land on one or two small ones).
+    #[test]
+    fn a_disruption_carries_the_parts_the_swapped_large_part_lands_on() {
+        let items = vec![square("big", 10.0, 1), square("small", 2.0, 3)];
+        let options = NestOptions {
+            stock: Stock::Roll { width: 12.0 },
+            ..NestOptions::default()
+        };
+        let problem = Problem::new(&items, &options).expect("valid problem");
+        let at = |copy: usize, x: f64| Part {
+            copy,
+            pose: Pose::upright(problem.item_shapes[problem.copies[copy].item][0]),
+            translation: DVec2::new(x, 0.5),
+        };
+        let big = (0..4).find(|&copy| problem.copies[copy].item == 0).unwrap();
+        let mut smalls = (0..4).filter(|&copy| copy != big);
+        let mut parts = vec![at(big, 0.5)];
+        parts.extend([20.0, 24.0, 28.0].map(|x| at(smalls.next().unwrap(), x)));
+        for seed in 0..12 {
+            let mut separator = Separator::new(&problem, parts.clone(), 40.0);
+            assert!(separator.collisions().is_empty());
+            separator.disrupt(&mut SplitMix64(seed));
+            assert_ne!(separator.parts[0].translation, parts[0].translation);
+            let collisions = separator.collisions();
+            assert!(collisions.is_empty(), "seed {seed}: {collisions:?}");
         }
     }
 }
