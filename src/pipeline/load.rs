@@ -3,20 +3,21 @@
 //! unfolded here, exactly (see [`crate::sheet`]): its part is its chosen skin with the flat
 //! pattern already made.
 
+use std::mem::{Discriminant, discriminant};
 use std::path::{Path, PathBuf};
 
 use glam::{DVec2, DVec3};
 
 use crate::cad::{
     Brep, BrepShell, FoldBend, FoldLineGeometry, ParameterRegion, PartAttributes, PartModel,
-    RegionShape, SurfaceDomain, TriangleSoup,
+    RegionShape, SourceLines, SurfaceDomain, TriangleSoup,
 };
 use crate::cut::{CutConstraints, NoCutRegion};
 use crate::error::Error;
 use crate::flatten::Stiffness;
 use crate::ingest::{CutSidecar, Input, read_cut_sidecar, read_input};
 use crate::mesh::{
-    Defect, FacetModel, SeamSource, check_welded, repair_degenerate_triangles,
+    Defect, FacetModel, NAMED_WELDS, SeamSource, check_welded, repair_degenerate_triangles,
     split_at_texture_seams, split_non_manifold, validate, weld_duplicates,
 };
 use crate::sheet::{
@@ -262,7 +263,7 @@ fn prepared_soup(
     }
     let mut warnings = Vec::new();
     let mut note = |soup: &TriangleSoup, repairs: Vec<Defect>| {
-        warnings.extend(repairs.iter().map(|r| r.located(&soup.source_lines)));
+        warnings.extend(repair_warnings(&repairs, &soup.source_lines));
     };
     if options.repair {
         let (welded, repairs) = weld_duplicates(&soup);
@@ -284,6 +285,37 @@ fn prepared_soup(
         soup = split;
     }
     Ok((soup, warnings))
+}
+
+/// The repairs as warnings located in the file: the first [`NAMED_WELDS`] of each kind named one
+/// by one, the others of that kind counted in one warning (a scan with holes can have thousands
+/// of split vertices, and every part of the file carries its warnings).
+fn repair_warnings(repairs: &[Defect], lines: &SourceLines) -> Vec<String> {
+    let mut kinds: Vec<(Discriminant<Defect>, usize, String)> = Vec::new();
+    let mut warnings = Vec::new();
+    for repair in repairs {
+        let kind = discriminant(repair);
+        let position = match kinds.iter().position(|(seen, ..)| *seen == kind) {
+            Some(position) => position,
+            None => {
+                kinds.push((kind, 0, repair.located(lines)));
+                kinds.len() - 1
+            }
+        };
+        kinds[position].1 += 1;
+        if kinds[position].1 <= NAMED_WELDS {
+            warnings.push(repair.located(lines));
+        }
+    }
+    for (_, count, first) in kinds {
+        if count > NAMED_WELDS {
+            warnings.push(format!(
+                "{} more repairs of the same kind as \"{first}\" (--repair)",
+                count - NAMED_WELDS
+            ));
+        }
+    }
+    warnings
 }
 
 /// Puts the quantity, material and thickness given for the part over the file's.
@@ -725,4 +757,29 @@ fn split_parts(
             }
         })
         .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Of 25 split vertices and 3 welds, the warnings name the first 10 splits and the 3 welds,
+    /// and count the other 15 splits in one.
+    #[test]
+    fn repairs_beyond_the_first_of_their_kind_are_counted() {
+        let splits = (0..25).map(|vertex| Defect::SplitVertex { vertex, copies: 2 });
+        let welds = (0..3).map(|vertex| Defect::WeldedVertex {
+            vertex: 30 + vertex,
+            into: vertex,
+        });
+        let repairs: Vec<Defect> = splits.chain(welds).collect();
+        let warnings = repair_warnings(&repairs, &SourceLines::default());
+        assert_eq!(warnings.len(), NAMED_WELDS + 3 + 1);
+        assert_eq!(warnings[0], repairs[0].located(&SourceLines::default()));
+        let last = warnings.last().expect("a count");
+        assert!(
+            last.starts_with("15 more repairs of the same kind as"),
+            "{last}"
+        );
+    }
 }
