@@ -16,12 +16,14 @@ fn repair_hint(defects: &MeshDefects) -> &'static str {
     let mendable = defects.defects.iter().any(|defect| {
         matches!(
             defect,
-            Defect::NonManifoldEdge { .. } | Defect::NonManifoldVertex { .. }
+            Defect::NonManifoldEdge { .. }
+                | Defect::NonManifoldVertex { .. }
+                | Defect::RepeatedTriangle { .. }
         )
     });
     if mendable {
-        "\n  (--repair splits the non-manifold edges and vertices, with a warning for each; a \
-         garment with its sewing pattern as texture coordinates can also be cut into its pieces \
+        "\n  (--repair drops duplicate faces and splits the non-manifold edges and vertices, with \
+         a warning for each; a garment with its sewing pattern as texture coordinates can also be cut into its pieces \
          with --seams from-uv)"
     } else {
         ""

@@ -49,6 +49,14 @@ pub enum Defect {
         /// Its area in model units squared.
         area: f64,
     },
+    /// A triangle with the same three vertices as an earlier one: a duplicate face (its edges
+    /// would each be shared by three triangles; `--repair` drops it).
+    RepeatedTriangle {
+        /// Triangle index.
+        triangle: usize,
+        /// The earlier triangle it repeats.
+        of: usize,
+    },
     /// An edge shared by more than two triangles.
     NonManifoldEdge {
         /// The edge's vertices.
@@ -195,6 +203,7 @@ impl Defect {
                 first: triangle, ..
             }
             | Defect::DuplicateTriangle { triangle, .. }
+            | Defect::RepeatedTriangle { triangle, .. }
             | Defect::FlippedEdge { triangle, .. }
             | Defect::DroppedSliver { triangle }
             | Defect::CollapsedEdge { triangle, .. } => {
@@ -255,6 +264,12 @@ impl fmt::Display for Defect {
                 "triangle {} has zero area ({area:.3e}): its vertices are collinear; \
                  --repair flips or collapses it where it can",
                 n(*triangle)
+            ),
+            Defect::RepeatedTriangle { triangle, of } => write!(
+                f,
+                "triangle {} has the same three vertices as triangle {} (a duplicate face)",
+                n(*triangle),
+                n(*of)
             ),
             Defect::NonManifoldEdge {
                 vertices: [a, b],

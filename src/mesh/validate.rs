@@ -9,6 +9,8 @@
 //! vertices whose faces form more than one fan, non-orientable surfaces, and a triangle soup (most
 //! triangles with vertices of their own, lying on other triangles' vertices: `--repair` welds it).
 
+use std::collections::HashMap;
+
 use glam::DVec3;
 
 use super::defects::{Defect, MAXIMUM_COORDINATE, MeshDefects};
@@ -59,9 +61,23 @@ pub fn validate(soup: &TriangleSoup) -> Result<ValidatedMesh, MeshDefects> {
         return Err(refusal(soup, errors));
     }
     check_areas(soup, &kept, &mut errors);
+    let repeats = repeated_triangles(soup, &kept);
     let mut triangles: Vec<[u32; 3]> = kept.iter().map(|&t| soup.triangles[t]).collect();
     let half_edges = sorted_half_edges(&triangles);
-    check_edge_valence(&half_edges, &mut errors);
+    if repeats.is_empty() {
+        check_edge_valence(&half_edges, &mut errors);
+    } else {
+        // The edges of a duplicate face are reported through it, not as three non-manifold edges.
+        let unique: Vec<[u32; 3]> = (kept.iter())
+            .filter(|&&t| repeats.binary_search_by_key(&t, |repeat| repeat.0).is_err())
+            .map(|&t| soup.triangles[t])
+            .collect();
+        check_edge_valence(&sorted_half_edges(&unique), &mut errors);
+        let defects = repeats
+            .iter()
+            .map(|&(triangle, of)| Defect::RepeatedTriangle { triangle, of });
+        errors.extend(defects);
+    }
     if !errors.is_empty() {
         return Err(refusal(soup, errors));
     }
@@ -113,6 +129,22 @@ fn drop_repeated_vertices(soup: &TriangleSoup, warnings: &mut Vec<Defect>) -> Ve
         }
     }
     kept
+}
+
+/// The `kept` triangles with the same three vertices as an earlier one, with that one, by
+/// increasing index.
+fn repeated_triangles(soup: &TriangleSoup, kept: &[usize]) -> Vec<(usize, usize)> {
+    let mut first_of: HashMap<[u32; 3], usize> = HashMap::with_capacity(kept.len());
+    let mut repeats = Vec::new();
+    for &triangle in kept {
+        let mut key = soup.triangles[triangle];
+        key.sort_unstable();
+        let first = *first_of.entry(key).or_insert(triangle);
+        if first != triangle {
+            repeats.push((triangle, first));
+        }
+    }
+    repeats
 }
 
 fn check_areas(soup: &TriangleSoup, kept: &[usize], errors: &mut Vec<Defect>) {
@@ -488,6 +520,32 @@ mod tests {
             index: 9,
             vertex_count: 5
         }));
+    }
+
+    /// A face listed twice (in either winding) is named as a duplicate, not as the three
+    /// non-manifold edges it makes; a third triangle on one of its edges is still non-manifold.
+    #[test]
+    fn a_duplicate_face_is_named_as_such() {
+        let defects = validate(&soup(&SQUARE, &[[0, 1, 2], [0, 2, 3], [2, 1, 0]]))
+            .expect_err("a duplicate face");
+        assert_eq!(
+            defects.defects,
+            vec![Defect::RepeatedTriangle { triangle: 2, of: 0 }]
+        );
+        let mut positions = SQUARE.to_vec();
+        positions.push([0.5, 0.5, 1.0]);
+        let triangles = [[0, 1, 2], [0, 2, 3], [0, 1, 2], [0, 2, 4]];
+        let defects = validate(&soup(&positions, &triangles)).expect_err("defects");
+        assert_eq!(
+            defects.defects,
+            vec![
+                Defect::NonManifoldEdge {
+                    vertices: [0, 2],
+                    faces: 3
+                },
+                Defect::RepeatedTriangle { triangle: 2, of: 0 }
+            ]
+        );
     }
 
     #[test]
