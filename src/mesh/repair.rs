@@ -23,10 +23,10 @@ pub fn weld_duplicates(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
     let mut points = PointsNearlyEqual::new(&soup.positions);
     let mut representative: Vec<u32> = (0..soup.positions.len() as u32).collect();
     let mut warnings = Vec::new();
-    for v in 0..soup.positions.len() {
+    for (v, slot) in representative.iter_mut().enumerate() {
         let first = points.first_at(v as u32);
         if first != v as u32 {
-            representative[v] = first;
+            *slot = first;
             warnings.push(Defect::WeldedVertex {
                 vertex: v,
                 into: first as usize,

@@ -256,8 +256,7 @@ impl<'p, 'a> Separator<'p, 'a> {
         let library = &self.problem.library;
         let cover = parts[moved];
         let displacement = cover.translation - old;
-        for index in 0..parts.len() {
-            let part = parts[index];
+        for (index, part) in parts.iter_mut().enumerate() {
             let covered = !swapped.contains(&index)
                 && library.contains(
                     cover.pose,
@@ -266,7 +265,7 @@ impl<'p, 'a> Separator<'p, 'a> {
                 );
             if covered {
                 let (low, high) = self.range(part.pose);
-                parts[index].translation = (part.translation - displacement).clamp(low, high);
+                part.translation = (part.translation - displacement).clamp(low, high);
             }
         }
     }
