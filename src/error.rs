@@ -23,7 +23,8 @@ fn repair_hint(defects: &MeshDefects) -> &'static str {
     });
     if mendable {
         "\n  (--repair welds vertices at the same point, drops duplicate faces and splits the \
-         non-manifold edges and vertices, with a warning for each; a garment with its sewing pattern as texture coordinates can also be cut into its pieces \
+         non-manifold edges and vertices, with a warning for each; a garment with its sewing \
+         pattern as texture coordinates can also be cut into its pieces \
          with --seams from-uv)"
     } else {
         ""

@@ -1,6 +1,7 @@
 //! Wavefront OBJ: `v` positions, `vt` texture points and `f` faces (forms `i`, `i/t`, `i/t/n`,
 //! `i//n`, negative indices relative to the end); polygons are made into triangles by
-//! [`polygon_triangles`] (a convex one fanned from its first corner). The texture points are kept when every face gives one per corner (a garment's sewing
+//! [`polygon_triangles`] (a convex one fanned from its first corner). The texture points are
+//! kept when every face gives one per corner (a garment's sewing
 //! pattern). Other statements (`vn`, `g`, `o`, `s`, `usemtl`, `mtllib`, ...) are ignored.
 
 use glam::{DVec2, DVec3};

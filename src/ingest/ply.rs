@@ -1,7 +1,8 @@
 //! PLY (Stanford polygon files), ASCII and binary of either byte order, as scanners and
 //! photogrammetry tools write them: the `vertex` element's `x`, `y`, `z` and the `face`
 //! element's index list (`vertex_indices` or `vertex_index`); polygons are made into triangles by
-//! `polygon_triangles` (a convex one fanned from its first corner). A `tristrips` element's index lists are triangle strips (`-1` starts a
+//! `polygon_triangles` (a convex one fanned from its first corner). A `tristrips` element's index
+//! lists are triangle strips (`-1` starts a
 //! new strip; every other triangle of a strip is turned so all face the same way). Every other
 //! element and property (normals, colours, edges, materials) is read past and ignored.
 

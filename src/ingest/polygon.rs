@@ -29,10 +29,12 @@ pub(crate) fn polygon_triangles(corners: &[DVec3]) -> Vec<[usize; 3]> {
 }
 
 /// The polygon's Newell normal, normalised (zero for a polygon with no area): its winding is
-/// counter-clockwise about it.
+/// counter-clockwise about it. Summed about the first corner, so that a part far from the
+/// origin (a scan in survey coordinates) keeps its precision.
 fn newell_normal(corners: &[DVec3]) -> DVec3 {
     let n = corners.len();
-    let sum: DVec3 = (0..n).map(|i| corners[i].cross(corners[(i + 1) % n])).sum();
+    let at = |i: usize| corners[i % n] - corners[0];
+    let sum: DVec3 = (1..n).map(|i| at(i).cross(at(i + 1))).sum();
     sum.normalize_or_zero()
 }
 
