@@ -1,13 +1,13 @@
 //! Wavefront OBJ: `v` positions, `vt` texture points and `f` faces (forms `i`, `i/t`, `i/t/n`,
 //! `i//n`, negative indices relative to the end); polygons are made into triangles by
-//! [`polygon_triangles`] (a convex one fanned from its first corner). The texture points are
+//! [`triangulate_polygon`] (a convex one fanned from its first corner). The texture points are
 //! kept when every face gives one per corner (a garment's sewing
 //! pattern). Other statements (`vn`, `g`, `o`, `s`, `usemtl`, `mtllib`, ...) are ignored.
 
 use glam::{DVec2, DVec3};
 
 use super::errors::FormatDefect;
-use super::polygon::polygon_triangles;
+use super::polygon::triangulate_polygon;
 use crate::cad::{SourceLines, TextureCorners, TriangleSoup};
 
 /// True when the bytes look like an OBJ file: text whose statements start with `v ` or `f `.
@@ -54,10 +54,8 @@ pub fn parse_obj(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
                     });
                 }
                 every_corner_textured &= corners.iter().all(|c| c.texture.is_some());
-                let points: Vec<DVec3> = (corners.iter())
-                    .map(|c| positions[c.vertex as usize])
-                    .collect();
-                for triangle in polygon_triangles(&points) {
+                let corner = |k: usize| positions[corners[k].vertex as usize];
+                triangulate_polygon(corners.len(), corner, |triangle| {
                     let corners = triangle.map(|k| &corners[k]);
                     triangles.push(corners.map(|c| c.vertex));
                     if every_corner_textured {
@@ -66,7 +64,7 @@ pub fn parse_obj(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
                             .push(corners.map(|c| c.texture.unwrap_or(0)));
                     }
                     lines.triangles.push(line as u32);
-                }
+                });
             }
             _ => {}
         }

@@ -1,6 +1,6 @@
 //! OFF (Object File Format, as Geomview, CGAL and many mesh datasets write it): an `OFF` line,
 //! the counts `vertices faces edges`, the vertices `x y z`, then the faces `n i₁ … iₙ` with
-//! 0-based indices; polygons are made into triangles by `polygon_triangles` (a convex one fanned
+//! 0-based indices; polygons are made into triangles by `triangulate_polygon` (a convex one fanned
 //! from its first corner), colours after a
 //! face's indices and `#` comments are ignored. The `COFF` and `NOFF` variants read the same
 //! (their extra numbers per vertex are ignored).
@@ -8,7 +8,7 @@
 use glam::DVec3;
 
 use super::errors::FormatDefect;
-use super::polygon::polygon_triangles;
+use super::polygon::triangulate_polygon;
 use crate::cad::{SourceLines, TriangleSoup};
 
 /// True when the bytes start like an OFF file.
@@ -111,13 +111,11 @@ pub fn parse_off(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
                 format!("the face lists fewer than its {count} vertices"),
             ));
         }
-        let points: Vec<DVec3> = (corners.iter())
-            .map(|&index| positions[index as usize])
-            .collect();
-        for triangle in polygon_triangles(&points) {
+        let corner = |k: usize| positions[corners[k] as usize];
+        triangulate_polygon(count, corner, |triangle| {
             triangles.push(triangle.map(|k| corners[k]));
             source_lines.triangles.push(line as u32);
-        }
+        });
     }
     if triangles.is_empty() {
         return Err(FormatDefect::Empty);

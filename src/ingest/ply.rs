@@ -1,7 +1,7 @@
 //! PLY (Stanford polygon files), ASCII and binary of either byte order, as scanners and
 //! photogrammetry tools write them: the `vertex` element's `x`, `y`, `z` and the `face`
 //! element's index list (`vertex_indices` or `vertex_index`); polygons are made into triangles by
-//! `polygon_triangles` (a convex one fanned from its first corner). A `tristrips` element's index
+//! `triangulate_polygon` (a convex one fanned from its first corner). A `tristrips` element's index
 //! lists are triangle strips (`-1` starts a
 //! new strip; every other triangle of a strip is turned so all face the same way). Every other
 //! element and property (normals, colours, edges, materials) is read past and ignored.
@@ -9,7 +9,7 @@
 use glam::DVec3;
 
 use super::errors::FormatDefect;
-use super::polygon::polygon_triangles;
+use super::polygon::triangulate_polygon;
 use crate::cad::TriangleSoup;
 
 /// True when the bytes start like a PLY file.
@@ -494,19 +494,19 @@ fn read_faces(
     Ok(triangles)
 }
 
-/// A polygon's triangles ([`polygon_triangles`]: a convex one fanned from its first corner).
+/// A polygon's triangles ([`triangulate_polygon`]: a convex one fanned from its first corner).
 fn face_corners(
     items: &[f64],
     vertices: &[DVec3],
     record: usize,
 ) -> Result<Vec<[u32; 3]>, FormatDefect> {
     let corners = polygon_corners(items, vertices.len(), record)?;
-    let points: Vec<DVec3> = (corners.iter())
-        .map(|&index| vertices[index as usize])
-        .collect();
-    Ok((polygon_triangles(&points).into_iter())
-        .map(|triangle| triangle.map(|k| corners[k]))
-        .collect())
+    let mut triangles = Vec::with_capacity(corners.len() - 2);
+    let corner = |k: usize| vertices[corners[k] as usize];
+    triangulate_polygon(corners.len(), corner, |triangle| {
+        triangles.push(triangle.map(|k| corners[k]));
+    });
+    Ok(triangles)
 }
 
 /// The triangles of a record of triangle strips: `-1` ends a strip; in each strip, triangle `k`

@@ -219,6 +219,11 @@ pub fn check_welded(soup: &TriangleSoup) -> Result<(), MeshDefects> {
             has_neighbour[half.2 as usize] = true;
         }
     }
+    let lone = has_neighbour.iter().filter(|&&has| !has).count();
+    if (lone as f64) < UNWELDED_SHARE * triangles.len() as f64 {
+        // Too few triangles without a neighbour for a soup, whatever their vertices.
+        return Ok(());
+    }
     let mut points = PointsNearlyEqual::new(&soup.positions);
     let mut shared = vec![false; count];
     for &vertex in triangles.iter().flatten() {
@@ -250,7 +255,12 @@ pub(crate) struct PointsNearlyEqual<'a> {
     welder: PointWelder,
     /// The vertex representing each point of the welder.
     firsts: Vec<u32>,
+    /// Each vertex's point in the welder, once asked about ([`UNASKED`] before).
+    point_of: Vec<u32>,
 }
+
+/// A vertex not asked about yet, in [`PointsNearlyEqual`].
+const UNASKED: u32 = u32::MAX;
 
 impl<'a> PointsNearlyEqual<'a> {
     /// The points of `positions`, none asked about yet.
@@ -259,26 +269,30 @@ impl<'a> PointsNearlyEqual<'a> {
             (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
             |(min, max), &p| (min.min(p), max.max(p)),
         );
-        let diagonal = if min.is_finite() {
-            (max - min).length()
+        let (origin, diagonal) = if min.is_finite() {
+            (min, (max - min).length())
         } else {
-            0.0
+            (DVec3::ZERO, 0.0)
         };
         let tolerance = (MESH_WELD_RATIO * diagonal).max(f64::MIN_POSITIVE);
         Self {
             positions,
-            welder: PointWelder::new(min.min(DVec3::ZERO), tolerance),
+            welder: PointWelder::new(origin, tolerance),
             firsts: Vec::new(),
+            point_of: vec![UNASKED; positions.len()],
         }
     }
 
     /// The first vertex asked about at `vertex`'s point (`vertex` itself if it is the first).
     pub(crate) fn first_at(&mut self, vertex: u32) -> u32 {
-        let point = self.welder.insert(self.positions[vertex as usize]) as usize;
-        if point == self.firsts.len() {
-            self.firsts.push(vertex);
+        let slot = &mut self.point_of[vertex as usize];
+        if *slot == UNASKED {
+            *slot = self.welder.insert(self.positions[vertex as usize]);
+            if *slot as usize == self.firsts.len() {
+                self.firsts.push(vertex);
+            }
         }
-        self.firsts[point]
+        self.firsts[*slot as usize]
     }
 }
 
