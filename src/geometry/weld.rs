@@ -13,6 +13,15 @@ use std::collections::{BTreeMap, HashMap};
 
 use glam::DVec3;
 
+/// The bounding box (min, max) of the finite points; `None` when there is none.
+pub fn finite_bounds<'a>(points: impl IntoIterator<Item = &'a DVec3>) -> Option<(DVec3, DVec3)> {
+    let (min, max) = (points.into_iter().filter(|p| p.is_finite())).fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(min, max), &p| (min.min(p), max.max(p)),
+    );
+    min.is_finite().then_some((min, max))
+}
+
 /// Welds points as they come (see the module documentation).
 #[derive(Debug, Clone)]
 pub struct PointWelder {

@@ -8,7 +8,7 @@ use super::errors::FormatDefect;
 use super::text::without_byte_order_mark;
 use crate::cad::TriangleSoup;
 use crate::geometry::tolerance::STL_WELD_TOLERANCE;
-use crate::geometry::weld::PointWelder;
+use crate::geometry::weld::{PointWelder, finite_bounds};
 
 const BINARY_HEADER: usize = 80;
 const BINARY_TRIANGLE: usize = 50;
@@ -126,13 +126,10 @@ fn parse_ascii(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, FormatDefect> {
 
 /// Welds corners within the tolerance on a hash grid whose cell is the tolerance.
 fn weld(corners: &[[DVec3; 3]]) -> TriangleSoup {
-    let (mut min, mut max) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-    for p in corners.iter().flatten().filter(|p| p.is_finite()) {
-        min = min.min(*p);
-        max = max.max(*p);
-    }
-    let tolerance = (STL_WELD_TOLERANCE * (max - min).length()).max(f64::MIN_POSITIVE);
-    let mut welder = PointWelder::new(min, tolerance);
+    let (origin, diagonal) = finite_bounds(corners.iter().flatten())
+        .map_or((DVec3::ZERO, 0.0), |(min, max)| (min, (max - min).length()));
+    let tolerance = (STL_WELD_TOLERANCE * diagonal).max(f64::MIN_POSITIVE);
+    let mut welder = PointWelder::new(origin, tolerance);
     let triangles = corners
         .iter()
         .map(|triangle| triangle.map(|p| welder.insert(p)))

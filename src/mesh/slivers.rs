@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 use glam::DVec3;
 
 use super::defects::Defect;
-use super::validate::is_usable;
+use super::validate::{is_usable, repeated_triangles};
 use crate::cad::TriangleSoup;
 use crate::geometry::tolerance::has_zero_area;
 
@@ -26,21 +26,15 @@ pub fn repair_degenerate_triangles(soup: &TriangleSoup) -> (TriangleSoup, Vec<De
     let mut warnings = Vec::new();
     let usable = |t: [u32; 3]| is_usable(t, soup.positions.len());
     let mut dropped = vec![false; soup.triangles.len()];
-    let mut first_of: BTreeMap<[u32; 3], usize> = BTreeMap::new();
-    for (triangle, &corners) in soup.triangles.iter().enumerate() {
-        if !usable(corners) {
-            continue;
-        }
-        let mut key = corners;
-        key.sort_unstable();
-        let first = *first_of.entry(key).or_insert(triangle);
-        if first != triangle {
-            dropped[triangle] = true;
-            warnings.push(Defect::DuplicateTriangle {
-                triangle,
-                of: first,
-            });
-        }
+    let kept: Vec<usize> = (0..soup.triangles.len())
+        .filter(|&t| usable(soup.triangles[t]))
+        .collect();
+    for (triangle, first) in repeated_triangles(soup, &kept) {
+        dropped[triangle] = true;
+        warnings.push(Defect::DuplicateTriangle {
+            triangle,
+            of: first,
+        });
     }
     let edges = EdgeFaces::new(&mended.triangles, &dropped, usable);
     let mut mending = Mending {

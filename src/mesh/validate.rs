@@ -17,7 +17,7 @@ use super::defects::{Defect, MAXIMUM_COORDINATE, MeshDefects};
 use super::facet::{FacetModel, NONE};
 use crate::cad::TriangleSoup;
 use crate::geometry::tolerance::{MESH_WELD_RATIO, has_zero_area};
-use crate::geometry::weld::PointWelder;
+use crate::geometry::weld::{PointWelder, finite_bounds};
 
 /// Share of the triangles that, sharing no edge with another but a point with another's vertex,
 /// make a mesh a triangle soup to refuse (a few such triangles are pieces of their own, as a
@@ -131,9 +131,10 @@ fn drop_repeated_vertices(soup: &TriangleSoup, warnings: &mut Vec<Defect>) -> Ve
     kept
 }
 
-/// The `kept` triangles with the same three vertices as an earlier one, with that one, by
-/// increasing index.
-fn repeated_triangles(soup: &TriangleSoup, kept: &[usize]) -> Vec<(usize, usize)> {
+/// The `kept` triangles (of three distinct vertices) with the same three vertices as an earlier
+/// one, in either winding, with that one, by increasing index: the duplicate faces that
+/// validation refuses and `--repair` drops.
+pub(super) fn repeated_triangles(soup: &TriangleSoup, kept: &[usize]) -> Vec<(usize, usize)> {
     let mut first_of: HashMap<[u32; 3], usize> = HashMap::with_capacity(kept.len());
     let mut repeats = Vec::new();
     for &triangle in kept {
@@ -265,15 +266,8 @@ const UNASKED: u32 = u32::MAX;
 impl<'a> PointsNearlyEqual<'a> {
     /// The points of `positions`, none asked about yet.
     pub(crate) fn new(positions: &'a [DVec3]) -> Self {
-        let (min, max) = (positions.iter().filter(|p| p.is_finite())).fold(
-            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-            |(min, max), &p| (min.min(p), max.max(p)),
-        );
-        let (origin, diagonal) = if min.is_finite() {
-            (min, (max - min).length())
-        } else {
-            (DVec3::ZERO, 0.0)
-        };
+        let (origin, diagonal) = finite_bounds(positions)
+            .map_or((DVec3::ZERO, 0.0), |(min, max)| (min, (max - min).length()));
         let tolerance = (MESH_WELD_RATIO * diagonal).max(f64::MIN_POSITIVE);
         Self {
             positions,

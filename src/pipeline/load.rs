@@ -6,7 +6,7 @@
 use std::mem::{Discriminant, discriminant};
 use std::path::{Path, PathBuf};
 
-use glam::{DVec2, DVec3};
+use glam::DVec2;
 
 use crate::cad::{
     Brep, BrepShell, FoldBend, FoldLineGeometry, ParameterRegion, PartAttributes, PartModel,
@@ -15,6 +15,7 @@ use crate::cad::{
 use crate::cut::{CutConstraints, NoCutRegion};
 use crate::error::Error;
 use crate::flatten::Stiffness;
+use crate::geometry::weld::finite_bounds;
 use crate::ingest::{CutSidecar, Input, read_cut_sidecar, read_input};
 use crate::mesh::{
     Defect, FacetModel, NAMED_WELDS, SeamSource, check_welded, repair_degenerate_triangles,
@@ -231,11 +232,7 @@ pub const SMALL_MESH_MM: f64 = 20.0;
 /// The warning for a mesh read in millimetres that is under [`SMALL_MESH_MM`] across, naming
 /// `--units m` and `--units cm`; `None` for any other.
 fn small_mesh_warning(soup: &TriangleSoup, units: Units) -> Option<String> {
-    let finite = soup.positions.iter().filter(|p| p.is_finite());
-    let (min, max) = finite.fold(
-        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-        |(min, max), p| (min.min(*p), max.max(*p)),
-    );
+    let (min, max) = finite_bounds(&soup.positions)?;
     let across = (max - min).length() * units.millimetres();
     (units == Units::Millimetres && across < SMALL_MESH_MM).then(|| {
         format!(
