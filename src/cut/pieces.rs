@@ -66,14 +66,18 @@ use super::state::CutState;
 use super::t_junctions::conformed_pair;
 use super::union_start::UnionStart;
 use crate::flatten::{
-    FlattenOptions, Flattened, Stiffness, flatten, flatten_from, flatten_unrepaired,
-    flatten_unrepaired_from, with_squeezed_triangles_opened,
+    FlattenOptions, Flattened, Stiffness, boundary_comes_within, flatten, flatten_from,
+    flatten_unrepaired, flatten_unrepaired_from, with_squeezed_triangles_opened,
 };
 use crate::mesh::{
     EdgeOrigin, FacetModel, NONE, Plane, SectionPiece, chain_edges, principal_axes, section,
 };
 use crate::progress::{NoProgress, Progress};
 
+/// Two runs of a piece's flat outline closer than this fraction of its size count as touching
+/// (see `is_within`): far above the rounding of a turn of the pattern, far below any gap a
+/// cutter keeps.
+pub const TOUCHING_GAP: f64 = 1e-9;
 /// A piece left after gluing with fewer triangles than this is a sliver, glued into a neighbour
 /// where it can be (see `without_slivers`).
 pub const SLIVER_TRIANGLES: usize = 8;
@@ -290,10 +294,27 @@ fn can_be_one_piece(union: &Piece) -> bool {
     })
 }
 
-/// True when the flattened piece is within `tolerance`, with no flipped triangle.
+/// True when the flattened piece is within `tolerance` and valid: no flipped triangle and an
+/// outline that does not cross itself, nor come within [`TOUCHING_GAP`] of its size of
+/// itself. A piece holding a crack of no width (two runs of its boundary lying on each other in
+/// the surface itself, where sections met) is within any tolerance, yet whether its outline
+/// touches itself is decided by rounding, and may change when the pattern is turned into its
+/// rest position: such a piece is cut further, and such a union not glued.
 fn is_within(result: &CutResult, tolerance: f64) -> bool {
     let accuracy = result.flattened.stats.accuracy;
-    accuracy.within(tolerance) && accuracy.flipped == 0
+    accuracy.within(tolerance) && !accuracy.overlap && !touches_itself(result)
+}
+
+/// True when the piece's flat outline comes within [`TOUCHING_GAP`] of its size of itself
+/// (see [`is_within`]).
+fn touches_itself(result: &CutResult) -> bool {
+    let positions = &result.flattened.positions;
+    let (min, max) = (positions.iter()).fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(min, max), &p| (min.min(p), max.max(p)),
+    );
+    let gap = TOUCHING_GAP * (max - min).length();
+    boundary_comes_within(&result.model, positions, gap)
 }
 
 /// The pieces with neighbours glued back together ([`Piece::glued`]) wherever their union

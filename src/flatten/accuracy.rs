@@ -15,7 +15,7 @@
 use glam::DVec2;
 use serde::Serialize;
 
-use crate::geometry::segments_intersect;
+use crate::geometry::segments_within;
 use crate::mesh::FacetModel;
 
 /// Default permissible `E_S` and `E_C` (1 %, the paper's): the bound on the area and shape errors
@@ -138,8 +138,16 @@ fn flipped<'a>(model: &'a FacetModel, pattern: &'a [DVec2]) -> impl Iterator<Ite
 
 /// True if two boundary segments that share no vertex intersect (touching counts).
 pub fn boundary_self_intersects(model: &FacetModel, pattern: &[DVec2]) -> bool {
+    boundary_comes_within(model, pattern, 0.0)
+}
+
+/// True if two boundary segments that share no vertex come within `gap` of each other: with a
+/// small `gap`, a test that turning or moving the pattern does not change (where two sides lie
+/// on each other, as along a crack of no width in the surface itself, whether they touch is
+/// decided by rounding, and [`boundary_self_intersects`] may say no before a turn and yes after).
+pub fn boundary_comes_within(model: &FacetModel, pattern: &[DVec2], gap: f64) -> bool {
     let segments: Vec<[u32; 2]> = model.boundary_sides().collect();
-    any_segments_cross(&segments, pattern)
+    any_segments_within(&segments, pattern, gap)
 }
 
 /// Smallest grid cell of the boundary crossing test, relative to the boundary's extent: keeps
@@ -147,9 +155,9 @@ pub fn boundary_self_intersects(model: &FacetModel, pattern: &[DVec2]) -> bool {
 /// are found, only how they are bucketed.
 const SMALLEST_CELL_RELATIVE: f64 = 1e-12;
 
-/// Tests segment pairs that share no vertex, bucketed on a uniform grid so the cost stays near
-/// linear for well-spread boundaries.
-fn any_segments_cross(segments: &[[u32; 2]], pattern: &[DVec2]) -> bool {
+/// Tests segment pairs that share no vertex for coming within `gap`, bucketed on a uniform grid
+/// (each segment's box grown by `gap`) so the cost stays near linear for well-spread boundaries.
+fn any_segments_within(segments: &[[u32; 2]], pattern: &[DVec2], gap: f64) -> bool {
     if segments.len() < 2 {
         return false;
     }
@@ -172,8 +180,8 @@ fn any_segments_cross(segments: &[[u32; 2]], pattern: &[DVec2]) -> bool {
     );
     let mut buckets: Vec<Vec<u32>> = vec![Vec::new(); columns * rows];
     let cell_range = |p: DVec2, q: DVec2| {
-        let low = ((p.min(q) - min) / cell_size).floor();
-        let high = ((p.max(q) - min) / cell_size).floor();
+        let low = ((p.min(q) - gap - min) / cell_size).floor();
+        let high = ((p.max(q) + gap - min) / cell_size).floor();
         let clamp = |x: f64, n: usize| (x.max(0.0) as usize).min(n - 1);
         (
             clamp(low.x, columns),
@@ -196,13 +204,54 @@ fn any_segments_cross(segments: &[[u32; 2]], pattern: &[DVec2]) -> bool {
                 let ([a, b], [c, d]) = (segments[s as usize], segments[t as usize]);
                 let shares_vertex = a == c || a == d || b == c || b == d;
                 !shares_vertex
-                    && segments_intersect(
+                    && segments_within(
                         pattern[a as usize],
                         pattern[b as usize],
                         pattern[c as usize],
                         pattern[d as usize],
+                        gap,
                     )
             })
         })
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{DVec2, DVec3};
+
+    use crate::cad::TriangleSoup;
+    use crate::flatten::accuracy::{boundary_comes_within, boundary_self_intersects};
+    use crate::mesh::validate;
+
+    /// A flat fan of four right-angled triangles around the origin whose last spoke ends
+    /// `opening` short of a full turn, as a distinct vertex: a square with a slit of that width
+    /// (at the rim) from its edge to its centre, as positions in the plane and the model.
+    fn slit_square(opening: f64) -> (Vec<DVec2>, crate::mesh::FacetModel) {
+        let mut flat = vec![DVec2::ZERO];
+        for quarter in 0..4 {
+            flat.push(DVec2::from_angle(
+                quarter as f64 * std::f64::consts::FRAC_PI_2,
+            ));
+        }
+        flat.push(DVec2::from_angle(-opening));
+        let positions = flat.iter().map(|p| p.extend(0.0)).collect::<Vec<DVec3>>();
+        let triangles = (1..=4).map(|i| [0, i, i + 1]).collect();
+        let model = validate(&TriangleSoup::new(positions, triangles))
+            .expect("valid")
+            .components
+            .remove(0);
+        (flat, model)
+    }
+
+    #[test]
+    fn a_slit_a_rounding_wide_does_not_cross_but_touches_within_a_small_gap() {
+        let (pattern, model) = slit_square(1e-13);
+        assert!(!boundary_self_intersects(&model, &pattern));
+        assert!(boundary_comes_within(&model, &pattern, 1e-9));
+        let (pattern, model) = slit_square(0.1);
+        assert!(!boundary_comes_within(&model, &pattern, 1e-9));
+        let (pattern, model) = slit_square(-0.1);
+        assert!(boundary_self_intersects(&model, &pattern));
+    }
 }

@@ -31,7 +31,7 @@ mod samples;
 mod springs;
 pub mod stiffness;
 
-pub use accuracy::{Accuracy, DEFAULT_TOLERANCE};
+pub use accuracy::{Accuracy, DEFAULT_TOLERANCE, boundary_comes_within};
 pub use energy_release::{EnergyRelease, ReleaseOutcome, ReleaseParameters, StopReason};
 pub use entry::{
     flatten, flatten_from, flatten_unrepaired, flatten_unrepaired_from, overlap_free_flatten,

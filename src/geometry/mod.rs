@@ -11,5 +11,5 @@ pub use plane::{
 };
 pub use segment::{
     distance_to_segment, distance_to_segment_3d, polyline_prefix, segment_fraction,
-    segments_intersect,
+    segments_intersect, segments_within,
 };

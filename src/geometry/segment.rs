@@ -55,6 +55,18 @@ pub fn segments_intersect(p: DVec2, q: DVec2, r: DVec2, s: DVec2) -> bool {
         || (d4 == 0.0 && on_segment(p, q, s))
 }
 
+/// True if closed segments `pq` and `rs` come within `gap` of each other (meet, or one's end lies
+/// within `gap` of the other; with `gap` 0, exactly [`segments_intersect`]).
+pub fn segments_within(p: DVec2, q: DVec2, r: DVec2, s: DVec2, gap: f64) -> bool {
+    let ends_within = || {
+        distance_to_segment(p, r, s) <= gap
+            || distance_to_segment(q, r, s) <= gap
+            || distance_to_segment(r, p, q) <= gap
+            || distance_to_segment(s, p, q) <= gap
+    };
+    segments_intersect(p, q, r, s) || (gap > 0.0 && ends_within())
+}
+
 /// The part of the polyline `points` from its first point along `fraction` (clamped to 0..=1) of
 /// its length: its points up to there, and the point at that length on the segment it falls in.
 /// An empty polyline gives an empty one.
@@ -102,6 +114,17 @@ mod tests {
         assert_eq!(polyline_prefix(&points, 1.0), points.to_vec());
         assert_eq!(polyline_prefix(&points, 0.0), vec![DVec3::ZERO]);
         assert!(polyline_prefix(&[], 0.5).is_empty());
+    }
+
+    #[test]
+    fn segments_a_gap_apart_are_within_that_gap_only() {
+        let (p, q) = (DVec2::ZERO, DVec2::new(4.0, 0.0));
+        let (r, s) = (DVec2::new(2.0, 1e-12), DVec2::new(2.0, 3.0));
+        assert!(!segments_intersect(p, q, r, s));
+        assert!(!segments_within(p, q, r, s, 0.0));
+        assert!(segments_within(p, q, r, s, 1e-9));
+        assert!(!segments_within(p, q, r + DVec2::Y, s, 0.5));
+        assert!(segments_within(p, q, DVec2::new(2.0, -1.0), s, 0.0));
     }
 
     #[test]
