@@ -19,11 +19,13 @@ fn repair_hint(defects: &MeshDefects) -> &'static str {
             Defect::NonManifoldEdge { .. }
                 | Defect::NonManifoldVertex { .. }
                 | Defect::RepeatedTriangle { .. }
+                | Defect::NonOrientable { .. }
         )
     });
     if mendable {
-        "\n  (--repair welds vertices at the same point, drops duplicate faces and splits the \
-         non-manifold edges and vertices, with a warning for each; a garment with its sewing \
+        "\n  (--repair welds vertices at the same point, drops duplicate faces, splits the \
+         non-manifold edges and vertices and cuts a non-orientable surface open where its \
+         orientations conflict, with a warning for each; a garment with its sewing \
          pattern as texture coordinates can also be cut into its pieces \
          with --seams from-uv)"
     } else {

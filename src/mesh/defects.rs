@@ -128,6 +128,14 @@ pub enum Defect {
         /// Number of copies (fans).
         copies: usize,
     },
+    /// A non-orientable surface (a Möbius strip) cut open along the edges where its
+    /// orientations conflicted (`--repair`).
+    CutOpen {
+        /// The first edge cut.
+        vertices: [u32; 2],
+        /// How many edges were cut.
+        edges: usize,
+    },
     /// A triangle with the same three vertices as an earlier one, dropped (`--repair`).
     DuplicateTriangle {
         /// Triangle index.
@@ -170,6 +178,7 @@ impl Defect {
                 | Defect::MoreWelded { .. }
                 | Defect::SplitEdge { .. }
                 | Defect::SplitVertex { .. }
+                | Defect::CutOpen { .. }
                 | Defect::DuplicateTriangle { .. }
                 | Defect::FlippedEdge { .. }
                 | Defect::DroppedSliver { .. }
@@ -215,7 +224,10 @@ impl Defect {
             | Defect::SplitEdge {
                 vertices: [a, b], ..
             }
-            | Defect::NonOrientable { vertices: [a, b] } => vertex_lines(&[a as usize, b as usize]),
+            | Defect::NonOrientable { vertices: [a, b] }
+            | Defect::CutOpen {
+                vertices: [a, b], ..
+            } => vertex_lines(&[a as usize, b as usize]),
             Defect::NoTriangles | Defect::Reoriented { .. } | Defect::MoreWelded { .. } => None,
         };
         match line {
@@ -351,6 +363,16 @@ impl fmt::Display for Defect {
                 "vertex {} joined {copies} separate fans of triangles: one copy per fan \
                  (--repair)",
                 n(*vertex)
+            ),
+            Defect::CutOpen {
+                vertices: [a, b],
+                edges,
+            } => write!(
+                f,
+                "the surface was not orientable (a Möbius strip): cut open along {edges} edge(s) \
+                 where its orientations conflicted, from edge {}-{} (--repair)",
+                n(*a as usize),
+                n(*b as usize)
             ),
             Defect::DuplicateTriangle { triangle, of } => write!(
                 f,

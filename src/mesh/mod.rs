@@ -18,7 +18,7 @@ pub use chains::chain_edges;
 pub use defects::{Defect, MAXIMUM_COORDINATE, MeshDefects};
 pub use facet::{FacetModel, NONE};
 pub use rebuild::{RebuildError, rebuild, rebuild_split};
-pub use repair::{NAMED_WELDS, split_non_manifold, weld_duplicates};
+pub use repair::{NAMED_WELDS, cut_open_non_orientable, split_non_manifold, weld_duplicates};
 pub use rows::compressed_rows;
 #[cfg(test)]
 pub(crate) use section::tests::grid as test_grid;

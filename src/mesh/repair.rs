@@ -1,7 +1,8 @@
 //! Repairs of real exports' connectivity (`--repair`), each reported as a warning that names
-//! what it changed: vertices at the same point welded into one, and edges shared by more than
+//! what it changed: vertices at the same point welded into one, edges shared by more than
 //! two triangles and vertices joining separate fans split apart, so that every edge has at most
-//! two triangles and every vertex one fan. Positions never move.
+//! two triangles and every vertex one fan, and a non-orientable surface (a Möbius strip) cut open
+//! where its orientations conflict. Positions never move.
 
 use super::defects::Defect;
 use super::validate::{
@@ -82,6 +83,23 @@ pub fn split_non_manifold(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
             kept: 2 * pairs.len(),
         })
         .collect();
+    let (split, splits) = split_vertices_by_fan(soup, &usable, &triangles, &fans);
+    warnings.extend(splits);
+    (split, warnings)
+}
+
+/// The soup with each vertex given one copy per fan of its corners (`fans`, one representative
+/// corner per corner of the `usable` triangles, listed in `triangles`; fans ordered by their
+/// lowest triangle, the first keeping the vertex), and one [`Defect::SplitVertex`] per vertex
+/// split. Copies keep their vertex's position and file line.
+fn split_vertices_by_fan(
+    soup: &TriangleSoup,
+    usable: &[usize],
+    triangles: &[[u32; 3]],
+    fans: &[u32],
+) -> (TriangleSoup, Vec<Defect>) {
+    let vertex_count = soup.positions.len();
+    let mut warnings = Vec::new();
     // Per vertex, its fans in the order of their lowest triangle, each with its corners.
     let mut fans_of_vertex: Vec<Vec<(u32, Vec<usize>)>> = vec![Vec::new(); vertex_count];
     for (corner, &fan) in fans.iter().enumerate() {
@@ -113,6 +131,73 @@ pub fn split_non_manifold(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
         }
     }
     (split, warnings)
+}
+
+/// The soup cut open where its orientations conflict, so that a non-orientable surface (a Möbius
+/// strip) becomes orientable: each connected part is oriented breadth first from its lowest
+/// triangle across its manifold edges (as validation does), the edges whose two triangles then
+/// disagree stop joining them, and each vertex on them gets one copy per fan left
+/// ([`Defect::SplitVertex`]). Returns one [`Defect::CutOpen`] naming the first edge and counting
+/// them, or no warning and the soup as it is when its orientations agree (every orientable
+/// surface). Run after [`split_non_manifold`]: edges of more than two triangles are not crossed.
+pub fn cut_open_non_orientable(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
+    let vertex_count = soup.positions.len();
+    let usable: Vec<usize> = (0..soup.triangles.len())
+        .filter(|&t| is_usable(soup.triangles[t], vertex_count))
+        .collect();
+    let triangles: Vec<[u32; 3]> = usable.iter().map(|&t| soup.triangles[t]).collect();
+    let half_edges = sorted_half_edges(&triangles);
+    let pairs: Vec<[HalfEdge; 2]> = manifold_pairs(&half_edges).collect();
+    let flipped = breadth_first_orientation(triangles.len(), &pairs);
+    // Two triangles agree when, as oriented, they run over their shared edge in opposite ways.
+    let agree =
+        |[x, y]: &[HalfEdge; 2]| (x.3 ^ flipped[x.2 as usize]) != (y.3 ^ flipped[y.2 as usize]);
+    let conflicts: Vec<[u32; 2]> = (pairs.iter())
+        .filter(|pair| !agree(pair))
+        .map(|[x, _]| [x.0, x.1])
+        .collect();
+    let Some(&first) = conflicts.first() else {
+        return (soup.clone(), Vec::new());
+    };
+    let fans = corner_fans(&triangles, pairs.iter().copied().filter(|pair| agree(pair)));
+    let (cut, splits) = split_vertices_by_fan(soup, &usable, &triangles, &fans);
+    let mut warnings = vec![Defect::CutOpen {
+        vertices: first,
+        edges: conflicts.len(),
+    }];
+    warnings.extend(splits);
+    (cut, warnings)
+}
+
+/// Per triangle, whether it is flipped when each connected part (across the neighbour `pairs`)
+/// is oriented breadth first from its lowest triangle, which keeps its orientation.
+fn breadth_first_orientation(triangle_count: usize, pairs: &[[HalfEdge; 2]]) -> Vec<bool> {
+    let mut neighbours: Vec<Vec<(u32, bool)>> = vec![Vec::new(); triangle_count];
+    for [x, y] in pairs {
+        let same = x.3 == y.3;
+        neighbours[x.2 as usize].push((y.2, same));
+        neighbours[y.2 as usize].push((x.2, same));
+    }
+    let mut flipped = vec![false; triangle_count];
+    let mut reached = vec![false; triangle_count];
+    let mut queue = std::collections::VecDeque::new();
+    for seed in 0..triangle_count {
+        if reached[seed] {
+            continue;
+        }
+        reached[seed] = true;
+        queue.push_back(seed);
+        while let Some(f) = queue.pop_front() {
+            for &(g, same) in &neighbours[f] {
+                if !reached[g as usize] {
+                    reached[g as usize] = true;
+                    flipped[g as usize] = flipped[f] ^ same;
+                    queue.push_back(g as usize);
+                }
+            }
+        }
+    }
+    flipped
 }
 
 /// Per non-manifold edge (`shared`), the pairs of its triangles that stay neighbours, and the
@@ -222,6 +307,65 @@ mod tests {
             points: (0..7).map(|i| DVec2::new(i as f64, 0.0)).collect(),
             corners,
         })
+    }
+
+    /// A strip of `segments` quads around a circle, its ends glued with a half twist.
+    fn mobius_strip(segments: u32) -> TriangleSoup {
+        let positions: Vec<DVec3> = (0..segments)
+            .flat_map(|i| {
+                let angle = std::f64::consts::TAU * i as f64 / segments as f64;
+                let twist = angle / 2.0;
+                let (radial, height) = (0.3 * twist.cos(), 0.3 * twist.sin());
+                [-1.0, 1.0].map(|side| {
+                    let radius = 1.0 + side * radial;
+                    DVec3::new(radius * angle.cos(), radius * angle.sin(), side * height)
+                })
+            })
+            .collect();
+        let mut triangles = Vec::new();
+        for i in 0..segments {
+            let (a, b) = (2 * i, 2 * i + 1);
+            let (c, d) = if i + 1 == segments {
+                (1, 0)
+            } else {
+                (2 * i + 2, 2 * i + 3)
+            };
+            triangles.extend([[a, c, b], [b, c, d]]);
+        }
+        TriangleSoup::new(positions, triangles)
+    }
+
+    #[test]
+    fn a_mobius_strip_is_cut_open_across_and_then_validates() {
+        let strip = mobius_strip(12);
+        assert!(validate(&strip).is_err());
+        let (cut, warnings) = cut_open_non_orientable(&strip);
+        assert!(
+            matches!(warnings[0], Defect::CutOpen { edges: 1, .. }),
+            "{warnings:?}"
+        );
+        // The edge across the strip is cut: its two ends get a copy each.
+        let copies = (warnings.iter())
+            .filter(|w| matches!(w, Defect::SplitVertex { copies: 2, .. }))
+            .count();
+        assert_eq!(copies, 2, "{warnings:?}");
+        assert_eq!(cut.positions.len(), strip.positions.len() + 2);
+        let model = validate(&cut).expect("orientable once cut").components;
+        assert_eq!(model.len(), 1);
+        assert_eq!(model[0].triangle_count(), strip.triangles.len());
+    }
+
+    #[test]
+    fn an_orientable_surface_is_not_cut() {
+        let mut strip = mobius_strip(12);
+        // Without the twist where the ends meet, the band is an annulus: orientable.
+        let last = strip.triangles.len() - 2;
+        strip.triangles[last] = [22, 0, 23];
+        strip.triangles[last + 1] = [23, 0, 1];
+        let (cut, warnings) = cut_open_non_orientable(&strip);
+        assert!(warnings.is_empty(), "{warnings:?}");
+        assert_eq!(cut.triangles, strip.triangles);
+        assert!(validate(&cut).is_ok());
     }
 
     #[test]

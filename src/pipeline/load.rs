@@ -18,8 +18,9 @@ use crate::flatten::Stiffness;
 use crate::geometry::weld::finite_bounds;
 use crate::ingest::{CutSidecar, Input, read_cut_sidecar, read_input};
 use crate::mesh::{
-    Defect, FacetModel, NAMED_WELDS, SeamSource, check_welded, repair_degenerate_triangles,
-    split_at_texture_seams, split_non_manifold, validate, weld_duplicates,
+    Defect, FacetModel, NAMED_WELDS, SeamSource, check_welded, cut_open_non_orientable,
+    repair_degenerate_triangles, split_at_texture_seams, split_non_manifold, validate,
+    weld_duplicates,
 };
 use crate::sheet::{
     BendLine, BendRule, FoldedPart, NotASheet, SHEET_CHORD_MM, SheetOptions, SheetUnfold,
@@ -280,6 +281,9 @@ fn prepared_soup(
         let (split, repairs) = split_non_manifold(&soup);
         note(&soup, repairs);
         soup = split;
+        let (cut, repairs) = cut_open_non_orientable(&soup);
+        note(&soup, repairs);
+        soup = cut;
     }
     Ok((soup, warnings))
 }
