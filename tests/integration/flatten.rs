@@ -574,6 +574,59 @@ fn a_triangle_soup_is_refused_and_repair_welds_it_into_one_part() {
 }
 
 #[test]
+fn a_mobius_strip_is_refused_and_repair_cuts_it_open_into_one_flat_strip() {
+    let folder = tempfile::tempdir().expect("temporary directory");
+    let input = folder.path().join("mobius.obj");
+    // 16 quads around a circle of radius 100 mm, 60 mm wide, the band turning half a turn on the
+    // way round, its ends glued with that twist: every vertex on the boundary, so it is
+    // developable once cut.
+    let segments = 16;
+    let mut text = String::new();
+    for i in 0..segments {
+        let angle = std::f64::consts::TAU * i as f64 / segments as f64;
+        let (radial, height) = (30.0 * (angle / 2.0).cos(), 30.0 * (angle / 2.0).sin());
+        for side in [-1.0, 1.0] {
+            let radius = 100.0 + side * radial;
+            let (x, y, z) = (radius * angle.cos(), radius * angle.sin(), side * height);
+            text += &format!("v {x} {y} {z}\n");
+        }
+    }
+    for i in 0..segments {
+        let (a, b) = (2 * i + 1, 2 * i + 2);
+        let (c, d) = if i + 1 == segments {
+            (2, 1)
+        } else {
+            (a + 2, b + 2)
+        };
+        text += &format!("f {a} {c} {b}\nf {b} {c} {d}\n");
+    }
+    std::fs::write(&input, text).expect("write input");
+    let refused = flatten_into(&input, &folder.path().join("refused"), &[]);
+    assert_eq!(refused.status.code(), Some(1), "{}", stderr(&refused));
+    let message = stderr(&refused);
+    assert!(
+        message.contains("the surface is not orientable")
+            && message.contains("cuts a non-orientable surface open"),
+        "{message}"
+    );
+    let repaired_folder = folder.path().join("repaired");
+    let repaired = flatten_into(&input, &repaired_folder, &["--repair"]);
+    assert_eq!(repaired.status.code(), Some(0), "{}", stderr(&repaired));
+    assert!(
+        stderr(&repaired).contains("cut open along 1 edge(s)"),
+        "{}",
+        stderr(&repaired)
+    );
+    let report = read_report(&repaired_folder);
+    let parts = report["parts"].as_array().expect("parts");
+    assert_eq!(parts.len(), 1, "one strip");
+    assert_eq!(parts[0]["triangles"], 2 * segments);
+    let figures = recompute(&repaired_folder, parts[0]["name"].as_str().unwrap());
+    assert!(figures.area_error <= DEVELOPABLE_ERROR, "{figures:?}");
+    assert_eq!(figures.flipped, 0);
+}
+
+#[test]
 fn repair_splits_a_non_manifold_edge_that_stops_the_mesh_otherwise() {
     let folder = tempfile::tempdir().expect("temporary directory");
     let input = folder.path().join("three_panels.obj");
