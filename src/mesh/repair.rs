@@ -6,8 +6,8 @@
 
 use super::defects::Defect;
 use super::validate::{
-    HalfEdge, PointsNearlyEqual, corner, corner_fans, edge_groups, is_usable, manifold_pairs,
-    sorted_half_edges,
+    HalfEdge, PointsNearlyEqual, breadth_first_orientation, corner, corner_fans, edge_groups,
+    is_usable, manifold_pairs, orientations_agree, sorted_half_edges,
 };
 use crate::cad::TriangleSoup;
 
@@ -148,10 +148,8 @@ pub fn cut_open_non_orientable(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect
     let triangles: Vec<[u32; 3]> = usable.iter().map(|&t| soup.triangles[t]).collect();
     let half_edges = sorted_half_edges(&triangles);
     let pairs: Vec<[HalfEdge; 2]> = manifold_pairs(&half_edges).collect();
-    let flipped = breadth_first_orientation(triangles.len(), &pairs);
-    // Two triangles agree when, as oriented, they run over their shared edge in opposite ways.
-    let agree =
-        |[x, y]: &[HalfEdge; 2]| (x.3 ^ flipped[x.2 as usize]) != (y.3 ^ flipped[y.2 as usize]);
+    let (flipped, _) = breadth_first_orientation(triangles.len(), &pairs);
+    let agree = |pair: &[HalfEdge; 2]| orientations_agree(pair, &flipped);
     let conflicts: Vec<[u32; 2]> = (pairs.iter())
         .filter(|pair| !agree(pair))
         .map(|[x, _]| [x.0, x.1])
@@ -167,37 +165,6 @@ pub fn cut_open_non_orientable(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect
     }];
     warnings.extend(splits);
     (cut, warnings)
-}
-
-/// Per triangle, whether it is flipped when each connected part (across the neighbour `pairs`)
-/// is oriented breadth first from its lowest triangle, which keeps its orientation.
-fn breadth_first_orientation(triangle_count: usize, pairs: &[[HalfEdge; 2]]) -> Vec<bool> {
-    let mut neighbours: Vec<Vec<(u32, bool)>> = vec![Vec::new(); triangle_count];
-    for [x, y] in pairs {
-        let same = x.3 == y.3;
-        neighbours[x.2 as usize].push((y.2, same));
-        neighbours[y.2 as usize].push((x.2, same));
-    }
-    let mut flipped = vec![false; triangle_count];
-    let mut reached = vec![false; triangle_count];
-    let mut queue = std::collections::VecDeque::new();
-    for seed in 0..triangle_count {
-        if reached[seed] {
-            continue;
-        }
-        reached[seed] = true;
-        queue.push_back(seed);
-        while let Some(f) = queue.pop_front() {
-            for &(g, same) in &neighbours[f] {
-                if !reached[g as usize] {
-                    reached[g as usize] = true;
-                    flipped[g as usize] = flipped[f] ^ same;
-                    queue.push_back(g as usize);
-                }
-            }
-        }
-    }
-    flipped
 }
 
 /// Per non-manifold edge (`shared`), the pairs of its triangles that stay neighbours, and the

@@ -298,39 +298,12 @@ fn orient_and_label(
     errors: &mut Vec<Defect>,
     warnings: &mut Vec<Defect>,
 ) -> Vec<u32> {
-    // Face neighbours across manifold edges: (other face, edge vertices, same_direction).
-    let mut neighbours: Vec<Vec<(u32, [u32; 2], bool)>> = vec![Vec::new(); triangles.len()];
-    for [x, y] in manifold_pairs(half_edges) {
-        let same = x.3 == y.3;
-        neighbours[x.2 as usize].push((y.2, [x.0, x.1], same));
-        neighbours[y.2 as usize].push((x.2, [x.0, x.1], same));
-    }
-    let mut component = vec![NONE; triangles.len()];
-    let mut flipped = vec![false; triangles.len()];
-    let mut label = 0;
-    let mut queue = std::collections::VecDeque::new();
-    let mut conflict_reported = false;
-    for seed in 0..triangles.len() {
-        if component[seed] != NONE {
-            continue;
-        }
-        component[seed] = label;
-        queue.push_back(seed);
-        while let Some(f) = queue.pop_front() {
-            for &(g, vertices, same) in &neighbours[f] {
-                // Two faces agree when they run over their shared edge in opposite directions.
-                let g_flipped = flipped[f] ^ same;
-                if component[g as usize] == NONE {
-                    component[g as usize] = label;
-                    flipped[g as usize] = g_flipped;
-                    queue.push_back(g as usize);
-                } else if flipped[g as usize] != g_flipped && !conflict_reported {
-                    errors.push(Defect::NonOrientable { vertices });
-                    conflict_reported = true;
-                }
-            }
-        }
-        label += 1;
+    let pairs: Vec<[HalfEdge; 2]> = manifold_pairs(half_edges).collect();
+    let (flipped, component) = breadth_first_orientation(triangles.len(), &pairs);
+    if let Some([x, _]) = (pairs.iter()).find(|pair| !orientations_agree(pair, &flipped)) {
+        errors.push(Defect::NonOrientable {
+            vertices: [x.0, x.1],
+        });
     }
     let count = flipped.iter().filter(|&&x| x).count();
     if count > 0 && errors.is_empty() {
@@ -342,6 +315,49 @@ fn orient_and_label(
         warnings.push(Defect::Reoriented { count });
     }
     component
+}
+
+/// Per face, whether it is flipped when each component (faces joined across the neighbour
+/// `pairs`, from [`manifold_pairs`]) is oriented breadth first from its lowest face, which keeps
+/// its orientation; and each face's component label, numbered in the order of those faces.
+pub(super) fn breadth_first_orientation(
+    triangle_count: usize,
+    pairs: &[[HalfEdge; 2]],
+) -> (Vec<bool>, Vec<u32>) {
+    let mut neighbours: Vec<Vec<(u32, bool)>> = vec![Vec::new(); triangle_count];
+    for [x, y] in pairs {
+        let same = x.3 == y.3;
+        neighbours[x.2 as usize].push((y.2, same));
+        neighbours[y.2 as usize].push((x.2, same));
+    }
+    let mut flipped = vec![false; triangle_count];
+    let mut component = vec![NONE; triangle_count];
+    let mut label = 0;
+    let mut queue = std::collections::VecDeque::new();
+    for seed in 0..triangle_count {
+        if component[seed] != NONE {
+            continue;
+        }
+        component[seed] = label;
+        queue.push_back(seed);
+        while let Some(f) = queue.pop_front() {
+            for &(g, same) in &neighbours[f] {
+                if component[g as usize] == NONE {
+                    component[g as usize] = label;
+                    flipped[g as usize] = flipped[f] ^ same;
+                    queue.push_back(g as usize);
+                }
+            }
+        }
+        label += 1;
+    }
+    (flipped, component)
+}
+
+/// True when the two faces of a neighbour pair, each flipped as `flipped` says, agree: they run
+/// over their shared edge in opposite directions.
+pub(super) fn orientations_agree([x, y]: &[HalfEdge; 2], flipped: &[bool]) -> bool {
+    (x.3 ^ flipped[x.2 as usize]) != (y.3 ^ flipped[y.2 as usize])
 }
 
 /// Flags vertices whose faces form several fans: corners are joined across shared edges, and a
