@@ -60,11 +60,7 @@ pub fn weld_duplicates(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
 /// Returns the warnings, one [`Defect::SplitEdge`] per edge and one [`Defect::SplitVertex`] per
 /// vertex split.
 pub fn split_non_manifold(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
-    let vertex_count = soup.positions.len();
-    let usable: Vec<usize> = (0..soup.triangles.len())
-        .filter(|&t| is_usable(soup.triangles[t], vertex_count))
-        .collect();
-    let triangles: Vec<[u32; 3]> = usable.iter().map(|&t| soup.triangles[t]).collect();
+    let (usable, triangles) = usable_triangles(soup);
     let texture: Option<Vec<[u32; 3]>> = soup
         .texture
         .as_ref()
@@ -86,6 +82,17 @@ pub fn split_non_manifold(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
     let (split, splits) = split_vertices_by_fan(soup, &usable, &triangles, &fans);
     warnings.extend(splits);
     (split, warnings)
+}
+
+/// The indices of the soup's usable triangles ([`is_usable`]: validation drops or refuses the
+/// others), and those triangles.
+fn usable_triangles(soup: &TriangleSoup) -> (Vec<usize>, Vec<[u32; 3]>) {
+    let vertex_count = soup.positions.len();
+    let usable: Vec<usize> = (0..soup.triangles.len())
+        .filter(|&t| is_usable(soup.triangles[t], vertex_count))
+        .collect();
+    let triangles = usable.iter().map(|&t| soup.triangles[t]).collect();
+    (usable, triangles)
 }
 
 /// The soup with each vertex given one copy per fan of its corners (`fans`, one representative
@@ -141,11 +148,7 @@ fn split_vertices_by_fan(
 /// them, or no warning and the soup as it is when its orientations agree (every orientable
 /// surface). Run after [`split_non_manifold`]: edges of more than two triangles are not crossed.
 pub fn cut_open_non_orientable(soup: &TriangleSoup) -> (TriangleSoup, Vec<Defect>) {
-    let vertex_count = soup.positions.len();
-    let usable: Vec<usize> = (0..soup.triangles.len())
-        .filter(|&t| is_usable(soup.triangles[t], vertex_count))
-        .collect();
-    let triangles: Vec<[u32; 3]> = usable.iter().map(|&t| soup.triangles[t]).collect();
+    let (usable, triangles) = usable_triangles(soup);
     let half_edges = sorted_half_edges(&triangles);
     let pairs: Vec<[HalfEdge; 2]> = manifold_pairs(&half_edges).collect();
     let (flipped, _) = breadth_first_orientation(triangles.len(), &pairs);
