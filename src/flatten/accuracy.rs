@@ -144,7 +144,7 @@ pub fn boundary_self_intersects(model: &FacetModel, pattern: &[DVec2]) -> bool {
 /// True if two boundary segments that share no vertex come within `gap` of each other: with a
 /// small `gap`, a test that turning or moving the pattern does not change (where two sides lie
 /// on each other, as along a crack of no width in the surface itself, whether they touch is
-/// decided by rounding, and [`boundary_self_intersects`] may say no before a turn and yes after).
+/// decided by rounding, and the test with no gap may say no before a turn and yes after).
 pub fn boundary_comes_within(model: &FacetModel, pattern: &[DVec2], gap: f64) -> bool {
     let segments: Vec<[u32; 2]> = model.boundary_sides().collect();
     any_segments_within(&segments, pattern, gap)
