@@ -6,7 +6,7 @@ use glam::DVec3;
 
 use super::errors::FormatDefect;
 use super::text::without_byte_order_mark;
-use crate::cad::TriangleSoup;
+use crate::cad::{SourceLines, TriangleSoup};
 use crate::geometry::tolerance::STL_WELD_TOLERANCE;
 use crate::geometry::weld::{PointWelder, finite_bounds};
 
@@ -37,10 +37,11 @@ fn is_binary(bytes: &[u8]) -> bool {
 
 /// Parses an STL file and welds its corners.
 pub fn parse_stl(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
-    let corners = if is_binary(bytes) {
-        parse_binary(bytes)?
+    let (corners, lines) = if is_binary(bytes) {
+        (parse_binary(bytes)?, None)
     } else if starts_like_ascii(bytes) {
-        parse_ascii(without_byte_order_mark(bytes))?
+        let (corners, lines) = parse_ascii(without_byte_order_mark(bytes))?;
+        (corners, Some(lines))
     } else {
         let message = match binary_count(bytes) {
             Some(n) => format!(
@@ -55,8 +56,12 @@ pub fn parse_stl(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
     if corners.is_empty() {
         return Err(FormatDefect::Empty);
     }
-    Ok(weld(&corners))
+    Ok(weld(&corners, lines.as_deref()))
 }
+
+/// The lines of an ASCII STL's facet: its `facet` line (or its first `vertex` line when it has
+/// none) and the line of each of its three corners.
+type FacetLines = (u32, [u32; 3]);
 
 fn parse_binary(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, FormatDefect> {
     let count = binary_count(bytes).unwrap_or(0);
@@ -73,11 +78,15 @@ fn parse_binary(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, FormatDefect> {
     Ok(triangles)
 }
 
-fn parse_ascii(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, FormatDefect> {
+/// An ASCII STL's triangles, and the lines each was written on.
+fn parse_ascii(bytes: &[u8]) -> Result<(Vec<[DVec3; 3]>, Vec<FacetLines>), FormatDefect> {
     let text = std::str::from_utf8(bytes)
         .map_err(|_| FormatDefect::Binary("ASCII STL holds non-UTF-8 bytes".into()))?;
     let mut triangles = Vec::new();
+    let mut lines_of_triangles = Vec::new();
     let mut corners: Vec<DVec3> = Vec::with_capacity(3);
+    let mut corner_lines: Vec<u32> = Vec::with_capacity(3);
+    let mut facet_line = None;
     let mut ended = false;
     for (index, raw) in text.lines().enumerate() {
         let line = index + 1;
@@ -92,7 +101,9 @@ fn parse_ascii(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, FormatDefect> {
                     })
                 };
                 corners.push(DVec3::new(coordinate()?, coordinate()?, coordinate()?));
+                corner_lines.push(line as u32);
             }
+            Some("facet") => facet_line = Some(line as u32),
             Some("endloop") => {
                 let corners_found = std::mem::take(&mut corners);
                 let triangle: [DVec3; 3] =
@@ -102,6 +113,10 @@ fn parse_ascii(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, FormatDefect> {
                             line,
                             message: format!("a facet needs 3 vertices, found {}", found.len()),
                         })?;
+                let corner_lines = std::mem::take(&mut corner_lines);
+                let facet = facet_line.take().unwrap_or(corner_lines[0]);
+                lines_of_triangles
+                    .push((facet, [corner_lines[0], corner_lines[1], corner_lines[2]]));
                 triangles.push(triangle);
             }
             Some("endsolid") => ended = true,
@@ -121,25 +136,59 @@ fn parse_ascii(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, FormatDefect> {
             message: "the ASCII STL has no 'endsolid' line: it is truncated".into(),
         });
     }
-    Ok(triangles)
+    Ok((triangles, lines_of_triangles))
 }
 
-/// Welds corners within the tolerance on a hash grid whose cell is the tolerance.
-fn weld(corners: &[[DVec3; 3]]) -> TriangleSoup {
+/// Welds corners within the tolerance on a hash grid whose cell is the tolerance; with the
+/// file's `lines` (ASCII), each triangle keeps its facet's line and each vertex the line of the
+/// first corner welded into it, for messages.
+fn weld(corners: &[[DVec3; 3]], lines: Option<&[FacetLines]>) -> TriangleSoup {
     let (origin, diagonal) = finite_bounds(corners.iter().flatten())
         .map_or((DVec3::ZERO, 0.0), |(min, max)| (min, (max - min).length()));
     let tolerance = (STL_WELD_TOLERANCE * diagonal).max(f64::MIN_POSITIVE);
     let mut welder = PointWelder::new(origin, tolerance);
-    let triangles = corners
-        .iter()
-        .map(|triangle| triangle.map(|p| welder.insert(p)))
-        .collect();
-    TriangleSoup::new(welder.into_points(), triangles)
+    let mut source_lines = SourceLines::default();
+    let mut triangles = Vec::with_capacity(corners.len());
+    for (t, triangle) in corners.iter().enumerate() {
+        let welded = triangle.map(|p| welder.insert(p));
+        if let Some(lines) = lines {
+            let (facet, corner_lines) = lines[t];
+            source_lines.triangles.push(facet);
+            for (vertex, line) in welded.into_iter().zip(corner_lines) {
+                if vertex as usize == source_lines.vertices.len() {
+                    source_lines.vertices.push(line);
+                }
+            }
+        }
+        triangles.push(welded);
+    }
+    TriangleSoup::new(welder.into_points(), triangles).with_lines(source_lines)
 }
 
 #[cfg(test)]
 mod tests {
     use crate::ingest::stl::*;
+
+    /// An ASCII STL's triangles keep their facet's line, and each welded vertex the line of the
+    /// first corner at its point, so that a defect can say where it is in the file.
+    #[test]
+    fn an_ascii_stl_keeps_the_lines_of_its_facets_and_first_corners() {
+        let text = "solid two\n\
+            facet normal 0 0 1\n outer loop\n\
+            vertex 0 0 0\n vertex 1 0 0\n vertex 0 1 0\n\
+            endloop\n endfacet\n\
+            facet normal 0 0 1\n outer loop\n\
+            vertex 1 0 0\n vertex 1 1 0\n vertex 0 1 0\n\
+            endloop\n endfacet\n\
+            endsolid two\n";
+        let soup = parse_stl(text.as_bytes()).expect("valid STL");
+        assert_eq!(soup.triangles, [[0, 1, 2], [1, 3, 2]]);
+        assert_eq!(soup.source_lines.triangles, [2, 9]);
+        assert_eq!(soup.source_lines.vertices, [4, 5, 6, 12]);
+        let binary = binary_stl(&[[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]]);
+        let soup = parse_stl(&binary).expect("valid STL");
+        assert!(soup.source_lines.vertices.is_empty() && soup.source_lines.triangles.is_empty());
+    }
 
     fn binary_stl(triangles: &[[[f32; 3]; 3]]) -> Vec<u8> {
         let mut bytes = vec![0u8; BINARY_HEADER];
