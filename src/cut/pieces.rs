@@ -69,6 +69,7 @@ use crate::flatten::{
     FlattenOptions, Flattened, Stiffness, boundary_comes_within, flatten, flatten_from,
     flatten_unrepaired, flatten_unrepaired_from, with_squeezed_triangles_opened,
 };
+use crate::geometry::bounding_box;
 use crate::mesh::{
     EdgeOrigin, FacetModel, NONE, Plane, SectionPiece, chain_edges, principal_axes, section,
 };
@@ -309,10 +310,7 @@ fn is_within(result: &CutResult, tolerance: f64) -> bool {
 /// (see [`is_within`]).
 fn touches_itself(result: &CutResult) -> bool {
     let positions = &result.flattened.positions;
-    let (min, max) = (positions.iter()).fold(
-        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-        |(min, max), &p| (min.min(p), max.max(p)),
-    );
+    let (min, max) = bounding_box(positions);
     let gap = TOUCHING_GAP * (max - min).length();
     boundary_comes_within(&result.model, positions, gap)
 }

@@ -292,27 +292,29 @@ fn prepared_soup(
 /// by one, the others of that kind counted in one warning (a scan with holes can have thousands
 /// of split vertices, and every part of the file carries its warnings).
 fn repair_warnings(repairs: &[Defect], lines: &SourceLines) -> Vec<String> {
-    let mut kinds: Vec<(Discriminant<Defect>, usize, String)> = Vec::new();
+    // Per kind of repair: its first repair and how many there are.
+    let mut kinds: Vec<(Discriminant<Defect>, &Defect, usize)> = Vec::new();
     let mut warnings = Vec::new();
     for repair in repairs {
         let kind = discriminant(repair);
         let position = match kinds.iter().position(|(seen, ..)| *seen == kind) {
             Some(position) => position,
             None => {
-                kinds.push((kind, 0, repair.located(lines)));
+                kinds.push((kind, repair, 0));
                 kinds.len() - 1
             }
         };
-        kinds[position].1 += 1;
-        if kinds[position].1 <= NAMED_WELDS {
+        kinds[position].2 += 1;
+        if kinds[position].2 <= NAMED_WELDS {
             warnings.push(repair.located(lines));
         }
     }
-    for (_, count, first) in kinds {
+    for (_, first, count) in kinds {
         if count > NAMED_WELDS {
             warnings.push(format!(
-                "{} more repairs of the same kind as \"{first}\" (--repair)",
-                count - NAMED_WELDS
+                "{} more repairs of the same kind as \"{}\" (--repair)",
+                count - NAMED_WELDS,
+                first.located(lines)
             ));
         }
     }

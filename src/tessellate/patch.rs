@@ -25,7 +25,7 @@ use super::face_mesh::FaceMesh;
 use super::options::TessellateError;
 use crate::cad::{PatchSurface, pieces_for_length};
 use crate::geometry::tolerance::{ON_POLYLINE_RATIO, SLIVER_AREA_RATIO};
-use crate::geometry::{distance_to_segment, inside};
+use crate::geometry::{bounding_box, distance_to_segment, inside};
 
 /// The smallest triangle angle refinement aims for, degrees.
 pub const MINIMUM_ANGLE_DEGREES: f64 = 25.0;
@@ -261,13 +261,6 @@ fn domain_scale(patch: &PatchSurface) -> Result<DomainScale, TessellateError> {
         return Err(TessellateError::DegenerateSurface);
     }
     Ok(DomainScale(mean))
-}
-
-fn bounding_box(points: &[DVec2]) -> (DVec2, DVec2) {
-    points.iter().fold(
-        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-        |(low, high), &p| (low.min(p), high.max(p)),
-    )
 }
 
 /// Inserts a domain point. A coordinate whose magnitude is below spade's smallest

@@ -6,7 +6,8 @@
 //!    overlap) and separate. A separated layout is the new best and is cut again. When separation
 //!    fails, the least-overlapping layout joins a pool of failed layouts at that length; one of
 //!    them (the better ones more likely) is disrupted (two large parts swap places, carrying the
-//!    parts they land on into the places they left) and separated again, at the same length: the search keeps working on the short strip instead of going back.
+//!    parts they land on into the places they left) and separated again, at the same length:
+//!    the search keeps working on the short strip instead of going back.
 //! 2. **Compression** (the rest): from the best, cut by a step that falls linearly with the work
 //!    spent from [`COMPRESSION_STEPS`]`.0` to `.1`, at a random split, and separate; keep the
 //!    result if it separates, else go back to the best.
