@@ -23,10 +23,10 @@
 //! [`super::straighten::SNAP_FRACTION`] of the edge's end), the vertex moves onto the crossing so
 //! that the cut does not turn there: an inner vertex with no fold line on its faces and no
 //! other crossing on its edges, whose faces keep at least half their smallest angle and turn by
-//! less than [`MAX_MOVED_FACE_TURN`]. It moves along one of its own edges by at most a fifth of
-//! it, and the surface changes by about the mesh's own chord error (at most about twice an edge's
-//! sagitta on the samples, docs/cutting.md); the rest lengths of its edges scale with their 3D
-//! lengths.
+//! less than [`crate::mesh::MAX_MOVED_FACE_TURN`] ([`crate::mesh::can_move_vertex`]). It moves
+//! along one of its own edges by at most a fifth of it, and the surface changes by about the
+//! mesh's own chord error (at most about twice an edge's sagitta on the samples,
+//! docs/cutting.md); the rest lengths of its edges scale with their 3D lengths.
 //! Otherwise it stays and the cut turns there.
 //!
 //! The straightened path is refused, and the edge path kept, when it passes a blocked vertex or a
@@ -42,7 +42,9 @@ use super::straighten::{
     SurfacePoint, largest_turn, position, straight_on, straighten, turn_at_tip,
 };
 use crate::flatten::Stiffness;
-use crate::mesh::{FacetModel, FoldEdge, NONE, SourceLines, TriangleSoup, rebuild};
+use crate::mesh::{
+    FacetModel, FoldEdge, NONE, SourceLines, TriangleSoup, can_move_vertex, rebuild, smallest_angle,
+};
 
 /// The largest turn (radians) at a cut's inner end that an extension along its straightened
 /// crest line may make (12°): the cut's sides then turn by less than the 20° a cutter follows
@@ -52,9 +54,6 @@ pub const MAX_EXTENSION_TURN: f64 = 12.0 * std::f64::consts::PI / 180.0;
 /// The largest geodesic turn (radians) at a vertex of an edge path cut as it is when its
 /// straightening cannot be cut (10°).
 pub const MAX_EDGE_PATH_TURN: f64 = 10.0 * std::f64::consts::PI / 180.0;
-
-/// The largest angle (radians) a face around a vertex moved onto a cut may turn by (10°).
-pub const MAX_MOVED_FACE_TURN: f64 = 10.0 * std::f64::consts::PI / 180.0;
 
 /// An inserted vertex: the edge of the state it splits, `[a, b]`, and where (`0` at `a`).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -277,37 +276,9 @@ fn moves(model: &FacetModel, points: &[SurfacePoint]) -> Vec<(u32, DVec3)> {
         .filter(|&(vertex, to)| {
             on_path(vertex) == 1
                 && !crossed.iter().any(|ends| ends.contains(&vertex))
-                && movable(model, vertex, to)
+                && can_move_vertex(model, vertex, to)
         })
         .collect()
-}
-
-/// Whether `vertex` may move to `to`: none of its faces has an edge on a fold line, and each
-/// keeps at least half its smallest angle and turns by less than [`MAX_MOVED_FACE_TURN`].
-fn movable(model: &FacetModel, vertex: u32, to: DVec3) -> bool {
-    let positions = model.positions();
-    let on_fold = model.vertex_faces(vertex).iter().any(|&face| {
-        model.face_edges()[face as usize]
-            .iter()
-            .any(|&e| model.edge_fold_lines()[e as usize] != NONE)
-    });
-    if on_fold {
-        return false;
-    }
-    model.vertex_faces(vertex).iter().all(|&face| {
-        let corners = model.triangles()[face as usize];
-        let before = corners.map(|v| positions[v as usize]);
-        let after = corners.map(|v| {
-            if v == vertex {
-                to
-            } else {
-                positions[v as usize]
-            }
-        });
-        let normal = |[a, b, c]: [DVec3; 3]| (b - a).cross(c - a).normalize_or_zero();
-        smallest_angle(after) >= 0.5 * smallest_angle(before)
-            && normal(before).angle_between(normal(after)) < MAX_MOVED_FACE_TURN
-    })
 }
 
 /// The model's triangles with every face that has inserted vertices on its edges split (see the
@@ -371,16 +342,6 @@ fn quadrilateral(positions: &[DVec3], [a, b, c, d]: [u32; 4]) -> [[u32; 3]; 2] {
     } else {
         along_bd
     }
-}
-
-/// The smallest angle of the triangle with these corners, radians.
-fn smallest_angle(corners: [DVec3; 3]) -> f64 {
-    (0..3)
-        .map(|k| {
-            let at = corners[k];
-            (corners[(k + 1) % 3] - at).angle_between(corners[(k + 2) % 3] - at)
-        })
-        .fold(f64::INFINITY, f64::min)
 }
 
 /// The model's fold-line edges as soup fold edges.

@@ -11,6 +11,7 @@ mod section;
 mod slivers;
 mod texture_seams;
 mod validate;
+mod vertex_move;
 
 pub use crate::cad::{FoldEdge, NO_SOURCE_FACE, SourceLines, TextureCorners, TriangleSoup};
 pub use crate::geometry::tolerance::DEGENERATE_AREA_RATIO;
@@ -23,8 +24,10 @@ pub use rows::compressed_rows;
 #[cfg(test)]
 pub(crate) use section::tests::grid as test_grid;
 pub use section::{
-    EdgeOrigin, Plane, SECTION_SNAP, SectionPiece, VertexOrigin, principal_axes, section,
+    EdgeOrigin, MAX_FAN_AREA_CHANGE, Plane, SECTION_SNAP, SectionPiece, VertexOrigin,
+    principal_axes, section,
 };
 pub use slivers::repair_degenerate_triangles;
 pub use texture_seams::{SeamSource, split_at_texture_seams};
 pub use validate::{UNWELDED_SHARE, ValidatedMesh, check_welded, validate};
+pub use vertex_move::{MAX_MOVED_FACE_TURN, can_move_vertex, smallest_angle};

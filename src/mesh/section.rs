@@ -3,8 +3,12 @@
 //! apart into its connected pieces.
 //!
 //! A crossing within [`SECTION_SNAP`] of an edge's end passes through that end instead, so no
-//! sliver triangle is made; no vertex moves, so the pieces together are exactly the model's
-//! surface, and the section curve keeps within a fifth of an edge of the plane.
+//! sliver triangle is made. An inner vertex a crossing passes through moves onto that crossing
+//! (along its edge, by at most a fifth of it), so that the section curve does not turn there,
+//! where its faces stay well shaped ([`can_move_vertex`]), their area changes by at most
+//! [`MAX_FAN_AREA_CHANGE`] and no neighbour moved before it; the pieces then differ from the
+//! model's surface by about its chord error near those vertices. A vertex that does not move
+//! keeps the section curve within a fifth of an edge of the plane.
 
 use std::collections::BTreeSet;
 
@@ -13,11 +17,17 @@ use glam::DVec3;
 use super::facet::{FacetModel, NONE};
 use super::repair::split_non_manifold;
 use super::validate::validate;
+use super::vertex_move::{can_move_vertex, is_boundary_vertex};
 use crate::cad::{FoldEdge, TriangleSoup};
 
 /// A crossing within this fraction of an edge's length from one of its ends passes through that
 /// end (the rule of the cut stage's refinement).
 pub const SECTION_SNAP: f64 = 0.2;
+
+/// The largest change of the area of a vertex's faces, as a fraction of it, that moving the
+/// vertex onto the section may make. The faces of two moved vertices are never the same (no two
+/// neighbours move), so a section changes the surface's area by at most this fraction.
+pub const MAX_FAN_AREA_CHANGE: f64 = 1e-3;
 
 /// A plane: the points `p` with `normal · p = offset`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -140,21 +150,25 @@ impl SidedVertices {
             .collect();
         let along = |d: &[f64], [a, b]: [u32; 2]| d[a as usize] / (d[a as usize] - d[b as usize]);
         let crosses = |d: &[f64], [a, b]: [u32; 2]| d[a as usize] * d[b as usize] < 0.0;
-        let mut snapped = Vec::new();
+        // Each snapped vertex, how far (as a fraction of the edge) and where the crossing it
+        // stands for is.
+        let mut snapped: Vec<(u32, f64, DVec3)> = Vec::new();
         for &edge in model.edges() {
             if crosses(&distances, edge) {
                 let t = along(&distances, edge);
+                let [a, b] = edge.map(|v| model.positions()[v as usize]);
                 if t < SECTION_SNAP {
-                    snapped.push(edge[0]);
+                    snapped.push((edge[0], t, a.lerp(b, t)));
                 } else if t > 1.0 - SECTION_SNAP {
-                    snapped.push(edge[1]);
+                    snapped.push((edge[1], 1.0 - t, a.lerp(b, t)));
                 }
             }
         }
-        for v in snapped {
+        for &(v, ..) in &snapped {
             distances[v as usize] = 0.0;
         }
         let mut positions = model.positions().to_vec();
+        move_onto_crossings(model, &mut positions, snapped);
         let mut origins: Vec<VertexOrigin> = (0..positions.len() as u32)
             .map(VertexOrigin::Vertex)
             .collect();
@@ -225,6 +239,55 @@ impl SidedVertices {
         };
         vec![(lone, [a, xab, xac]), (other, quad[0]), (other, quad[1])]
     }
+}
+
+/// Moves each inner vertex of `snapped` (vertex, fraction of the edge, crossing point) onto its
+/// nearest crossing, in vertex order, where [`can_move_vertex`] allows it, the area of its faces
+/// changes by at most [`MAX_FAN_AREA_CHANGE`] and none of its neighbours moved before it (two
+/// neighbours moved at once would change their shared faces more than each check saw; so every
+/// check sees the model's own positions around the vertex).
+fn move_onto_crossings(
+    model: &FacetModel,
+    positions: &mut [DVec3],
+    mut snapped: Vec<(u32, f64, DVec3)>,
+) {
+    let at = model.positions();
+    snapped.sort_by(|p, q| p.0.cmp(&q.0).then(p.1.total_cmp(&q.1)));
+    snapped.dedup_by_key(|p| p.0);
+    let mut moved = vec![false; positions.len()];
+    for (v, _, to) in snapped {
+        let neighbour_moved = (model.vertex_faces(v).iter()).any(|&f| {
+            model.triangles()[f as usize]
+                .iter()
+                .any(|&w| moved[w as usize])
+        });
+        let before = fan_area(model, v, at[v as usize]);
+        let keeps_area = (fan_area(model, v, to) - before).abs() <= MAX_FAN_AREA_CHANGE * before;
+        if !neighbour_moved
+            && keeps_area
+            && !is_boundary_vertex(model, v)
+            && can_move_vertex(model, v, to)
+        {
+            positions[v as usize] = to;
+            moved[v as usize] = true;
+        }
+    }
+}
+
+/// The area of the faces around `vertex` of `model`, with the vertex at `at`.
+fn fan_area(model: &FacetModel, vertex: u32, at: DVec3) -> f64 {
+    (model.vertex_faces(vertex).iter())
+        .map(|&face| {
+            let [a, b, c] = model.triangles()[face as usize].map(|w| {
+                if w == vertex {
+                    at
+                } else {
+                    model.positions()[w as usize]
+                }
+            });
+            0.5 * (b - a).cross(c - a).length()
+        })
+        .sum()
 }
 
 /// `-1`, `0` or `1`.
@@ -509,6 +572,67 @@ pub(crate) mod tests {
         }
         let total: f64 = pieces.iter().map(|p| p.model.area()).sum();
         assert!((total - 16.0).abs() < 1e-9);
+    }
+
+    /// The plane x = 2.1 passes within a tenth of an edge of the grid's column x = 2: its inner
+    /// vertex (2, 1) moves onto the plane, the boundary vertices (2, 0) and (2, 2) stay, so the
+    /// left piece is the 2 × 2 square plus the triangle (2, 0), (2.1, 1), (2, 2) of area 0.1.
+    #[test]
+    fn an_inner_vertex_the_section_passes_through_moves_onto_the_plane() {
+        let model = grid(4, 2);
+        let plane = Plane::through(DVec3::new(2.1, 0.0, 0.0), DVec3::X);
+        let pieces = section(&model, plane).unwrap();
+        assert_eq!(pieces.len(), 2);
+        let left = (pieces.iter())
+            .find(|piece| piece.model.positions().iter().all(|p| p.x <= 2.1 + 1e-12))
+            .expect("a piece left of the plane");
+        assert!(
+            (left.model.area() - 4.1).abs() < 1e-12,
+            "{}",
+            left.model.area()
+        );
+        let total: f64 = pieces.iter().map(|p| p.model.area()).sum();
+        assert!((total - 8.0).abs() < 1e-12);
+        let on_plane: Vec<DVec3> = (left.model.positions().iter())
+            .copied()
+            .filter(|p| p.x > 1.5)
+            .collect();
+        assert_eq!(on_plane.len(), 3);
+        assert!(on_plane.contains(&DVec3::new(2.1, 1.0, 0.0)));
+        assert!(on_plane.contains(&DVec3::new(2.0, 0.0, 0.0)));
+        assert!(on_plane.contains(&DVec3::new(2.0, 2.0, 0.0)));
+    }
+
+    /// The same grid with its vertex (2, 1) raised by 0.5: moving it onto the plane x = 2.1
+    /// (along its edge to (3, 1)) keeps its faces well shaped, but changes their area by more
+    /// than [`MAX_FAN_AREA_CHANGE`], so it stays and the section passes through it.
+    #[test]
+    fn a_vertex_whose_faces_would_change_area_stays_where_it_is() {
+        let flat = grid(4, 2);
+        let raised = DVec3::new(2.0, 1.0, 0.5);
+        let mut positions = flat.positions().to_vec();
+        let vertex = (positions.iter())
+            .position(|p| *p == DVec3::new(2.0, 1.0, 0.0))
+            .expect("the grid's vertex (2, 1)");
+        positions[vertex] = raised;
+        let soup = TriangleSoup::new(positions, flat.triangles().to_vec());
+        let model = validate(&soup).unwrap().components.remove(0);
+        let to = raised.lerp(DVec3::new(3.0, 1.0, 0.0), 0.1);
+        assert!(can_move_vertex(&model, vertex as u32, to));
+        let change = fan_area(&model, vertex as u32, to) / fan_area(&model, vertex as u32, raised);
+        assert!((change - 1.0).abs() > MAX_FAN_AREA_CHANGE, "{change}");
+        let plane = Plane::through(DVec3::new(2.1, 0.0, 0.0), DVec3::X);
+        let pieces = section(&model, plane).unwrap();
+        assert!(
+            pieces
+                .iter()
+                .all(|piece| !piece.model.positions().contains(&to))
+        );
+        assert!(
+            pieces
+                .iter()
+                .any(|piece| piece.model.positions().contains(&raised))
+        );
     }
 
     #[test]
