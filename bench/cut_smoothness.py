@@ -1,7 +1,11 @@
 #!/usr/bin/env python3
 """Smoothness of flatcut's crest-line cuts (issue 13), measured on the written outputs.
 
-Usage: python3 bench/cut_smoothness.py OUT [OUT ...]
+Usage: python3 bench/cut_smoothness.py [--sections] OUT [OUT ...]
+
+With --sections, the section curves between pieces (the seams of kind `section` in the report,
+each piece's curves with each neighbour joined end to end) are measured instead of the cuts; the
+corners where two sections or a section and the part's boundary meet count as inner points.
 
 For every part of OUT/report.json with cuts, and every cut (its 3D polyline `points`):
 - the turning angle at each inner point of the cut, on each side of the cut in the pattern
@@ -147,10 +151,19 @@ def dxf_angles(out, name, cuts, copies, flat, neighbours):
     return None
 
 
-def measure(out):
+def curves(part, sections):
+    """The part's cuts, or with `sections` its section curves of more than two points."""
+    if not sections:
+        return part.get("cuts") or []
+    return [seam for seam in part.get("seams") or []
+            if seam.get("kind") == "section" and len(seam["points"]) > 2]
+
+
+def measure(out, sections=False):
     report = json.load(open(f"{out}/report.json"))
+    totals = [0, 0, 0, 0]
     for part in report["parts"]:
-        cuts = part.get("cuts") or []
+        cuts = curves(part, sections)
         if not cuts:
             continue
         name = part["name"]
@@ -172,8 +185,11 @@ def measure(out):
                         f"{LIMIT_DEGREES:.0f} deg, worst {max(angles, default=0):.1f} deg, "
                         f"length change after smoothing {100 * change:.2f} %")
         over = sum(a > LIMIT_DEGREES for a in every)
+        totals[0] += len(every)
+        totals[1] += over
         share = 100.0 * over / max(len(every), 1)
-        print(f"{out} {name}: {len(cuts)} cuts, {part['total_cut_length']:.1f} long, "
+        print(f"{out} {name}: {len(cuts)} {'sections' if sections else 'cuts'}, "
+              f"{sum(cut['length'] for cut in cuts):.1f} long, "
               f"E_S {100 * part['area_error']:.3f} % E_C {100 * part['shape_error']:.3f} %; "
               f"{len(every)} inner-point angles, {share:.1f} % over {LIMIT_DEGREES:.0f} deg, "
               f"worst {max(every, default=0):.1f} deg; largest length change "
@@ -181,12 +197,20 @@ def measure(out):
         dxf = dxf_angles(out, name, cuts, copies, flat, neighbours)
         if dxf is not None:
             over = sum(a > LIMIT_DEGREES for a in dxf)
+            totals[2] += len(dxf)
+            totals[3] += over
             print(f"  DXF contour: {len(dxf)} vertices at inner cut points, {over} over "
                   f"{LIMIT_DEGREES:.0f} deg, worst {max(dxf, default=0):.1f} deg")
         for row in rows:
             print(row)
+    print(f"{out}: {totals[0]} inner-point angles, {totals[1]} over {LIMIT_DEGREES:.0f} deg "
+          f"({100.0 * totals[1] / max(totals[0], 1):.1f} %); on the DXF contours {totals[2]} "
+          f"vertices at inner points, {totals[3]} over {LIMIT_DEGREES:.0f} deg "
+          f"({100.0 * totals[3] / max(totals[2], 1):.1f} %)")
 
 
 if __name__ == "__main__":
-    for out in sys.argv[1:]:
-        measure(out)
+    arguments = sys.argv[1:]
+    with_sections = "--sections" in arguments
+    for out in (a for a in arguments if a != "--sections"):
+        measure(out, with_sections)
