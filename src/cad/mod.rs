@@ -32,7 +32,7 @@ pub use profile::{
     Fraction, Profile, ProfileSegment, fractions_through, pieces_for_arc, pieces_for_length,
 };
 pub use rulings::{MINIMUM_CIRCLE_PIECES, Rulings, rulings, rulings_through};
-pub use soup::{FoldEdge, NO_SOURCE_FACE, SourceLines, TextureCorners, TriangleSoup};
+pub use soup::{FoldEdge, NO_SOURCE_FACE, SourceLines, SourceUnit, TextureCorners, TriangleSoup};
 pub use surface::{
     MappedSurface, PatchGeometry, PatchSurface, RevolutionSurface, RuledCircle, RuledSurface,
     Section, Surface,

@@ -41,13 +41,27 @@ pub struct TextureCorners {
 }
 
 /// The 1-based line of each vertex and triangle in the text file a soup was read from (a
-/// polygon's triangles share its line). Either list is empty when the file has no lines.
+/// polygon's triangles share its line), or in a binary STL the 1-based facet of each triangle
+/// and of the first corner welded into each vertex ([`SourceUnit`]). Either list is empty when
+/// the file has neither.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct SourceLines {
-    /// Line of each vertex.
+    /// Line (or facet) of each vertex.
     pub vertices: Vec<u32>,
-    /// Line of each triangle.
+    /// Line (or facet) of each triangle.
     pub triangles: Vec<u32>,
+    /// What the numbers count.
+    pub unit: SourceUnit,
+}
+
+/// What the numbers of [`SourceLines`] count.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum SourceUnit {
+    /// Lines of a text file.
+    #[default]
+    Line,
+    /// Facets (triangle records) of a binary STL, in file order.
+    Facet,
 }
 
 impl SourceLines {

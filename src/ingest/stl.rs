@@ -6,7 +6,7 @@ use glam::DVec3;
 
 use super::errors::FormatDefect;
 use super::text::without_byte_order_mark;
-use crate::cad::{SourceLines, TriangleSoup};
+use crate::cad::{SourceLines, SourceUnit, TriangleSoup};
 use crate::geometry::tolerance::STL_WELD_TOLERANCE;
 use crate::geometry::weld::{PointWelder, finite_bounds};
 
@@ -37,11 +37,13 @@ fn is_binary(bytes: &[u8]) -> bool {
 
 /// Parses an STL file and welds its corners.
 pub fn parse_stl(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
-    let (corners, lines) = if is_binary(bytes) {
-        (parse_binary(bytes)?, None)
+    let (corners, places, unit) = if is_binary(bytes) {
+        let corners = parse_binary(bytes)?;
+        let facets = (1..=corners.len() as u32).map(|f| (f, [f; 3])).collect();
+        (corners, facets, SourceUnit::Facet)
     } else if starts_like_ascii(bytes) {
         let (corners, lines) = parse_ascii(without_byte_order_mark(bytes))?;
-        (corners, Some(lines))
+        (corners, lines, SourceUnit::Line)
     } else {
         let message = match binary_count(bytes) {
             Some(n) => format!(
@@ -56,11 +58,14 @@ pub fn parse_stl(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
     if corners.is_empty() {
         return Err(FormatDefect::Empty);
     }
-    Ok(weld(&corners, lines.as_deref()))
+    let mut soup = weld(&corners, &places);
+    soup.source_lines.unit = unit;
+    Ok(soup)
 }
 
-/// The lines of an ASCII STL's facet: its `facet` line (or its first `vertex` line when it has
-/// none) and the line of each of its three corners.
+/// Where an STL's facet is: in an ASCII file its `facet` line (or its first `vertex` line when it
+/// has none) and the line of each of its three corners; in a binary file its facet number, for
+/// itself and each corner.
 type FacetLines = (u32, [u32; 3]);
 
 fn parse_binary(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, FormatDefect> {
@@ -139,10 +144,10 @@ fn parse_ascii(bytes: &[u8]) -> Result<(Vec<[DVec3; 3]>, Vec<FacetLines>), Forma
     Ok((triangles, lines_of_triangles))
 }
 
-/// Welds corners within the tolerance on a hash grid whose cell is the tolerance; with the
-/// file's `lines` (ASCII), each triangle keeps its facet's line and each vertex the line of the
-/// first corner welded into it, for messages.
-fn weld(corners: &[[DVec3; 3]], lines: Option<&[FacetLines]>) -> TriangleSoup {
+/// Welds corners within the tolerance on a hash grid whose cell is the tolerance; each triangle
+/// keeps its facet's place in the file (`places`) and each vertex the place of the first corner
+/// welded into it, for messages.
+fn weld(corners: &[[DVec3; 3]], places: &[FacetLines]) -> TriangleSoup {
     let (origin, diagonal) = finite_bounds(corners.iter().flatten())
         .map_or((DVec3::ZERO, 0.0), |(min, max)| (min, (max - min).length()));
     let tolerance = (STL_WELD_TOLERANCE * diagonal).max(f64::MIN_POSITIVE);
@@ -151,13 +156,11 @@ fn weld(corners: &[[DVec3; 3]], lines: Option<&[FacetLines]>) -> TriangleSoup {
     let mut triangles = Vec::with_capacity(corners.len());
     for (t, triangle) in corners.iter().enumerate() {
         let welded = triangle.map(|p| welder.insert(p));
-        if let Some(lines) = lines {
-            let (facet, corner_lines) = lines[t];
-            source_lines.triangles.push(facet);
-            for (vertex, line) in welded.into_iter().zip(corner_lines) {
-                if vertex as usize == source_lines.vertices.len() {
-                    source_lines.vertices.push(line);
-                }
+        let (facet, corner_places) = places[t];
+        source_lines.triangles.push(facet);
+        for (vertex, place) in welded.into_iter().zip(corner_places) {
+            if vertex as usize == source_lines.vertices.len() {
+                source_lines.vertices.push(place);
             }
         }
         triangles.push(welded);
@@ -185,9 +188,22 @@ mod tests {
         assert_eq!(soup.triangles, [[0, 1, 2], [1, 3, 2]]);
         assert_eq!(soup.source_lines.triangles, [2, 9]);
         assert_eq!(soup.source_lines.vertices, [4, 5, 6, 12]);
-        let binary = binary_stl(&[[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]]);
+        assert_eq!(soup.source_lines.unit, SourceUnit::Line);
+    }
+
+    /// A binary STL has no lines: its triangles keep their facet number, and each welded vertex
+    /// the facet of the first corner at its point.
+    #[test]
+    fn a_binary_stl_keeps_the_facets_of_its_triangles_and_first_corners() {
+        let binary = binary_stl(&[
+            [[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+            [[1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+        ]);
         let soup = parse_stl(&binary).expect("valid STL");
-        assert!(soup.source_lines.vertices.is_empty() && soup.source_lines.triangles.is_empty());
+        assert_eq!(soup.triangles, [[0, 1, 2], [1, 3, 2]]);
+        assert_eq!(soup.source_lines.triangles, [1, 2]);
+        assert_eq!(soup.source_lines.vertices, [1, 1, 1, 2]);
+        assert_eq!(soup.source_lines.unit, SourceUnit::Facet);
     }
 
     fn binary_stl(triangles: &[[[f32; 3]; 3]]) -> Vec<u8> {

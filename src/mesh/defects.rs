@@ -4,7 +4,7 @@
 
 use std::fmt;
 
-use crate::cad::SourceLines;
+use crate::cad::{SourceLines, SourceUnit};
 
 /// Largest coordinate magnitude accepted, in the mesh's units (1e9 mm is 1,000 km): beyond it a
 /// coordinate is a unit or exporter error, and squared lengths lose their precision.
@@ -189,14 +189,17 @@ impl Defect {
 
 impl Defect {
     /// The defect with the file's line of its vertex or triangle, where `lines` knows it:
-    /// `triangle 5 has zero area (...) [line 12]`.
+    /// `triangle 5 has zero area (...) [line 12]`; in a binary STL its facet (`[facet 7]`; the
+    /// two ends of an edge first seen in one facet name it once).
     pub fn located(&self, lines: &SourceLines) -> String {
         let vertex_lines = |vertices: &[usize]| -> Option<String> {
-            let found: Option<Vec<String>> = vertices
+            let mut found: Vec<u32> = vertices
                 .iter()
-                .map(|&v| lines.vertex(v).map(|line| line.to_string()))
-                .collect();
-            found.map(|found| found.join(" and "))
+                .map(|&v| lines.vertex(v))
+                .collect::<Option<_>>()?;
+            found.dedup();
+            let found: Vec<String> = found.iter().map(u32::to_string).collect();
+            Some(found.join(" and "))
         };
         let line = match *self {
             Defect::NonFiniteVertex { vertex }
@@ -230,9 +233,13 @@ impl Defect {
             } => vertex_lines(&[a as usize, b as usize]),
             Defect::NoTriangles | Defect::Reoriented { .. } | Defect::MoreWelded { .. } => None,
         };
+        let unit = match lines.unit {
+            SourceUnit::Line => "line",
+            SourceUnit::Facet => "facet",
+        };
         match line {
-            Some(line) if line.contains(' ') => format!("{self} [lines {line}]"),
-            Some(line) => format!("{self} [line {line}]"),
+            Some(line) if line.contains(' ') => format!("{self} [{unit}s {line}]"),
+            Some(line) => format!("{self} [{unit} {line}]"),
             None => self.to_string(),
         }
     }
@@ -431,5 +438,40 @@ impl fmt::Display for MeshDefects {
             write!(f, "\n  - ... and {} more", self.defects.len() - SHOWN)?;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A defect names the lines of a text file, or a binary STL's facets; an edge whose two ends
+    /// were first seen in one facet names that facet once.
+    #[test]
+    fn a_defect_names_the_lines_or_facets_it_is_at() {
+        let edge = Defect::NonManifoldEdge {
+            vertices: [0, 1],
+            faces: 3,
+        };
+        let message = "edge 1-2 is shared by 3 triangles (non-manifold; at most 2 allowed)";
+        let lines = SourceLines {
+            vertices: vec![4, 5],
+            triangles: vec![2],
+            unit: SourceUnit::Line,
+        };
+        assert_eq!(edge.located(&lines), format!("{message} [lines 4 and 5]"));
+        let facets = SourceLines {
+            vertices: vec![1, 1, 3],
+            triangles: vec![1, 2, 3],
+            unit: SourceUnit::Facet,
+        };
+        assert_eq!(edge.located(&facets), format!("{message} [facet 1]"));
+        let across = Defect::NonManifoldEdge {
+            vertices: [0, 2],
+            faces: 3,
+        };
+        assert!(across.located(&facets).ends_with("[facets 1 and 3]"));
+        let triangle = Defect::RepeatedVertex { triangle: 1 };
+        assert!(triangle.located(&facets).ends_with("[facet 2]"));
     }
 }

@@ -79,6 +79,7 @@ pub fn split_at_texture_seams(soup: &TriangleSoup) -> Option<TriangleSoup> {
                 .filter_map(|&v| soup.source_lines.vertex(v as usize))
                 .collect(),
             triangles: soup.source_lines.triangles.clone(),
+            unit: soup.source_lines.unit,
         },
         texture: Some(TextureCorners {
             points,
