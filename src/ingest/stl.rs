@@ -66,7 +66,7 @@ pub fn parse_stl(bytes: &[u8]) -> Result<TriangleSoup, FormatDefect> {
 /// Where an STL's facet is: in an ASCII file its `facet` line (or its first `vertex` line when it
 /// has none) and the line of each of its three corners; in a binary file its facet number, for
 /// itself and each corner.
-type FacetLines = (u32, [u32; 3]);
+type FacetPlaces = (u32, [u32; 3]);
 
 fn parse_binary(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, FormatDefect> {
     let count = binary_count(bytes).unwrap_or(0);
@@ -84,7 +84,7 @@ fn parse_binary(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, FormatDefect> {
 }
 
 /// An ASCII STL's triangles, and the lines each was written on.
-fn parse_ascii(bytes: &[u8]) -> Result<(Vec<[DVec3; 3]>, Vec<FacetLines>), FormatDefect> {
+fn parse_ascii(bytes: &[u8]) -> Result<(Vec<[DVec3; 3]>, Vec<FacetPlaces>), FormatDefect> {
     let text = std::str::from_utf8(bytes)
         .map_err(|_| FormatDefect::Binary("ASCII STL holds non-UTF-8 bytes".into()))?;
     let mut triangles = Vec::new();
@@ -147,7 +147,7 @@ fn parse_ascii(bytes: &[u8]) -> Result<(Vec<[DVec3; 3]>, Vec<FacetLines>), Forma
 /// Welds corners within the tolerance on a hash grid whose cell is the tolerance; each triangle
 /// keeps its facet's place in the file (`places`) and each vertex the place of the first corner
 /// welded into it, for messages.
-fn weld(corners: &[[DVec3; 3]], places: &[FacetLines]) -> TriangleSoup {
+fn weld(corners: &[[DVec3; 3]], places: &[FacetPlaces]) -> TriangleSoup {
     let (origin, diagonal) = finite_bounds(corners.iter().flatten())
         .map_or((DVec3::ZERO, 0.0), |(min, max)| (min, (max - min).length()));
     let tolerance = (STL_WELD_TOLERANCE * diagonal).max(f64::MIN_POSITIVE);
