@@ -42,7 +42,6 @@ use spade::{
     AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation,
 };
 
-use super::crest::boundary_flags;
 use super::crest_cuts::{Cutting, Plan, cut_along_crest_lines};
 use super::errors::CutError;
 use super::options::NoCutRegion;
@@ -515,7 +514,7 @@ fn edge_path(
     points: &[DVec3],
     spacing: f64,
 ) -> Option<Vec<u32>> {
-    let on_boundary = boundary_flags(model);
+    let on_boundary = model.boundary_flags();
     let open = |v: u32| !blocked[v as usize] && !on_boundary[v as usize];
     let (&first, rest) = points.split_first()?;
     let start = nearest_vertex(model, first, |v| {

@@ -131,7 +131,7 @@ pub fn crest_lines(
     settings: &CrestSettings<'_>,
 ) -> Vec<CrestLine> {
     let energies = &map.values;
-    let on_boundary = boundary_flags(model);
+    let on_boundary = model.boundary_flags();
     let snap_distance = TIP_SNAP * smoothing_length(model);
     let (starts, start_count) = if settings.extensions_only {
         let peaks = tip_peaks(model, adjacency, energies, settings, snap_distance);
@@ -219,15 +219,6 @@ struct Floor {
     energy: f64,
     /// On the tension map.
     tension: f64,
-}
-
-/// True for every vertex on a boundary loop.
-pub fn boundary_flags(model: &FacetModel) -> Vec<bool> {
-    let mut flags = vec![false; model.vertex_count()];
-    for &v in model.boundary_loops().iter().flatten() {
-        flags[v as usize] = true;
-    }
-    flags
 }
 
 /// Unblocked vertices whose energy is at least that of every neighbour (ties go to the lower

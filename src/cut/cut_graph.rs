@@ -29,7 +29,6 @@
 use std::collections::VecDeque;
 use std::f64::consts::{PI, TAU};
 
-use super::crest::boundary_flags;
 use super::paths::{Adjacency, GrowingSearch, dijkstra};
 use super::seam::angle_deficits;
 use crate::mesh::{FacetModel, NONE};
@@ -88,7 +87,7 @@ pub fn curvature_cut_graph(
 ) -> Option<CutGraph> {
     let deficits = angle_deficits(model);
     let regions = curvature_regions(model, adjacency, &deficits, signs);
-    let on_boundary = boundary_flags(model);
+    let on_boundary = model.boundary_flags();
     let mut terminal = vec![false; model.vertex_count()];
     for &v in regions.iter().flatten() {
         terminal[v as usize] = !blocked[v as usize] && !on_boundary[v as usize];
@@ -158,7 +157,7 @@ fn steiner_tree(
     terminal: &[bool],
     root: Option<u32>,
 ) -> Option<CutGraph> {
-    let on_boundary = boundary_flags(model);
+    let on_boundary = model.boundary_flags();
     let mut in_tree: Vec<bool> = (0..model.vertex_count())
         .map(|v| on_boundary[v] && !blocked[v])
         .collect();

@@ -31,7 +31,6 @@ use std::f64::consts::{PI, TAU};
 
 use glam::DVec3;
 
-use super::crest::boundary_flags;
 use super::errors::CutError;
 use super::paths::{Adjacency, dijkstra};
 use crate::mesh::FacetModel;
@@ -120,7 +119,7 @@ pub const FLAT_DEFICIT: f64 = 1e-6;
 
 /// Angle deficit `2π − Σθ` of every interior vertex (0 on the boundary).
 pub fn angle_deficits(model: &FacetModel) -> Vec<f64> {
-    let on_boundary = boundary_flags(model);
+    let on_boundary = model.boundary_flags();
     angle_sums(model)
         .into_iter()
         .enumerate()
@@ -269,7 +268,7 @@ fn corner_seam(
     blocked: &[bool],
     deficits: &[f64],
 ) -> Option<Vec<u32>> {
-    let on_boundary = boundary_flags(model);
+    let on_boundary = model.boundary_flags();
     let corner = (0..model.vertex_count() as u32)
         .filter(|&v| deficits[v as usize] >= CONE_ANGLE_DEFICIT && !blocked[v as usize])
         .max_by(|&a, &b| {
@@ -329,7 +328,7 @@ pub fn join_vertices(
     from: &[u32],
     to: &[u32],
 ) -> Result<Vec<u32>, usize> {
-    let on_boundary = boundary_flags(model);
+    let on_boundary = model.boundary_flags();
     let mut path: Vec<u32> = Vec::new();
     for (i, &target) in to.iter().enumerate() {
         let sources = match path.last() {

@@ -179,10 +179,7 @@ fn straight_extension(state: &CutState, tip: u32, length: f64, blocked: &[bool])
 /// cut: vertices neither blocked nor on the boundary, no crossed edge with a blocked end or on a
 /// fold line.
 fn allowed(model: &FacetModel, points: &[SurfacePoint], blocked: &[bool]) -> bool {
-    let mut on_boundary = vec![false; model.vertex_count()];
-    for &v in model.boundary_loops().iter().flatten() {
-        on_boundary[v as usize] = true;
-    }
+    let on_boundary = model.boundary_flags();
     points.iter().all(|&point| match point {
         SurfacePoint::Vertex(v) | SurfacePoint::Near { vertex: v, .. } => {
             !blocked[v as usize] && !on_boundary[v as usize]

@@ -140,6 +140,15 @@ impl FacetModel {
         &self.boundary_loops
     }
 
+    /// Per vertex, true when it lies on a boundary loop.
+    pub fn boundary_flags(&self) -> Vec<bool> {
+        let mut flags = vec![false; self.positions.len()];
+        for &v in self.boundary_loops.iter().flatten() {
+            flags[v as usize] = true;
+        }
+        flags
+    }
+
     /// The sides of the boundary loops, each `[from, to]` in its loop's order.
     pub fn boundary_sides(&self) -> impl Iterator<Item = [u32; 2]> + '_ {
         self.boundary_loops

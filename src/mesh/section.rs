@@ -17,7 +17,7 @@ use glam::DVec3;
 use super::facet::{FacetModel, NONE};
 use super::repair::split_non_manifold;
 use super::validate::validate;
-use super::vertex_move::{can_move_vertex, is_boundary_vertex};
+use super::vertex_move::can_move_vertex;
 use crate::cad::{FoldEdge, TriangleSoup};
 
 /// A crossing within this fraction of an edge's length from one of its ends passes through that
@@ -252,6 +252,7 @@ fn move_onto_crossings(
     mut snapped: Vec<(u32, f64, DVec3)>,
 ) {
     let at = model.positions();
+    let on_boundary = model.boundary_flags();
     snapped.sort_by(|p, q| p.0.cmp(&q.0).then(p.1.total_cmp(&q.1)));
     snapped.dedup_by_key(|p| p.0);
     let mut moved = vec![false; positions.len()];
@@ -265,7 +266,7 @@ fn move_onto_crossings(
         let keeps_area = (fan_area(model, v, to) - before).abs() <= MAX_FAN_AREA_CHANGE * before;
         if !neighbour_moved
             && keeps_area
-            && !is_boundary_vertex(model, v)
+            && !on_boundary[v as usize]
             && can_move_vertex(model, v, to)
         {
             positions[v as usize] = to;

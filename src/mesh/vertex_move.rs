@@ -37,15 +37,6 @@ pub fn can_move_vertex(model: &FacetModel, vertex: u32, to: DVec3) -> bool {
     })
 }
 
-/// True when `vertex` lies on the model's boundary (one of its edges has a single face).
-pub fn is_boundary_vertex(model: &FacetModel, vertex: u32) -> bool {
-    model.vertex_faces(vertex).iter().any(|&face| {
-        model.face_edges()[face as usize].iter().any(|&e| {
-            model.edges()[e as usize].contains(&vertex) && model.is_boundary_edge(e as usize)
-        })
-    })
-}
-
 /// The smallest angle of the triangle with these corners, radians.
 pub fn smallest_angle(corners: [DVec3; 3]) -> f64 {
     (0..3)
