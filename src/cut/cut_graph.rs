@@ -30,7 +30,6 @@ use std::collections::VecDeque;
 use std::f64::consts::{PI, TAU};
 
 use super::paths::{Adjacency, GrowingSearch, dijkstra};
-use super::seam::angle_deficits;
 use crate::mesh::{FacetModel, NONE};
 
 /// A curvature region's vertices have a curvature density `|2π − Σθ| / area` (area: a third of
@@ -85,7 +84,7 @@ pub fn curvature_cut_graph(
     blocked: &[bool],
     signs: RegionSigns,
 ) -> Option<CutGraph> {
-    let deficits = angle_deficits(model);
+    let deficits = model.angle_deficits();
     let regions = curvature_regions(model, adjacency, &deficits, signs);
     let on_boundary = model.boundary_flags();
     let mut terminal = vec![false; model.vertex_count()];
@@ -330,7 +329,7 @@ fn route_costs(model: &FacetModel, in_region: &[bool]) -> Vec<f64> {
 /// crest-line darts cut from it taper outwards into a fishbone instead of fanning into each other
 /// (rooted on the outer equator, 8 cuts left the outline crossing itself).
 fn most_saddle_like_vertex(model: &FacetModel, adjacency: &Adjacency) -> u32 {
-    let deficit = angle_deficits(model);
+    let deficit = model.angle_deficits();
     let deficits: Vec<f64> = (0..model.vertex_count() as u32)
         .map(|v| {
             let ring: f64 = adjacency
@@ -504,7 +503,7 @@ mod tests {
         // Outside, K = 1 / (20 × 70) is below 4 × 4π / A; inside, K = −1 / (20 × 30) is not.
         let model = torus(16);
         let adjacency = Adjacency::new(&model);
-        let deficits = angle_deficits(&model);
+        let deficits = model.angle_deficits();
         let positive = curvature_regions(&model, &adjacency, &deficits, RegionSigns::Positive);
         assert!(positive.is_empty(), "{positive:?}");
         let both = curvature_regions(&model, &adjacency, &deficits, RegionSigns::Both);

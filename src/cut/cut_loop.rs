@@ -12,7 +12,6 @@ use super::options::{
     DEFAULT_MAX_CUTS,
 };
 use super::result::{Cut, CutResult, CutStop, Seam};
-use super::seam;
 use super::state::{CutState, PointKey, point_key};
 use crate::flatten::{
     FastOptions, FlattenOptions, Flattened, Stiffness, flatten_from, overlap_free_flatten,
@@ -188,7 +187,7 @@ pub fn default_cut_budget(model: &FacetModel) -> usize {
 /// The total absolute Gaussian curvature `∫|K| dA = Σ |2π − Σθ|` over the interior vertices of
 /// the model, radians.
 pub fn total_absolute_curvature(model: &FacetModel) -> f64 {
-    seam::angle_deficits(model).iter().map(|d| d.abs()).sum()
+    model.angle_deficits().iter().map(|d| d.abs()).sum()
 }
 
 /// The edges of the cut model that are sides of a cut: boundary edges both of whose ends lie at

@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 
 use glam::DVec3;
 
-use super::seam::{FLAT_DEFICIT, angle_deficits};
+use super::seam::FLAT_DEFICIT;
 use super::state::{PointKey, point_key};
 use crate::cad::{FoldEdge, TriangleSoup};
 use crate::flatten::Stiffness;
@@ -94,7 +94,7 @@ impl Piece {
             }
         }
         // The union keeps the piece's vertex numbers (its own vertices come first).
-        let deficits = angle_deficits(&union.model);
+        let deficits = union.model.angle_deficits();
         let (&tip, _) = (degree.iter())
             .filter(|&(&v, &count)| count == 2 && deficits[v as usize].abs() > FLAT_DEFICIT)
             .max_by(|a, b| {
@@ -370,7 +370,7 @@ mod tests {
                 .expect("the apex")
         };
         let union = pieces[0].glued(&pieces[1]).expect("they share the section");
-        let deficit = angle_deficits(&union.model)[at_apex(&union)];
+        let deficit = union.model.angle_deficits()[at_apex(&union)];
         assert!(deficit > 0.5, "the union closes around the cone: {deficit}");
 
         let slit = (pieces[0].slit_glued(&pieces[1], &union)).expect("a slit from the apex");

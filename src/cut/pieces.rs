@@ -61,7 +61,7 @@ use super::opening::open_to_disk;
 use super::options::{CutConstraints, CutOptions};
 use super::piece::{Piece, SideKey, side_key, side_length};
 use super::result::{CutResult, CutStop, Seam};
-use super::seam::{FLAT_DEFICIT, SeamKind, angle_deficits, genus, hole_loops};
+use super::seam::{FLAT_DEFICIT, SeamKind, genus, hole_loops};
 use super::state::CutState;
 use super::t_junctions::conformed_pair;
 use super::union_start::UnionStart;
@@ -972,7 +972,7 @@ fn section_planes(model: &FacetModel) -> Vec<Plane> {
         (axes[0] + axes[1]).normalize(),
         (axes[0] - axes[1]).normalize(),
     ];
-    let deficits = angle_deficits(model);
+    let deficits = model.angle_deficits();
     let peak = (0..deficits.len())
         .max_by(|&a, &b| deficits[a].abs().total_cmp(&deficits[b].abs()))
         .filter(|&v| deficits[v].abs() > FLAT_DEFICIT)
@@ -1186,7 +1186,7 @@ mod tests {
                 .position(|origin| *origin == crate::mesh::VertexOrigin::Vertex(0))
                 .expect("the apex is on both sides");
             assert!(
-                angle_deficits(&side.model)[apex] == 0.0,
+                side.model.angle_deficits()[apex] == 0.0,
                 "a boundary vertex"
             );
         }

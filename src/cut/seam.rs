@@ -82,7 +82,7 @@ pub fn next_seam(
     if loops == 0 {
         return closed_surface_seam(model, adjacency, blocked).map(Some);
     }
-    let corners = angle_deficits(model);
+    let corners = model.angle_deficits();
     if opened_closed_surface && let Some(path) = corner_seam(model, adjacency, blocked, &corners) {
         return Ok(Some((SeamKind::Corner, path)));
     }
@@ -99,37 +99,13 @@ pub fn genus(model: &FacetModel) -> i64 {
     (2 - euler - model.boundary_loops().len() as i64) / 2
 }
 
-/// Sum of the 3D corner angles of the triangles around each vertex.
-fn angle_sums(model: &FacetModel) -> Vec<f64> {
-    let positions = model.positions();
-    let mut sums = vec![0.0; model.vertex_count()];
-    for triangle in model.triangles() {
-        let corners = triangle.map(|v| positions[v as usize]);
-        for k in 0..3 {
-            let (a, b, c) = (corners[k], corners[(k + 1) % 3], corners[(k + 2) % 3]);
-            sums[triangle[k] as usize] += (b - a).angle_between(c - a);
-        }
-    }
-    sums
-}
-
 /// An angle deficit (radians) at most this is flat: no plane of a section is laid through its
 /// vertex, and no slit is left open at it when pieces are glued.
 pub const FLAT_DEFICIT: f64 = 1e-6;
 
-/// Angle deficit `2π − Σθ` of every interior vertex (0 on the boundary).
-pub fn angle_deficits(model: &FacetModel) -> Vec<f64> {
-    let on_boundary = model.boundary_flags();
-    angle_sums(model)
-        .into_iter()
-        .enumerate()
-        .map(|(v, sum)| if on_boundary[v] { 0.0 } else { TAU - sum })
-        .collect()
-}
-
 /// Total geodesic turning `Σ (π − Σθ)` of each boundary loop.
 fn loop_turnings(model: &FacetModel) -> Vec<f64> {
-    let sums = angle_sums(model);
+    let sums = model.angle_sums();
     model
         .boundary_loops()
         .iter()
@@ -200,7 +176,7 @@ fn closed_surface_seam(
     adjacency: &Adjacency,
     blocked: &[bool],
 ) -> Result<(SeamKind, Vec<u32>), CutError> {
-    let deficits = angle_deficits(model);
+    let deficits = model.angle_deficits();
     let corners: Vec<u32> = (0..model.vertex_count() as u32)
         .filter(|&v| deficits[v as usize] >= CONE_ANGLE_DEFICIT && !blocked[v as usize])
         .collect();

@@ -10,6 +10,8 @@
 //! CAD face it came from), a rest length per edge (the 3D length unless bend allowance changes
 //! it) and the fold line each edge lies on, if any.
 
+use std::f64::consts::TAU;
+
 use glam::DVec3;
 
 use super::rows::compressed_rows;
@@ -138,6 +140,28 @@ impl FacetModel {
     /// (the faces' orientation). Empty for a closed surface.
     pub fn boundary_loops(&self) -> &[Vec<u32>] {
         &self.boundary_loops
+    }
+
+    /// Sum of the 3D corner angles of the triangles around each vertex (radians).
+    pub fn angle_sums(&self) -> Vec<f64> {
+        let mut sums = vec![0.0; self.positions.len()];
+        for triangle in &self.triangles {
+            let corners = triangle.map(|v| self.positions[v as usize]);
+            for k in 0..3 {
+                let (a, b, c) = (corners[k], corners[(k + 1) % 3], corners[(k + 2) % 3]);
+                sums[triangle[k] as usize] += (b - a).angle_between(c - a);
+            }
+        }
+        sums
+    }
+
+    /// Angle deficit `2π − Σθ` of every interior vertex (its discrete Gaussian curvature; 0 on
+    /// the boundary).
+    pub fn angle_deficits(&self) -> Vec<f64> {
+        let on_boundary = self.boundary_flags();
+        (self.angle_sums().into_iter().enumerate())
+            .map(|(v, sum)| if on_boundary[v] { 0.0 } else { TAU - sum })
+            .collect()
     }
 
     /// Per vertex, true when it lies on a boundary loop.
