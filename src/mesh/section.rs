@@ -632,7 +632,8 @@ pub(crate) mod tests {
 
     /// The same grid with its vertex (2, 1) raised by 0.5: moving it onto the plane x = 2.1
     /// (along its edge to (3, 1)) keeps its faces well shaped, but changes their area by more
-    /// than [`MAX_FAN_AREA_CHANGE`], so it stays and the section passes through it.
+    /// than [`MAX_FAN_AREA_CHANGE`], so it stays, and the section passes through it (a tenth of
+    /// the edge away) because it holds curvature ([`HELD_DEFICIT`]).
     #[test]
     fn a_vertex_whose_faces_would_change_area_stays_where_it_is() {
         let flat = grid(4, 2);
@@ -648,6 +649,7 @@ pub(crate) mod tests {
         assert!(can_move_vertex(&model, vertex as u32, to));
         let change = fan_area(&model, vertex as u32, to) / fan_area(&model, vertex as u32, raised);
         assert!((change - 1.0).abs() > MAX_FAN_AREA_CHANGE, "{change}");
+        assert!(model.angle_deficits()[vertex] >= HELD_DEFICIT);
         let plane = Plane::through(DVec3::new(2.1, 0.0, 0.0), DVec3::X);
         let pieces = section(&model, plane).unwrap();
         assert!(
