@@ -142,17 +142,24 @@ impl FacetModel {
         &self.boundary_loops
     }
 
+    /// Sum of the 3D corner angles at vertex `v` of the triangles around it (radians).
+    pub fn angle_sum(&self, v: u32) -> f64 {
+        (self.vertex_faces(v).iter())
+            .map(|&face| {
+                let triangle = self.triangles[face as usize];
+                let k = triangle.iter().position(|&w| w == v).unwrap_or(0);
+                let [a, b, c] =
+                    [k, (k + 1) % 3, (k + 2) % 3].map(|i| self.positions[triangle[i] as usize]);
+                (b - a).angle_between(c - a)
+            })
+            .sum()
+    }
+
     /// Sum of the 3D corner angles of the triangles around each vertex (radians).
     pub fn angle_sums(&self) -> Vec<f64> {
-        let mut sums = vec![0.0; self.positions.len()];
-        for triangle in &self.triangles {
-            let corners = triangle.map(|v| self.positions[v as usize]);
-            for k in 0..3 {
-                let (a, b, c) = (corners[k], corners[(k + 1) % 3], corners[(k + 2) % 3]);
-                sums[triangle[k] as usize] += (b - a).angle_between(c - a);
-            }
-        }
-        sums
+        (0..self.positions.len() as u32)
+            .map(|v| self.angle_sum(v))
+            .collect()
     }
 
     /// Angle deficit `2π − Σθ` of every interior vertex (its discrete Gaussian curvature; 0 on

@@ -14,6 +14,7 @@
 //! vertex takes every crossing within [`SECTION_SNAP`].
 
 use std::collections::BTreeSet;
+use std::f64::consts::TAU;
 
 use glam::DVec3;
 
@@ -184,11 +185,12 @@ impl SidedVertices {
         let on_boundary = model.boundary_flags();
         let moved = move_onto_crossings(model, &mut positions, &snapped, &on_boundary);
         // The vertices the curve passes through instead of their crossings: the moved ones,
-        // and those held where they are that are on the boundary, near the crossing or curved.
-        let deficits = model.angle_deficits();
+        // and those held where they are that are on the boundary, near the crossing or curved
+        // (the angle deficit of an inner vertex, found only for the few held ones).
         for &(v, t, _) in &snapped {
+            let curved = || (TAU - model.angle_sum(v)).abs() >= HELD_DEFICIT;
             let v = v as usize;
-            if moved[v] || on_boundary[v] || t < HELD_SNAP || deficits[v].abs() >= HELD_DEFICIT {
+            if moved[v] || on_boundary[v] || t < HELD_SNAP || curved() {
                 distances[v] = 0.0;
             }
         }
