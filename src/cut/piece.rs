@@ -9,7 +9,7 @@ use super::seam::FLAT_DEFICIT;
 use super::state::{PointKey, point_key};
 use crate::cad::{FoldEdge, TriangleSoup};
 use crate::flatten::Stiffness;
-use crate::mesh::{FacetModel, NONE, rebuild};
+use crate::mesh::{FacetModel, NONE, Plane, rebuild};
 
 /// A piece of the part, before it is flattened.
 #[derive(Debug, Clone)]
@@ -21,10 +21,26 @@ pub(super) struct Piece {
     /// For each vertex, the part's vertex it copies (or, for a section point, the nearer end of
     /// the part's edge it lies on).
     pub part_vertex: Vec<u32>,
-    /// Per edge, true where it lies on a section.
-    pub section_edges: Vec<bool>,
+    /// Per edge, the section it lies on, if any.
+    pub section_edges: Vec<Option<SectionId>>,
     /// How many sections made it.
     pub depth: usize,
+}
+
+/// The section an edge lies on, named by its plane (the bits of its normal and offset, mixed), so
+/// that every piece names a section alike whatever order the pieces are made in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub(super) struct SectionId(u64);
+
+impl SectionId {
+    /// The section along `plane`.
+    pub fn of(plane: Plane) -> Self {
+        let words = [plane.normal.x, plane.normal.y, plane.normal.z, plane.offset];
+        Self(words.iter().fold(0x9e37_79b9_7f4a_7c15, |hash: u64, word| {
+            let mixed = (hash ^ word.to_bits()).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            mixed ^ (mixed >> 31)
+        }))
+    }
 }
 
 /// An edge by its ends' [`PointKey`]s, in order.
@@ -50,7 +66,7 @@ impl Piece {
             model: model.clone(),
             stiffness: stiffness.clone(),
             part_vertex: (0..model.vertex_count() as u32).collect(),
-            section_edges: vec![false; model.edges().len()],
+            section_edges: vec![None; model.edges().len()],
             depth: 0,
         }
     }
@@ -59,7 +75,7 @@ impl Piece {
     pub fn section_sides(&self) -> BTreeMap<SideKey, usize> {
         let positions = self.model.positions();
         (self.model.edges().iter().enumerate())
-            .filter(|&(e, _)| self.section_edges[e] && self.model.is_boundary_edge(e))
+            .filter(|&(e, _)| self.section_edges[e].is_some() && self.model.is_boundary_edge(e))
             .map(|(e, &[a, b])| (side_key(positions, a, b), e))
             .collect()
     }
@@ -232,8 +248,8 @@ fn run_to_end(
     }
 }
 
-/// An edge's stiffness factor and whether it lies on a section, by its ends in increasing order.
-pub(super) type EdgeAttributes = BTreeMap<[u32; 2], (f64, bool)>;
+/// An edge's stiffness factor and the section it lies on, by its ends in increasing order.
+pub(super) type EdgeAttributes = BTreeMap<[u32; 2], (f64, Option<SectionId>)>;
 
 /// The fold line of each fold-line edge, by its ends in increasing order.
 pub(super) type FoldLines = BTreeMap<[u32; 2], u32>;
@@ -244,11 +260,11 @@ pub(super) fn ordered([a, b]: [u32; 2]) -> [u32; 2] {
 }
 
 /// Each edge of the piece with its ends renumbered by `number` (in increasing order), its
-/// stiffness factor and section flag, and its fold line ([`NONE`] for none).
+/// stiffness factor and section, and its fold line ([`NONE`] for none).
 pub(super) fn edge_records<'a>(
     piece: &'a Piece,
     number: impl Fn(u32) -> u32 + 'a,
-) -> impl Iterator<Item = ([u32; 2], (f64, bool), u32)> + 'a {
+) -> impl Iterator<Item = ([u32; 2], (f64, Option<SectionId>), u32)> + 'a {
     let factors = piece.stiffness.factors();
     let lines = piece.model.edge_fold_lines();
     (piece.model.edges().iter().enumerate()).map(move |(e, &[a, b])| {
@@ -268,18 +284,18 @@ pub(super) fn fold_edge_list(folds: FoldLines) -> Vec<FoldEdge> {
         .collect()
 }
 
-/// The stiffness and section flags of `model`'s edges from `attributes` (an edge not there:
-/// factor 1, no section).
+/// The stiffness and sections of `model`'s edges from `attributes` (an edge not there: factor 1,
+/// no section).
 pub(super) fn attributes_of(
     model: &FacetModel,
     attributes: &EdgeAttributes,
-) -> (Stiffness, Vec<bool>) {
+) -> (Stiffness, Vec<Option<SectionId>>) {
     let (factors, sections) = (model.edges().iter())
         .map(|&edge| {
             attributes
                 .get(&ordered(edge))
                 .copied()
-                .unwrap_or((1.0, false))
+                .unwrap_or((1.0, None))
         })
         .unzip();
     (Stiffness::from_factors(factors), sections)
@@ -295,25 +311,25 @@ fn fold_edges(sides: &[(&Piece, &[u32])]) -> Vec<FoldEdge> {
     fold_edge_list(folds)
 }
 
-/// The glued model's stiffness and section flags, from the pieces' edges (each piece's vertices
-/// renumbered by its map): the stiffer where both have an edge, and no section flag on the
-/// `glued` edges (numbered as the first piece's).
+/// The glued model's stiffness and sections, from the pieces' edges (each piece's vertices
+/// renumbered by its map): the stiffer where both have an edge, and no section on the `glued`
+/// edges (numbered as the first piece's).
 fn edge_attributes(
     model: &FacetModel,
     sides: &[(&Piece, &[u32])],
     glued: &[[u32; 2]],
-) -> (Stiffness, Vec<bool>) {
+) -> (Stiffness, Vec<Option<SectionId>>) {
     let mut attributes = EdgeAttributes::new();
     for &(piece, number) in sides {
         for (ends, (factor, on_section), _) in edge_records(piece, |v| number[v as usize]) {
-            let entry = attributes.entry(ends).or_insert((factor, false));
+            let entry = attributes.entry(ends).or_insert((factor, None));
             entry.0 = entry.0.max(factor);
-            entry.1 |= on_section;
+            entry.1 = entry.1.or(on_section);
         }
     }
     for &edge in glued {
         if let Some(entry) = attributes.get_mut(&ordered(edge)) {
-            entry.1 = false;
+            entry.1 = None;
         }
     }
     attributes_of(model, &attributes)
@@ -345,7 +361,9 @@ mod tests {
                     .collect();
                 Piece {
                     stiffness: Stiffness::from_factors(vec![2.0; side.model.edges().len()]),
-                    section_edges: side.on_section.clone(),
+                    section_edges: (side.on_section.iter())
+                        .map(|&on| on.then(|| SectionId::of(plane)))
+                        .collect(),
                     part_vertex,
                     model: side.model,
                     depth: whole.depth + 1,
@@ -406,7 +424,10 @@ mod tests {
         assert_eq!(glued.model.vertex_count(), model.vertex_count());
         assert_eq!(glued.model.edges().len(), model.edges().len());
         assert!((glued.model.area() - model.area()).abs() < 1e-9);
-        assert!(glued.section_edges.iter().all(|&on| !on), "no section left");
+        assert!(
+            glued.section_edges.iter().all(Option::is_none),
+            "no section left"
+        );
         assert!(glued.section_sides().is_empty());
         assert!(glued.stiffness.factors().iter().all(|&f| f == 2.0));
         let mut vertices = glued.part_vertex.clone();

@@ -18,9 +18,10 @@
 //! without being flattened at all (on a 320k-triangle scan, the quick flattenings of the first
 //! few levels of halves took 10 s and kept nothing). Otherwise it is flattened validly (no
 //! crest-line cut) and kept when it is within tolerance. A piece of fewer than
-//! [`MIN_PIECE_TRIANGLES`] triangles or smaller than [`SMALLEST_PIECE`] of the part's mean
-//! triangle, or one past [`MAX_SECTIONS`] sections deep, or one whose part ran out of time, is
-//! kept as it is (rejected when over tolerance).
+//! [`MIN_PIECE_TRIANGLES`] triangles, or one past [`MAX_SECTIONS`] sections deep, or one whose
+//! part ran out of time, is kept as it is (rejected when over tolerance); one smaller than
+//! [`SMALLEST_PIECE`] of the part's mean triangle is cut only through its vertex of largest angle
+//! deficit, and kept as it is when it has none.
 //!
 //! Halving overshoots: the halves of a piece just over tolerance are often far within it. So
 //! once every piece is made, neighbouring pieces are glued back together along the section they
@@ -59,7 +60,7 @@ use super::cut_loop::{converged_options, cut_opened};
 use super::errors::CutError;
 use super::opening::open_to_disk;
 use super::options::{CutConstraints, CutOptions};
-use super::piece::{Piece, SideKey, side_key, side_length};
+use super::piece::{Piece, SectionId, SideKey, side_key, side_length};
 use super::result::{CutResult, CutStop, Seam};
 use super::seam::{FLAT_DEFICIT, SeamKind, genus, hole_loops};
 use super::state::CutState;
@@ -94,8 +95,10 @@ pub const SCREEN_FACTOR: f64 = 2.0;
 /// is within this many times the tolerance (see `merge_neighbours`).
 pub const GLUE_SCREEN_FACTOR: f64 = 1.0;
 
-/// A piece smaller than this fraction of the part's mean triangle is not cut again: a safety
-/// bound against cutting ever smaller pieces around one point.
+/// A piece smaller than this fraction of the part's mean triangle is not cut again by the usual
+/// planes: a safety bound against cutting ever smaller pieces around one point. Over the
+/// tolerance, it is still cut through its vertex of largest angle deficit (a spike's tip, which
+/// the balanced planes around it missed), so that the point opens on the boundary.
 pub const SMALLEST_PIECE: f64 = 1e-3;
 
 /// A candidate plane is also tried shifted by this fraction of the mean edge length either way
@@ -253,10 +256,16 @@ fn step(
         return Ok(Step::Kept(Box::new((piece, result.clone()))));
     }
     let cuttable = piece.model.triangle_count() >= MIN_PIECE_TRIANGLES
-        && piece.model.area() >= smallest_cut
         && piece.depth < MAX_SECTIONS
         && !flatten_options.deadline.passed();
-    if let Some(sides) = cuttable.then(|| halves(&piece)).flatten() {
+    let planes = if !cuttable {
+        Vec::new()
+    } else if piece.model.area() >= smallest_cut {
+        section_planes(&piece.model)
+    } else {
+        planes_through_peak(&piece.model)
+    };
+    if let Some(sides) = halves(&piece, planes) {
         return Ok(Step::Halved(sides, error * SECTION_ERROR_RATIO));
     }
     let result = match flattened {
@@ -926,15 +935,18 @@ fn finished(piece: &Piece, mut result: CutResult, options: &FlattenOptions) -> C
     result
 }
 
-/// The piece's section curves on its boundary, as seams.
+/// The piece's section curves on its boundary, as seams: one per run of one section's curve (where
+/// the boundary passes from one section to another, at a corner of the piece, a seam ends and the
+/// next begins).
 fn section_seams(piece: &Piece) -> Vec<Seam> {
     let model = &piece.model;
     let edges: Vec<[u32; 2]> = (model.edges().iter().enumerate())
-        .filter(|&(e, _)| piece.section_edges[e] && model.is_boundary_edge(e))
+        .filter(|&(e, _)| piece.section_edges[e].is_some() && model.is_boundary_edge(e))
         .map(|(_, &edge)| edge)
         .collect();
     chain_edges(&edges)
         .into_iter()
+        .flat_map(|path| runs_of_one_section(piece, &path))
         .map(|path| {
             let points: Vec<DVec3> = (path.iter())
                 .map(|&v| model.positions()[v as usize])
@@ -949,12 +961,41 @@ fn section_seams(piece: &Piece) -> Vec<Seam> {
         .collect()
 }
 
-/// The connected pieces of the piece's two sides along the first of its candidate sections
-/// ([`section_planes`]) that makes valid pieces, or `None` when none does.
-fn halves(piece: &Piece) -> Option<Vec<Piece>> {
-    let sides = (section_planes(&piece.model).into_iter())
-        .find_map(|plane| section(&piece.model, plane))?;
-    Some(sides.into_iter().map(|side| child(piece, side)).collect())
+/// A vertex path along section edges of the piece, split into runs that each lie on one section;
+/// a closed path's last run and first run join when they lie on the same section.
+fn runs_of_one_section(piece: &Piece, path: &[u32]) -> Vec<Vec<u32>> {
+    let section_of =
+        |a: u32, b: u32| (piece.model.find_edge(a, b)).and_then(|e| piece.section_edges[e]);
+    let mut runs: Vec<(Option<SectionId>, Vec<u32>)> = Vec::new();
+    for step in path.windows(2) {
+        let section = section_of(step[0], step[1]);
+        match runs.last_mut() {
+            Some((run_section, run)) if *run_section == section => run.push(step[1]),
+            _ => runs.push((section, step.to_vec())),
+        }
+    }
+    let closed = path.len() > 2 && path.first() == path.last();
+    if closed && runs.len() > 1 && runs[0].0 == runs[runs.len() - 1].0 {
+        let (_, first) = runs.remove(0);
+        if let Some((_, last)) = runs.last_mut() {
+            last.extend_from_slice(&first[1..]);
+        }
+    }
+    runs.into_iter().map(|(_, run)| run).collect()
+}
+
+/// The connected pieces of the piece's two sides along the first of the `planes` that makes
+/// valid pieces, or `None` when none does.
+fn halves(piece: &Piece, planes: Vec<Plane>) -> Option<Vec<Piece>> {
+    let (plane, sides) =
+        (planes.into_iter()).find_map(|plane| Some((plane, section(&piece.model, plane)?)))?;
+    let section = SectionId::of(plane);
+    Some(
+        sides
+            .into_iter()
+            .map(|side| child(piece, side, section))
+            .collect(),
+    )
 }
 
 /// The planes the piece may be cut along, best first. Through two points: the interior vertex of
@@ -966,12 +1007,7 @@ fn halves(piece: &Piece) -> Option<Vec<Piece>> {
 /// way, for a piece every one of those planes touches at a vertex.
 fn section_planes(model: &FacetModel) -> Vec<Plane> {
     let (centroid, axes) = principal_axes(model);
-    let normals = [
-        axes[0],
-        axes[1],
-        (axes[0] + axes[1]).normalize(),
-        (axes[0] - axes[1]).normalize(),
-    ];
+    let normals = candidate_normals(axes);
     let deficits = model.angle_deficits();
     let peak = (0..deficits.len())
         .max_by(|&a, &b| deficits[a].abs().total_cmp(&deficits[b].abs()))
@@ -1010,6 +1046,52 @@ fn section_planes(model: &FacetModel) -> Vec<Plane> {
         })
     });
     unshifted.iter().copied().chain(shifted).collect()
+}
+
+/// The planes through the model's interior vertex of largest angle deficit along the candidate
+/// normals of [`section_planes`] and along the spike there (from its neighbours' centroid to it),
+/// by increasing section length, however little area they leave on a side; none when no
+/// interior vertex holds curvature.
+fn planes_through_peak(model: &FacetModel) -> Vec<Plane> {
+    let deficits = model.angle_deficits();
+    let Some(peak) = (0..deficits.len())
+        .max_by(|&a, &b| deficits[a].abs().total_cmp(&deficits[b].abs()))
+        .filter(|&v| deficits[v].abs() > FLAT_DEFICIT)
+    else {
+        return Vec::new();
+    };
+    let (_, axes) = principal_axes(model);
+    let tip = model.positions()[peak];
+    // A spike's tip lies beyond its neighbours along every axis of a small piece around it:
+    // planes through it across those axes touch it, so planes along the spike are tried too.
+    let neighbours: Vec<DVec3> = (model.vertex_faces(peak as u32).iter())
+        .flat_map(|&f| model.triangles()[f as usize])
+        .map(|w| model.positions()[w as usize])
+        .collect();
+    let spike = tip - neighbours.iter().sum::<DVec3>() / neighbours.len().max(1) as f64;
+    let along_spike = axes.map(|axis| spike.cross(axis).normalize_or_zero());
+    let mut planes: Vec<(f64, Plane)> = (candidate_normals(axes).into_iter())
+        .chain(
+            along_spike
+                .into_iter()
+                .filter(|normal| *normal != DVec3::ZERO),
+        )
+        .map(|normal| Plane::through(tip, normal))
+        .map(|plane| (section_estimate(model, plane).0, plane))
+        .collect();
+    planes.sort_by(|a, b| a.0.total_cmp(&b.0));
+    planes.into_iter().map(|(_, plane)| plane).collect()
+}
+
+/// The normals of the candidate planes of a piece with these principal axes: its two axes of
+/// largest spread and their two bisectors.
+fn candidate_normals(axes: [DVec3; 3]) -> [DVec3; 4] {
+    [
+        axes[0],
+        axes[1],
+        (axes[0] + axes[1]).normalize(),
+        (axes[0] - axes[1]).normalize(),
+    ]
 }
 
 /// The mean length of the model's edges.
@@ -1066,8 +1148,9 @@ fn face_section_length(corners: [DVec3; 3], d: [f64; 3]) -> f64 {
     }
 }
 
-/// One side's piece, its vertices, stiffness and section edges carried over from its parent.
-fn child(parent: &Piece, side: SectionPiece) -> Piece {
+/// One side's piece of `section`, its vertices, stiffness and section edges carried over from
+/// its parent.
+fn child(parent: &Piece, side: SectionPiece, section: SectionId) -> Piece {
     let part_vertex = (side.vertex_origins.iter())
         .map(|origin| parent.part_vertex[origin.nearer_vertex(&parent.model) as usize])
         .collect();
@@ -1084,8 +1167,10 @@ fn child(parent: &Piece, side: SectionPiece) -> Piece {
         .collect();
     let section_edges = (side.edge_origins.iter())
         .zip(&side.on_section)
-        .map(|(origin, &on)| {
-            on || matches!(origin, EdgeOrigin::OnEdge(e) if parent.section_edges[*e as usize])
+        .map(|(origin, &on)| match *origin {
+            _ if on => Some(section),
+            EdgeOrigin::OnEdge(e) => parent.section_edges[e as usize],
+            EdgeOrigin::InFace(_) => None,
         })
         .collect();
     Piece {
@@ -1213,9 +1298,10 @@ mod tests {
     fn a_section_crossing_the_shared_curve_on_one_side_still_glues_whole() {
         let model = grid(20, 4);
         let across = |piece: &Piece, point: DVec3, normal: DVec3| -> Vec<Piece> {
-            (section(&piece.model, Plane::through(point, normal)).expect("two sides"))
+            let plane = Plane::through(point, normal);
+            (section(&piece.model, plane).expect("two sides"))
                 .into_iter()
-                .map(|side| child(piece, side))
+                .map(|side| child(piece, side, SectionId::of(plane)))
                 .collect()
         };
         let whole = Piece::whole(&model, &Stiffness::uniform(&model));
@@ -1267,7 +1353,7 @@ mod tests {
             (section(&model, plane).expect("two sides"))
                 .into_iter()
                 .map(|side| {
-                    let piece = child(&whole, side);
+                    let piece = child(&whole, side, SectionId::of(plane));
                     let pattern = flatten_piece(&piece, &options, &NoProgress).expect("flat");
                     (piece, pattern)
                 })
@@ -1294,6 +1380,68 @@ mod tests {
         assert_eq!(without_slivers(flattened_sides(across), &options).len(), 2);
     }
 
+    /// A strip cut across at x = 10, then its left half along y = 2: the lower left quarter's
+    /// section boundary turns a corner where the two sections meet, and it is two seams, one
+    /// per section, not one curve with a corner inside.
+    #[test]
+    fn a_piece_bounded_by_two_sections_has_a_seam_for_each() {
+        let model = grid(20, 4);
+        let whole = Piece::whole(&model, &Stiffness::uniform(&model));
+        let across = |piece: &Piece, point: DVec3, normal: DVec3| -> Vec<Piece> {
+            let plane = Plane::through(point, normal);
+            (section(&piece.model, plane).expect("two sides"))
+                .into_iter()
+                .map(|side| child(piece, side, SectionId::of(plane)))
+                .collect()
+        };
+        let halves = across(&whole, DVec3::new(10.0, 0.0, 0.0), DVec3::X);
+        let left = (halves.iter())
+            .find(|half| half.model.positions().iter().all(|p| p.x <= 10.0))
+            .expect("a left half");
+        let quarters = across(left, DVec3::new(0.0, 2.0, 0.0), DVec3::Y);
+        let lower = (quarters.iter())
+            .find(|quarter| quarter.model.positions().iter().all(|p| p.y <= 2.0))
+            .expect("a lower quarter");
+        let mut lengths: Vec<f64> = section_seams(lower).iter().map(|s| s.length).collect();
+        lengths.sort_by(f64::total_cmp);
+        assert_eq!(lengths.len(), 2, "{lengths:?}");
+        assert!((lengths[0] - 2.0).abs() < 1e-9 && (lengths[1] - 10.0).abs() < 1e-9);
+    }
+
+    /// A needle (three long faces round a tip far above their base) smaller than any piece the
+    /// usual planes cut: its tip, of angle sum far below 2π, would stay inside it whatever its
+    /// size. The planes through the tip include one along the needle that opens it, leaving the
+    /// tip on the boundary of both sides.
+    #[test]
+    fn a_spike_is_opened_by_a_plane_along_it() {
+        let base = |k: f64| {
+            let angle = std::f64::consts::TAU * k / 3.0 + 0.3;
+            DVec3::new(angle.cos(), angle.sin(), 0.0)
+        };
+        let tip = DVec3::new(0.2, -0.1, 8.0);
+        let soup = TriangleSoup::new(
+            vec![tip, base(0.0), base(1.0), base(2.0)],
+            vec![[0, 1, 2], [0, 2, 3], [0, 3, 1]],
+        );
+        let model = validate(&soup).unwrap().components.remove(0);
+        let planes = planes_through_peak(&model);
+        assert!(planes.iter().all(|plane| plane.distance(tip).abs() < 1e-12));
+        let sides = (planes.into_iter())
+            .find_map(|plane| section(&model, plane))
+            .expect("a plane through the tip cuts the needle");
+        assert_eq!(sides.len(), 2);
+        for side in &sides {
+            let m = &side.model;
+            let at_tip = (m.positions().iter())
+                .position(|&p| p == tip)
+                .expect("each side holds the tip") as u32;
+            assert!(
+                m.boundary_flags()[at_tip as usize],
+                "the tip is on the boundary"
+            );
+        }
+    }
+
     #[test]
     fn the_halves_of_a_strip_carry_its_stiffness_and_mark_their_section_edges() {
         let model = grid(20, 4);
@@ -1301,12 +1449,12 @@ mod tests {
         stiffness.raise_where(3.0, |_| true);
         let piece = Piece {
             part_vertex: (0..model.vertex_count() as u32).collect(),
-            section_edges: vec![false; model.edges().len()],
+            section_edges: vec![None; model.edges().len()],
             stiffness,
             model,
             depth: 0,
         };
-        let halves = halves(&piece).expect("two halves");
+        let halves = halves(&piece, section_planes(&piece.model)).expect("two halves");
         assert_eq!(halves.len(), 2);
         for half in &halves {
             assert!(half.stiffness.factors().iter().all(|&f| f == 3.0));

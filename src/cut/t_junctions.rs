@@ -224,7 +224,7 @@ impl Splitting {
                 self.triangles[t] = [from, to, apex];
             } else {
                 self.attributes
-                    .insert(ordered([from, apex]), (attribute.0, false));
+                    .insert(ordered([from, apex]), (attribute.0, None));
                 parts.push(self.triangles.len());
                 self.triangles.push([from, to, apex]);
                 self.face_sources.push(piece.model.face_sources()[face]);
