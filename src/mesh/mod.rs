@@ -8,6 +8,7 @@ mod rebuild;
 mod repair;
 mod rows;
 mod section;
+mod section_fairing;
 mod slivers;
 mod texture_seams;
 mod validate;
