@@ -3,9 +3,12 @@
 
 Usage: python3 bench/cut_smoothness.py [--sections] OUT [OUT ...]
 
-With --sections, the section curves between pieces (the seams of kind `section` in the report,
-each piece's curves with each neighbour joined end to end) are measured instead of the cuts; the
-corners where two sections or a section and the part's boundary meet count as inner points.
+With --sections, the section curves between pieces (the seams of kind `section` in the report:
+one per run of one plane section along a piece's outline) are measured instead of the cuts. A
+slit's tip inside a run (the points before and after it are the same) is a dart tip, counted
+apart and not as an inner point. The corners where two runs meet on a piece's outline (an end
+shared by two of the piece's section seams) are not inner points of either; they are counted
+apart too, with the share of them turning by more than 20 degrees in the pattern.
 
 For every part of OUT/report.json with cuts, and every cut (its 3D polyline `points`):
 - the turning angle at each inner point of the cut, on each side of the cut in the pattern
@@ -106,10 +109,13 @@ def cut_sides(cut, copies, flat, neighbours):
 
 
 def inner_copies(cut, copies, neighbours):
-    """Each inner point's copies on the outline, with their outline neighbours on the cut."""
+    """Each inner point's copies on the outline, with their outline neighbours on the cut (a
+    slit's tip, where the cut turns back on itself, left out)."""
     points = [key(p) for p in cut["points"]]
     found = []
     for i in range(1, len(points) - 1):
+        if points[i - 1] == points[i + 1]:
+            continue
         for v in copies[points[i]]:
             before = [w for w in neighbours[v] if w in copies[points[i - 1]]]
             after = [w for w in neighbours[v] if w in copies[points[i + 1]]]
@@ -151,6 +157,30 @@ def dxf_angles(out, name, cuts, copies, flat, neighbours):
     return None
 
 
+def slit_tips(cut):
+    """The inner points of a cut where it turns back on itself (a slit's tip)."""
+    points = [key(p) for p in cut["points"]]
+    return sum(points[i - 1] == points[i + 1] for i in range(1, len(points) - 1))
+
+
+def corner_angles(cuts, copies, flat, neighbours):
+    """The pattern's turning angle at each corner where two of the part's section seams meet
+    (an end shared by two of them), from the outline's edges on either side of it."""
+    ends = defaultdict(int)
+    for cut in cuts:
+        for p in (cut["points"][0], cut["points"][-1]):
+            ends[key(p)] += 1
+    angles = []
+    for point, count in ends.items():
+        if count < 2:
+            continue
+        for v in copies[point]:
+            around = sorted(neighbours[v])
+            if len(around) == 2:
+                angles.append(turning(flat[around[0]], flat[v], flat[around[1]]))
+    return angles
+
+
 def curves(part, sections):
     """The part's cuts, or with `sections` its section curves of more than two points."""
     if not sections:
@@ -162,6 +192,7 @@ def curves(part, sections):
 def measure(out, sections=False):
     report = json.load(open(f"{out}/report.json"))
     totals = [0, 0, 0, 0]
+    corner_totals = [0, 0, 0]
     for part in report["parts"]:
         cuts = curves(part, sections)
         if not cuts:
@@ -201,12 +232,24 @@ def measure(out, sections=False):
             totals[3] += over
             print(f"  DXF contour: {len(dxf)} vertices at inner cut points, {over} over "
                   f"{LIMIT_DEGREES:.0f} deg, worst {max(dxf, default=0):.1f} deg")
+        if sections:
+            corners = corner_angles(cuts, copies, flat, neighbours)
+            tips = sum(slit_tips(cut) for cut in cuts)
+            over = sum(a > LIMIT_DEGREES for a in corners)
+            corner_totals[0] += len(corners)
+            corner_totals[1] += over
+            corner_totals[2] += tips
+            print(f"  corners where two sections meet: {len(corners)}, {over} over "
+                  f"{LIMIT_DEGREES:.0f} deg; slit tips: {tips}")
         for row in rows:
             print(row)
     print(f"{out}: {totals[0]} inner-point angles, {totals[1]} over {LIMIT_DEGREES:.0f} deg "
           f"({100.0 * totals[1] / max(totals[0], 1):.1f} %); on the DXF contours {totals[2]} "
           f"vertices at inner points, {totals[3]} over {LIMIT_DEGREES:.0f} deg "
           f"({100.0 * totals[3] / max(totals[2], 1):.1f} %)")
+    if sections:
+        print(f"{out}: {corner_totals[0]} corners where two sections meet, {corner_totals[1]} "
+              f"over {LIMIT_DEGREES:.0f} deg; {corner_totals[2]} slit tips")
 
 
 if __name__ == "__main__":
