@@ -20,10 +20,11 @@ use super::facet::{FacetModel, NONE};
 /// Sweeps over the crossing points.
 const SWEEPS: usize = 64;
 
-/// Golden-section steps per point and sweep (the interval shrinks to 0.618²⁰ ≈ 7·10⁻⁵ of it).
-const GOLDEN_STEPS: usize = 20;
+/// Golden-section steps per point and sweep (the interval shrinks to 0.618¹² ≈ 3·10⁻³ of it).
+const GOLDEN_STEPS: usize = 12;
 
-/// A sweep that moves no point by more than this fraction of its edge ends the fairing.
+/// A point that moves by less than this fraction of its edge is settled: its neighbours are not
+/// tried again for it, and a sweep that moves no point more ends the fairing.
 const SETTLED: f64 = 1e-4;
 
 /// A point moves only where that lowers its squared turns by more than this (radians squared, a
@@ -87,24 +88,36 @@ pub(super) fn fair_crossings(
         .iter()
         .map(|&t0| (t0.min(margin), t0.max(1.0 - margin)))
         .collect();
+    // Only the points near one that moved in a sweep are tried again in the next.
+    let adjacent = curve.adjacent_crossings();
+    let mut pending: Vec<bool> = (0..t.len())
+        .map(|i| curve.neighbours[i].is_some())
+        .collect();
     for _ in 0..SWEEPS {
-        let mut largest_move: f64 = 0.0;
+        let mut next = vec![false; t.len()];
         for i in 0..t.len() {
-            if curve.neighbours[i].is_none() {
+            if !pending[i] || curve.neighbours[i].is_none() {
                 continue;
             }
             let before = t[i];
             let cost_before = curve.local_cost(i, t);
-            let best = curve.least_turning(i, t, bounds[i]);
-            t[i] = best;
+            t[i] = curve.least_turning(i, t, bounds[i]);
             if curve.local_cost(i, t) >= cost_before - NEGLIGIBLE_COST {
                 t[i] = before;
             }
-            largest_move = largest_move.max((t[i] - before).abs());
+            if (t[i] - before).abs() >= SETTLED {
+                for &k in &adjacent[i] {
+                    next[k] = true;
+                    for &m in &adjacent[k] {
+                        next[m] = true;
+                    }
+                }
+            }
         }
-        if largest_move < SETTLED {
+        if !next.contains(&true) {
             break;
         }
+        pending = next;
     }
 }
 
@@ -238,6 +251,37 @@ fn vertex_turn(
 }
 
 impl SectionCurve<'_> {
+    /// Per crossing, the crossings whose turns its place changes: its neighbours on the curve,
+    /// itself, and the other crossing round each vertex next to it whose turn is counted.
+    fn adjacent_crossings(&self) -> Vec<Vec<usize>> {
+        (0..self.edges.len())
+            .map(|i| {
+                let mut adjacent = vec![i];
+                for point in self.neighbours[i].into_iter().flatten() {
+                    match point {
+                        CurvePoint::Crossing(k) => adjacent.push(k),
+                        CurvePoint::Vertex(v) => {
+                            if let Some(turn) = self
+                                .vertex_turns
+                                .get(self.vertex_turn_of[v as usize] as usize)
+                            {
+                                adjacent.extend(turn.ends.iter().filter_map(
+                                    |&(end, _)| match end {
+                                        CurvePoint::Crossing(k) => Some(k),
+                                        CurvePoint::Vertex(_) => None,
+                                    },
+                                ));
+                            }
+                        }
+                    }
+                }
+                adjacent.sort_unstable();
+                adjacent.dedup();
+                adjacent
+            })
+            .collect()
+    }
+
     /// Where crossing `i` is best placed within `bounds`, the other crossings at `t`: the least
     /// sum of the squared turns at it and at its neighbours, by golden-section search.
     fn least_turning(&self, i: usize, t: &mut [f64], (mut lo, mut hi): (f64, f64)) -> f64 {
