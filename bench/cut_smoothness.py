@@ -18,7 +18,8 @@ For every part of OUT/report.json with cuts, and every cut (its 3D polyline `poi
   earlier cut) and its last (a dart's tip) are not inner points;
 - the length of each side of the cut in the pattern (what the DXF contour follows) against its
   length after smoothing: 20 rounds of moving every inner point half-way to the mean of its two
-  neighbours (ends fixed). A zig-zag loses length, a smooth curve keeps it.
+  neighbours (ends fixed). A zig-zag loses length, a smooth curve keeps it. A section seam
+  holding a slit is measured as its runs between the slit's tips.
 - the same turning angles on the cut file itself (OUT/<part>.dxf, or .REJECTED.dxf; read with
   ezdxf): at every vertex of the DXF contour that is a copy of an inner cut point, the angle
   between the contour's segments before and after it (a cut point the contour fitting dropped
@@ -163,6 +164,16 @@ def slit_tips(cut):
     return sum(points[i - 1] == points[i + 1] for i in range(1, len(points) - 1))
 
 
+def split_at_slit_tips(cut):
+    """The cut as the runs between its slits' tips (each side of a slit a run of its own, as
+    the dart's two cuts are), for the length measure."""
+    points = cut["points"]
+    keys = [key(p) for p in points]
+    tips = [i for i in range(1, len(points) - 1) if keys[i - 1] == keys[i + 1]]
+    bounds = [0] + tips + [len(points) - 1]
+    return [{"points": points[a:b + 1]} for a, b in zip(bounds, bounds[1:]) if b > a]
+
+
 def corner_angles(cuts, copies, flat, neighbours):
     """The pattern's turning angle at each corner where two of the part's section seams meet
     (an end shared by two of them), from the outline's edges on either side of it."""
@@ -209,7 +220,9 @@ def measure(out, sections=False):
             angles = cut_angles(cut, copies, flat, neighbours)
             every += angles
             change = max((1 - length(smoothed(side)) / length(side)
-                          for side in cut_sides(cut, copies, flat, neighbours)), default=0.0)
+                          for part_of_cut in split_at_slit_tips(cut)
+                          for side in cut_sides(part_of_cut, copies, flat, neighbours)),
+                         default=0.0)
             worst_change = max(worst_change, change)
             over = sum(a > LIMIT_DEGREES for a in angles)
             rows.append(f"  cut {cut['length']:.1f}: {len(angles)} angles, {over} over "
