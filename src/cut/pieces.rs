@@ -1294,16 +1294,18 @@ mod tests {
         assert_eq!(pieces[0].original_vertex, identity);
     }
 
+    /// The pieces of `piece` on either side of the plane through `point` with `normal`.
+    fn across(piece: &Piece, point: DVec3, normal: DVec3) -> Vec<Piece> {
+        let plane = Plane::through(point, normal);
+        (section(&piece.model, plane).expect("two sides"))
+            .into_iter()
+            .map(|side| child(piece, side, SectionId::of(plane)))
+            .collect()
+    }
+
     #[test]
     fn a_section_crossing_the_shared_curve_on_one_side_still_glues_whole() {
         let model = grid(20, 4);
-        let across = |piece: &Piece, point: DVec3, normal: DVec3| -> Vec<Piece> {
-            let plane = Plane::through(point, normal);
-            (section(&piece.model, plane).expect("two sides"))
-                .into_iter()
-                .map(|side| child(piece, side, SectionId::of(plane)))
-                .collect()
-        };
         let whole = Piece::whole(&model, &Stiffness::uniform(&model));
         let [right, left] =
             <[Piece; 2]>::try_from(across(&whole, DVec3::new(10.0, 0.0, 0.0), DVec3::X))
@@ -1387,13 +1389,6 @@ mod tests {
     fn a_piece_bounded_by_two_sections_has_a_seam_for_each() {
         let model = grid(20, 4);
         let whole = Piece::whole(&model, &Stiffness::uniform(&model));
-        let across = |piece: &Piece, point: DVec3, normal: DVec3| -> Vec<Piece> {
-            let plane = Plane::through(point, normal);
-            (section(&piece.model, plane).expect("two sides"))
-                .into_iter()
-                .map(|side| child(piece, side, SectionId::of(plane)))
-                .collect()
-        };
         let halves = across(&whole, DVec3::new(10.0, 0.0, 0.0), DVec3::X);
         let left = (halves.iter())
             .find(|half| half.model.positions().iter().all(|p| p.x <= 10.0))
