@@ -1008,11 +1008,7 @@ fn halves(piece: &Piece, planes: Vec<Plane>) -> Option<Vec<Piece>> {
 fn section_planes(model: &FacetModel) -> Vec<Plane> {
     let (centroid, axes) = principal_axes(model);
     let normals = candidate_normals(axes);
-    let deficits = model.angle_deficits();
-    let peak = (0..deficits.len())
-        .max_by(|&a, &b| deficits[a].abs().total_cmp(&deficits[b].abs()))
-        .filter(|&v| deficits[v].abs() > FLAT_DEFICIT)
-        .map(|v| model.positions()[v]);
+    let peak = peak_vertex(model).map(|v| model.positions()[v]);
     let points = peak.into_iter().chain([centroid]);
     let mut candidates: Vec<(usize, Plane, f64, f64)> = points
         .enumerate()
@@ -1053,11 +1049,7 @@ fn section_planes(model: &FacetModel) -> Vec<Plane> {
 /// by increasing section length, however little area they leave on a side; none when no
 /// interior vertex holds curvature.
 fn planes_through_peak(model: &FacetModel) -> Vec<Plane> {
-    let deficits = model.angle_deficits();
-    let Some(peak) = (0..deficits.len())
-        .max_by(|&a, &b| deficits[a].abs().total_cmp(&deficits[b].abs()))
-        .filter(|&v| deficits[v].abs() > FLAT_DEFICIT)
-    else {
+    let Some(peak) = peak_vertex(model) else {
         return Vec::new();
     };
     let (_, axes) = principal_axes(model);
@@ -1081,6 +1073,14 @@ fn planes_through_peak(model: &FacetModel) -> Vec<Plane> {
         .collect();
     planes.sort_by(|a, b| a.0.total_cmp(&b.0));
     planes.into_iter().map(|(_, plane)| plane).collect()
+}
+
+/// The interior vertex of largest absolute angle deficit, if any holds curvature.
+fn peak_vertex(model: &FacetModel) -> Option<usize> {
+    let deficits = model.angle_deficits();
+    (0..deficits.len())
+        .max_by(|&a, &b| deficits[a].abs().total_cmp(&deficits[b].abs()))
+        .filter(|&v| deficits[v].abs() > FLAT_DEFICIT)
 }
 
 /// The normals of the candidate planes of a piece with these principal axes: its two axes of

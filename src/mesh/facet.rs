@@ -142,14 +142,20 @@ impl FacetModel {
         &self.boundary_loops
     }
 
+    /// The corners of `face` starting at its corner `v`, in the face's orientation; `None` when
+    /// `v` is not one of them.
+    pub fn corners_from(&self, face: u32, v: u32) -> Option<[u32; 3]> {
+        let corners = self.triangles[face as usize];
+        let k = corners.iter().position(|&w| w == v)?;
+        Some([corners[k], corners[(k + 1) % 3], corners[(k + 2) % 3]])
+    }
+
     /// Sum of the 3D corner angles at vertex `v` of the triangles around it (radians).
     pub fn angle_sum(&self, v: u32) -> f64 {
         (self.vertex_faces(v).iter())
-            .map(|&face| {
-                let triangle = self.triangles[face as usize];
-                let k = triangle.iter().position(|&w| w == v).unwrap_or(0);
-                let [a, b, c] =
-                    [k, (k + 1) % 3, (k + 2) % 3].map(|i| self.positions[triangle[i] as usize]);
+            .filter_map(|&face| self.corners_from(face, v))
+            .map(|corners| {
+                let [a, b, c] = corners.map(|w| self.positions[w as usize]);
                 (b - a).angle_between(c - a)
             })
             .sum()

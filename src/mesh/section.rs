@@ -41,8 +41,9 @@ pub const HELD_SNAP: f64 = 0.1;
 /// every crossing within [`SECTION_SNAP`] where the plane parts it evenly ([`MAX_HELD_TURN`]): on
 /// the section it is on the boundary of both sides,
 /// whose flattenings leave its curvature open there, where a section beside it leaves it inside
-/// one side, whose flattening must take it up. Splitting beside every vertex gave 1,590 pieces
-/// instead of 1,305 over the real-mesh table's fourteen meshes; with this bound, 1,352.
+/// one side, whose flattening must take it up. Before the held-turn bound, splitting beside
+/// every vertex gave 1,590 pieces instead of 1,305 over the real-mesh table's fourteen meshes;
+/// with this bound, 1,352.
 pub const HELD_DEFICIT: f64 = 0.02;
 
 /// A curved vertex ([`HELD_DEFICIT`]) takes a crossing farther than [`HELD_SNAP`] only when the
@@ -196,8 +197,9 @@ impl SidedVertices {
         let on_boundary = model.boundary_flags();
         let moved = move_onto_crossings(model, &mut positions, &snapped, &on_boundary);
         // The vertices the curve passes through instead of their crossings: the moved ones,
-        // and those held where they are that are on the boundary, near the crossing or curved
-        // (the angle deficit of an inner vertex, found only for the few held ones).
+        // those on the boundary, and those held where they are that are near the crossing or
+        // curved (the angle deficit of an inner vertex, found only for the few held ones) and
+        // parted evenly by the plane.
         let plane_distances = distances.clone();
         for &(v, t, _) in &snapped {
             let curved = || {
@@ -337,10 +339,8 @@ fn move_onto_crossings(
 fn turn_through(model: &FacetModel, distances: &[f64], v: u32, angle_sum: f64) -> f64 {
     let at = |w: u32| model.positions()[w as usize];
     let positive_angle: f64 = (model.vertex_faces(v).iter())
-        .map(|&face| {
-            let corners = model.triangles()[face as usize];
-            let k = corners.iter().position(|&w| w == v).unwrap_or(0);
-            let [a, b] = [corners[(k + 1) % 3], corners[(k + 2) % 3]];
+        .filter_map(|&face| model.corners_from(face, v))
+        .map(|[_, a, b]| {
             let [da, db] = [a, b].map(|w| distances[w as usize]);
             let angle = |p: DVec3, q: DVec3| (p - at(v)).angle_between(q - at(v));
             let crossing = || at(a).lerp(at(b), da / (da - db));

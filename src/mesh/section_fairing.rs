@@ -16,6 +16,7 @@
 use glam::DVec3;
 
 use super::facet::{FacetModel, NONE};
+use crate::geometry::golden_section_minimum;
 
 /// Sweeps over the crossing points.
 const SWEEPS: usize = 64;
@@ -192,11 +193,7 @@ fn vertex_turn(
     crossing_of_edge: &[u32],
     v: u32,
 ) -> Option<VertexTurn> {
-    let from_vertex = |face: u32| {
-        let corners = model.triangles()[face as usize];
-        let k = corners.iter().position(|&w| w == v)?;
-        Some([corners[k], corners[(k + 1) % 3], corners[(k + 2) % 3]])
-    };
+    let from_vertex = |face: u32| model.corners_from(face, v);
     let corner_angle = |[v, a, b]: [u32; 3]| {
         let at = |w: u32| vertices[w as usize];
         (at(a) - at(v)).angle_between(at(b) - at(v))
@@ -261,17 +258,11 @@ impl SectionCurve<'_> {
                     match point {
                         CurvePoint::Crossing(k) => adjacent.push(k),
                         CurvePoint::Vertex(v) => {
-                            if let Some(turn) = self
-                                .vertex_turns
-                                .get(self.vertex_turn_of[v as usize] as usize)
-                            {
-                                adjacent.extend(turn.ends.iter().filter_map(
-                                    |&(end, _)| match end {
-                                        CurvePoint::Crossing(k) => Some(k),
-                                        CurvePoint::Vertex(_) => None,
-                                    },
-                                ));
-                            }
+                            let ends = self.turn_at(v).into_iter().flat_map(|turn| turn.ends);
+                            adjacent.extend(ends.filter_map(|(end, _)| match end {
+                                CurvePoint::Crossing(k) => Some(k),
+                                CurvePoint::Vertex(_) => None,
+                            }));
                         }
                     }
                 }
@@ -282,32 +273,20 @@ impl SectionCurve<'_> {
             .collect()
     }
 
+    /// The turn terms of model vertex `v`, when the curve passes it and its turn is counted.
+    fn turn_at(&self, v: u32) -> Option<&VertexTurn> {
+        self.vertex_turns
+            .get(self.vertex_turn_of[v as usize] as usize)
+    }
+
     /// Where crossing `i` is best placed within `bounds`, the other crossings at `t`: the least
     /// sum of the squared turns at it and at its neighbours, by golden-section search.
-    fn least_turning(&self, i: usize, t: &mut [f64], (mut lo, mut hi): (f64, f64)) -> f64 {
-        const INVERSE_PHI: f64 = 0.618_033_988_749_894_8;
-        let cost_at = |x: f64, t: &mut [f64]| {
+    fn least_turning(&self, i: usize, t: &mut [f64], (low, high): (f64, f64)) -> f64 {
+        let cost_at = |x: f64| {
             t[i] = x;
             self.local_cost(i, t)
         };
-        let mut x1 = hi - INVERSE_PHI * (hi - lo);
-        let mut x2 = lo + INVERSE_PHI * (hi - lo);
-        let mut c1 = cost_at(x1, t);
-        let mut c2 = cost_at(x2, t);
-        for _ in 0..GOLDEN_STEPS {
-            if c1 <= c2 {
-                hi = x2;
-                (x2, c2) = (x1, c1);
-                x1 = hi - INVERSE_PHI * (hi - lo);
-                c1 = cost_at(x1, t);
-            } else {
-                lo = x1;
-                (x1, c1) = (x2, c2);
-                x2 = lo + INVERSE_PHI * (hi - lo);
-                c2 = cost_at(x2, t);
-            }
-        }
-        0.5 * (lo + hi)
+        golden_section_minimum(cost_at, low, high, GOLDEN_STEPS)
     }
 
     /// The squared turns at crossing `i` and at the crossings next to it.
@@ -317,10 +296,9 @@ impl SectionCurve<'_> {
             for point in points {
                 cost += match point {
                     CurvePoint::Crossing(k) => self.turn(k, t).powi(2),
-                    CurvePoint::Vertex(v) => match self.vertex_turn_of[v as usize] {
-                        NONE => 0.0,
-                        k => self.vertex_turn(&self.vertex_turns[k as usize], t).powi(2),
-                    },
+                    CurvePoint::Vertex(v) => self
+                        .turn_at(v)
+                        .map_or(0.0, |turn| self.vertex_turn(turn, t).powi(2)),
                 };
             }
         }

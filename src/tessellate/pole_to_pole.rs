@@ -10,6 +10,7 @@ use truck_stepio::r#in::alias::Surface as StepSurface;
 
 use super::domain_map::Axis;
 use super::native::{native_derivatives, native_point};
+use crate::geometry::golden_section_minimum;
 use crate::geometry::tolerance::STEP_POLE_RATIO;
 
 /// Samples along the meridian when a surface is checked for poles at both ends.
@@ -111,18 +112,8 @@ impl PoleToPole {
     }
 
     /// The parameter in `[low, high]` where the parallel's radius is smallest (golden section).
-    fn smallest_radius(&self, mut low: f64, mut high: f64) -> f64 {
-        let ratio = 0.5 * (5.0_f64.sqrt() - 1.0);
-        for _ in 0..GOLDEN_SECTION_STEPS {
-            let a = high - ratio * (high - low);
-            let b = low + ratio * (high - low);
-            if self.parallel_radius(a) <= self.parallel_radius(b) {
-                high = b;
-            } else {
-                low = a;
-            }
-        }
-        0.5 * (low + high)
+    fn smallest_radius(&self, low: f64, high: f64) -> f64 {
+        golden_section_minimum(|t| self.parallel_radius(t), low, high, GOLDEN_SECTION_STEPS)
     }
 
     fn parallel_radius(&self, t: f64) -> f64 {
